@@ -1,0 +1,81 @@
+// CPU triangle meshes, their validation report and edge topology. No GL here.
+//
+// Conventions: positions in the mesh's own space (world space once a scene is loaded);
+// triangles are counter-clockwise when seen from the side their geometric normal points to.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace penumbra::geo {
+
+struct TriangleMesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // empty or one per position
+  std::vector<glm::vec2> uvs;      // empty or one per position
+  std::vector<glm::uvec3> triangles;
+};
+
+// What loading and cleaning did to a mesh. Nothing a user gave is dropped silently: every
+// dropped or changed face is counted here and printed by `penumbra info`.
+struct MeshReport {
+  std::size_t inputVertices = 0;
+  std::size_t inputFaces = 0;            // faces as written in the file (polygons count once)
+  std::size_t triangles = 0;             // triangles kept
+  std::size_t polygonsTriangulated = 0;  // faces with > 3 vertices fanned into triangles
+  std::size_t droppedInvalidIndex = 0;   // index out of range
+  std::size_t droppedDegenerate = 0;     // repeated vertex index or zero area
+  std::size_t droppedNonFinite = 0;      // a NaN/Inf vertex position
+  std::size_t droppedDuplicate = 0;      // same vertex set as an earlier face
+  std::size_t duplicatedVertices = 0;    // vertices the loader (OpenMesh) duplicated for complex edges
+  std::size_t hugeCoordinates = 0;       // |coordinate| > 1e6 (kept, warned)
+  std::size_t openEdges = 0;             // edges with one incident triangle
+  std::size_t nonManifoldEdges = 0;      // edges with > 2 incident triangles
+  std::size_t inconsistentEdges = 0;     // two-triangle edges traversed in the same direction
+  std::size_t components = 0;            // edge-connected components
+  bool closed = false;                   // every edge has two oppositely oriented triangles
+
+  std::size_t droppedTotal() const {
+    return droppedInvalidIndex + droppedDegenerate + droppedNonFinite + droppedDuplicate;
+  }
+  // One line: "12 triangles, 0 dropped, 4 open edges, ..." (only non-zero counts beyond the first).
+  std::string summary() const;
+};
+
+// Edge topology over vertices welded by exact position (so split-normal or split-UV vertices
+// share edges). Works for any topology: open, non-manifold, inconsistently wound.
+struct EdgeTopology {
+  struct Incidence {
+    std::uint32_t triangle;
+    std::int8_t orientation;  // +1 if the triangle traverses v0 -> v1, -1 if v1 -> v0
+  };
+  struct Edge {
+    std::uint32_t v0, v1;  // welded vertex ids, v0 < v1
+    std::uint32_t firstIncidence, incidenceCount;
+  };
+  std::vector<glm::vec3> weldedPositions;        // one per welded vertex
+  std::vector<std::uint32_t> weldedIndex;        // input vertex -> welded vertex
+  std::vector<glm::uvec3> weldedTriangles;       // triangles over welded vertices
+  std::vector<Edge> edges;
+  std::vector<Incidence> incidences;
+  bool closed = false;  // every edge: exactly 2 incidences with opposite orientation
+};
+
+// Drops invalid, degenerate, non-finite and duplicate triangles (counting each in `report`),
+// then fills the topology counts of `report`. Keeps vertex arrays; unused vertices stay.
+void cleanMesh(TriangleMesh& mesh, MeshReport& report);
+
+// Builds the welded edge topology of a cleaned mesh.
+EdgeTopology buildEdgeTopology(const TriangleMesh& mesh);
+
+// Loads OBJ, PLY, OFF or STL through OpenMesh and cleans it. Throws penumbra::Error naming the
+// file on a missing/unreadable/unsupported file or one with no triangle left. Faces that
+// OpenMesh refuses (complex edges) are recovered from the file's face list where possible and
+// counted in report.duplicatedVertices otherwise.
+TriangleMesh loadMeshFile(const std::string& path, MeshReport& report);
+
+}  // namespace penumbra::geo

@@ -1,0 +1,57 @@
+// Constants and small functions shared by C++ and GLSL. Valid in both languages: only
+// #define, uint arithmetic with the `u` suffix, and functions written in the common subset.
+// C++ includes it through src/sampling/shared.hpp (which provides `uint`); the shader loader
+// prepends it to every shader. Never copy a value from here into either language by hand.
+#ifndef PENUMBRA_SHARED_H
+#define PENUMBRA_SHARED_H
+
+// ---- G-buffer layout (pipeline) ------------------------------------------------------------
+#define PENUMBRA_GBUF_POSITION 0   // RGBA32F: world position, w = 1 where a surface was hit
+#define PENUMBRA_GBUF_NORMAL 1     // RGBA32F: world normal facing the camera, w = material id
+#define PENUMBRA_GBUF_ALBEDO 2     // RGBA16F: base colour, a = opacity
+
+// ---- texture units -------------------------------------------------------------------------
+#define PENUMBRA_UNIT_GBUF_POSITION 0
+#define PENUMBRA_UNIT_GBUF_NORMAL 1
+#define PENUMBRA_UNIT_GBUF_ALBEDO 2
+#define PENUMBRA_UNIT_VISIBILITY 3      // RGBA16F: RGB visibility (eq. 2), a = 1
+#define PENUMBRA_UNIT_SAMPLE_VIS 4      // R16F 2D array: per-sample transmittance, one layer a sample
+#define PENUMBRA_UNIT_MATERIAL_TEX 5
+#define PENUMBRA_UNIT_COUNTER 6         // R32F: shadow-volume count (hard-sv)
+
+// ---- shader storage / uniform buffer bindings ----------------------------------------------
+#define PENUMBRA_SSBO_LIGHT_SAMPLES 0   // vec4 position (xyz), per set then sample
+#define PENUMBRA_SSBO_SAMPLE_RADIANCE 1 // vec4 normalised luminance L_i (rgb) of eq. 2
+
+// ---- light shapes (match penumbra::LightShape) ---------------------------------------------
+#define PENUMBRA_LIGHT_POINT 0
+#define PENUMBRA_LIGHT_RECT 1
+#define PENUMBRA_LIGHT_DISK 2
+#define PENUMBRA_LIGHT_SPHERE 3
+
+// ---- pixel patterns of light-sample sets (match penumbra::PixelPattern) --------------------
+#define PENUMBRA_PATTERN_CORRELATED 0
+#define PENUMBRA_PATTERN_DECORRELATED 1
+#define PENUMBRA_PATTERN_INTERLEAVED 2
+
+// ---- limits --------------------------------------------------------------------------------
+#define PENUMBRA_MAX_SAMPLES 128
+
+// Integer hash (PCG output permutation); identical in C++ and GLSL.
+uint penumbraHash(uint v) {
+  uint state = v * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+// The light-sample set a pixel uses. Correlated: set 0 everywhere. Decorrelated: a hash of the
+// pixel and seed picks one of `sets` rotated sets. Interleaved: the pixel's position in a K x K
+// tile picks the set (sets == K*K).
+uint penumbraSetForPixel(uint x, uint y, uint pattern, uint sets, uint k, uint seed) {
+  if (pattern == uint(PENUMBRA_PATTERN_DECORRELATED))
+    return penumbraHash(x ^ penumbraHash(y ^ penumbraHash(seed))) % sets;
+  if (pattern == uint(PENUMBRA_PATTERN_INTERLEAVED)) return (y % k) * k + (x % k);
+  return 0u;
+}
+
+#endif

@@ -1,0 +1,39 @@
+// One error style for the whole code base (see README "Errors").
+//
+// * User errors (bad file, bad parameter) throw penumbra::Error carrying the file or
+//   parameter they concern; main() prints exactly one line "penumbra: <where>: <what>" and
+//   exits non-zero. Error::exitCode() says which code (1 error, 2 usage, 77 no GL context).
+// * Programmer errors use PENUMBRA_CHECK, which stays on in release builds and aborts with
+//   the source location.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace penumbra {
+
+enum class ExitCode : int { Ok = 0, Error = 1, Usage = 2, ThresholdExceeded = 3, NoContext = 77 };
+
+class Error : public std::runtime_error {
+ public:
+  // `where` is the file, parameter or object the problem concerns ("scenes/a.json",
+  // "--samples", "light[2]"); `what` says the problem in a few words.
+  Error(std::string where, const std::string& what, ExitCode code = ExitCode::Error)
+      : std::runtime_error(where.empty() ? what : where + ": " + what),
+        where_(std::move(where)), code_(code) {}
+  const std::string& where() const { return where_; }
+  ExitCode exitCode() const { return code_; }
+
+ private:
+  std::string where_;
+  ExitCode code_;
+};
+
+[[noreturn]] void checkFailed(const char* expr, const char* file, int line, const std::string& msg);
+
+}  // namespace penumbra
+
+#define PENUMBRA_CHECK(cond, msg)                                              \
+  do {                                                                         \
+    if (!(cond)) ::penumbra::checkFailed(#cond, __FILE__, __LINE__, (msg));    \
+  } while (0)

@@ -1,0 +1,15 @@
+// Logging goes to stderr through spdlog; stdout is kept for --json output.
+#pragma once
+
+#include <spdlog/spdlog.h>
+
+namespace penumbra {
+// Sets the level from "trace|debug|info|warn|error|off"; default "info".
+void setLogLevel(const std::string& level);
+}  // namespace penumbra
+
+#define PLOG_TRACE(...) ::spdlog::trace(__VA_ARGS__)
+#define PLOG_DEBUG(...) ::spdlog::debug(__VA_ARGS__)
+#define PLOG_INFO(...) ::spdlog::info(__VA_ARGS__)
+#define PLOG_WARN(...) ::spdlog::warn(__VA_ARGS__)
+#define PLOG_ERROR(...) ::spdlog::error(__VA_ARGS__)

@@ -1,0 +1,111 @@
+// The scene every technique renders: world-space triangle meshes with materials, a camera and
+// lights. Loaders (scene JSON, glTF, OBJ/PLY/OFF/STL) all produce this; nothing here knows GL.
+//
+// Units: world units are whatever the scene uses; light intensity is emitted radiance for area
+// lights (W sr^-1 m^-2 per unit of colour) and radiant intensity for point lights.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/image.h"
+#include "geometry/mesh.h"
+
+namespace penumbra {
+
+struct Texture {
+  std::string source;  // file it came from, for messages
+  Image image;         // linear RGBA float
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+struct Material {
+  std::string name;
+  glm::vec3 baseColor{0.8f};
+  int baseColorTexture = -1;  // index into Scene::textures
+  // Opacity of the surface as an occluder, in [0,1]. 1 = opaque. From glTF baseColorFactor.a
+  // with alphaMode BLEND, or the scene file's "opacity" override. MASK: opacity is 0 or 1 by
+  // alphaCutoff of the constant alpha (texture alpha is not used for shadows yet: reported).
+  float opacity = 1.0f;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
+};
+
+// A mesh already transformed to world space (instances are flattened at load time).
+struct SceneMesh {
+  std::string name;  // "<file>#<mesh or node>" for messages
+  geo::TriangleMesh mesh;
+  geo::MeshReport report;
+  int material = 0;  // index into Scene::materials
+};
+
+enum class LightShape { Point, Rect, Disk, Sphere };
+
+struct Light {
+  std::string name;
+  LightShape shape = LightShape::Rect;
+  glm::vec3 position{0.0f, 4.0f, 0.0f};  // centre
+  // Orthonormal frame. Rect and disk lights lie in the (tangent, bitangent) plane and emit
+  // one-sided towards +normal (EXT_lights_area emits along local -Z: the loader converts).
+  glm::vec3 normal{0.0f, -1.0f, 0.0f};
+  glm::vec3 tangent{1.0f, 0.0f, 0.0f};
+  glm::vec3 bitangent() const { return glm::cross(normal, tangent); }
+  // Rect: full width (along tangent) and height (along bitangent). Disk and sphere: radius in
+  // size.x. Point: unused.
+  glm::vec2 size{1.0f, 1.0f};
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  // Emission texture (textured light): multiplies color * intensity, addressed by the light's
+  // (u,v) in [0,1]^2 (u along tangent, v along bitangent; spheres: longitude/latitude).
+  // Animated lights list frames; frame = floor(time * fps) mod frames.size().
+  std::vector<int> emissionFrames;  // indices into Scene::textures; empty = untextured
+  float fps = 0.0f;
+
+  bool isArea() const { return shape != LightShape::Point; }
+  float area() const;  // m^2 (rect w*h, disk pi r^2, sphere 4 pi r^2); 0 for points
+  int frameAt(float time) const;  // index into emissionFrames, or -1 if untextured
+};
+
+struct Camera {
+  glm::vec3 position{0.0f, 3.0f, 8.0f};
+  glm::vec3 target{0.0f, 0.0f, 0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fovY = 45.0f;   // degrees, vertical
+  float zNear = 0.05f;  // the far plane is at infinity
+};
+
+struct Scene {
+  std::string name;        // file stem or "default"
+  std::string sourcePath;  // empty for the built-in scene
+  std::vector<SceneMesh> meshes;
+  std::vector<Material> materials;  // never empty: [0] is the default material
+  std::vector<Texture> textures;
+  std::vector<Light> lights;
+  Camera camera;
+  int width = 256, height = 256;  // default output size
+  glm::vec3 background{0.0f};
+  std::vector<std::string> warnings;  // everything dropped or changed, one line each
+
+  std::size_t triangleCount() const;
+  bool hasSemiOpaque() const;  // any mesh whose material opacity is in (0,1)
+  // Axis-aligned bounds of all mesh vertices.
+  void bounds(glm::vec3& lo, glm::vec3& hi) const;
+};
+
+// Loads a scene file: .json (scene description) or a bare geometry file (.gltf, .glb, .obj,
+// .ply, .off, .stl) which gets the default camera and light framing it. `overrides` are
+// "key=value" pairs from --set, applied to the JSON before interpretation (dotted keys,
+// array indices as numbers: "lights.0.size=[2,2]", "camera.fov=30"). Throws penumbra::Error
+// naming the file and the problem.
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// The built-in default scene: a textured rectangular area light (a procedural stained-glass
+// texture) over a floor and occluders of different heights. Same overrides as loadScene.
+Scene defaultScene(const std::vector<std::string>& overrides = {});
+
+}  // namespace penumbra

@@ -1,0 +1,1 @@
+# tests of geometry (see tests/CMakeLists.txt)

@@ -1,0 +1,1 @@
+# tests of raytrace (see tests/CMakeLists.txt)

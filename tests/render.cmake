@@ -1,0 +1,1 @@
+# tests of render (see tests/CMakeLists.txt)

@@ -1,0 +1,1 @@
+# tests of scene (see tests/CMakeLists.txt)
