@@ -1,0 +1,35 @@
+// The light and its sample sets, as the pipeline binds them for visibility resolves and shading.
+uniform int lightShape;         // PENUMBRA_LIGHT_*
+uniform vec3 lightPosition;     // centre
+uniform vec3 lightNormal;       // emission normal of one-sided lights, 0 for isotropic ones
+uniform vec3 lightEmission;     // colour * intensity
+uniform float lightScale;       // area (rect, disk), pi R^2 (sphere), 1 (point): eq. 3 power
+uniform float sampleWeight;     // LightSampleSet::sampleWeight (eq. 6)
+uniform uint sampleCount;       // N
+uniform uint samplePattern;     // PENUMBRA_PATTERN_*
+uniform uint sampleSets;        // number of sets
+uniform uint sampleK;           // interleave K
+uniform uint sampleSeed;
+
+layout(std430, binding = PENUMBRA_SSBO_LIGHT_SAMPLES) readonly buffer LightSamples {
+  vec4 samplePositions[];  // [set * N + k], xyz world
+};
+layout(std430, binding = PENUMBRA_SSBO_SAMPLE_RADIANCE) readonly buffer SampleLuminance {
+  vec4 sampleLuminance[];  // L_i of eq. 2, rgb
+};
+
+uint pixelSampleBase(ivec2 pixel) {
+  return penumbraSetForPixel(uint(pixel.x), uint(pixel.y), samplePattern, sampleSets, sampleK,
+                             sampleSeed) * sampleCount;
+}
+
+// Horizon rule shared with the reference: a sample below the surface's tangent plane is not
+// seen (README "Conventions").
+bool aboveHorizon(vec3 p, vec3 n, vec3 x) { return dot(n, x - p) > 0.0; }
+
+// One-sided emitters only light the half-space in front of them.
+float emitterCosine(vec3 towardsSurface) {
+  return lightShape == PENUMBRA_LIGHT_RECT || lightShape == PENUMBRA_LIGHT_DISK
+             ? max(dot(lightNormal, towardsSurface), 0.0)
+             : 1.0;
+}

@@ -1,0 +1,31 @@
+// penumbra's subcommands. Each returns the process exit code (see core/error.h ExitCode).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pipeline/renderer.h"
+
+namespace penumbra::cli {
+
+struct CommonOptions {
+  std::string scene;  // empty: the built-in default scene
+  std::vector<std::string> overrides;  // --set key=value
+  std::string backend = "egl";
+  int width = 0, height = 0;  // 0: the scene's resolution
+  int samples = 16;
+  std::string strategy = "stratified";
+  std::string pattern = "correlated";
+  unsigned seed = 1;
+  float time = 0.0f;
+  std::string shading = "modulate";
+  bool json = false;
+};
+
+int listTechniques(bool json);
+int info(const CommonOptions& o);
+int render(const CommonOptions& o, const std::string& technique, const std::string& output);
+int compare(const CommonOptions& o, const std::vector<std::string>& techniques,
+            const std::string& outDir, double maxError);
+
+}  // namespace penumbra::cli

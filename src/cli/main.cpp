@@ -1,0 +1,97 @@
+// penumbra: headless soft-shadow renderer. Subcommands: list, info, render, compare.
+// Exit codes: 0 ok, 1 error, 2 usage, 3 compare --max-error exceeded, 77 no GL context.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "core/log.h"
+
+using namespace penumbra;
+
+namespace {
+
+void addCommon(CLI::App* app, cli::CommonOptions& o, bool renderOptions) {
+  app->add_option("scene", o.scene, "scene file (.json, .gltf, .glb, .obj, .ply, .off, .stl); none: built-in default");
+  app->add_option("--set", o.overrides, "override a scene key: key=value (repeatable)");
+  app->add_flag("--json", o.json, "machine-readable output on stdout");
+  if (!renderOptions) return;
+  app->add_option("--backend", o.backend, "GL backend: egl | osmesa")->capture_default_str();
+  app->add_option("-W,--width", o.width, "image width (default: the scene's)");
+  app->add_option("-H,--height", o.height, "image height (default: the scene's)");
+  app->add_option("--samples", o.samples, "light samples per light, for every technique and the reference")->capture_default_str();
+  app->add_option("--strategy", o.strategy, "sample strategy: stratified | poisson | vogel")->capture_default_str();
+  app->add_option("--pattern", o.pattern, "per-pixel sets: correlated | decorrelated | interleaved")->capture_default_str();
+  app->add_option("--seed", o.seed, "sample seed")->capture_default_str();
+  app->add_option("--time", o.time, "animation time in seconds (animated textured lights)")->capture_default_str();
+  app->add_option("--shading", o.shading, "modulate (DCS eq. 3) | per-sample (eq. 6)")->capture_default_str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  setLogLevel("info");
+  CLI::App app{"penumbra: soft shadows from area lights, measured against a ray-traced reference"};
+  app.require_subcommand(1);
+  std::string logLevel = "info";
+  app.add_option("--log", logLevel, "log level: trace, debug, info, warn, error, off");
+
+  cli::CommonOptions o;
+  bool listJson = false;
+  auto* list = app.add_subcommand("list", "list the techniques, one line each");
+  list->add_flag("--json", listJson, "machine-readable output");
+
+  auto* info = app.add_subcommand("info", "print a scene's triangle and light counts and mesh reports");
+  addCommon(info, o, false);
+
+  std::string technique = "hard-sv", output;
+  auto* render = app.add_subcommand("render", "render one technique");
+  addCommon(render, o, true);
+  render->add_option("-t,--technique", technique, "technique (see `penumbra list`)")->capture_default_str();
+  render->add_option("-o,--output", output, "output image (.exr: float RGB + visibility layers; .png: sRGB)")->required();
+
+  std::string techniques = "all", outDir = "out";
+  double maxError = -1.0;
+  auto* compare = app.add_subcommand("compare", "render techniques and the raytrace reference with the same samples; write images, heat maps, report.json");
+  addCommon(compare, o, true);
+  compare->add_option("--techniques", techniques, "comma-separated techniques, or 'all'")->capture_default_str();
+  compare->add_option("-o,--output", outDir, "output folder")->capture_default_str();
+  compare->add_option("--max-error", maxError, "exit 3 if a technique's visibility RMSE against the reference exceeds this");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "penumbra: %s\n", e.what());
+    return int(ExitCode::Usage);
+  }
+  setLogLevel(logLevel);
+
+  try {
+    if (*list) return cli::listTechniques(listJson);
+    if (*info) return cli::info(o);
+    if (*render) return cli::render(o, technique, output);
+    if (*compare) {
+      std::vector<std::string> names;
+      std::string cur;
+      for (char c : techniques + ",") {
+        if (c == ',') {
+          if (!cur.empty()) names.push_back(cur);
+          cur.clear();
+        } else {
+          cur += c;
+        }
+      }
+      return cli::compare(o, names, outDir, maxError);
+    }
+  } catch (const Error& e) {
+    std::fprintf(stderr, "penumbra: %s\n", e.what());
+    return int(e.exitCode());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "penumbra: %s\n", e.what());
+    return int(ExitCode::Error);
+  }
+  return int(ExitCode::Usage);
+}

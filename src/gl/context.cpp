@@ -1,0 +1,171 @@
+#include "gl/context.h"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/osmesa.h>
+
+#include <atomic>
+#include <vector>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "gl/gl.h"
+
+namespace penumbra {
+#define X(type, name) type name = nullptr;
+#include "gl/functions.inl"
+#undef X
+}  // namespace penumbra
+
+namespace penumbra::gl {
+namespace {
+
+std::atomic<int> gErrorCount{0};
+
+void GLAPIENTRY debugCallback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei,
+                              const GLchar* message, const void*) {
+  if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) {
+    ++gErrorCount;
+    PLOG_ERROR("GL: {}", message);
+  } else if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) {
+    PLOG_TRACE("GL: {}", message);
+  } else {
+    PLOG_DEBUG("GL: {}", message);
+  }
+}
+
+[[noreturn]] void noContext(const std::string& what) {
+  throw Error("GL context", what, ExitCode::NoContext);
+}
+
+class EglContext final : public Context {
+ public:
+  EglContext() : Context(Backend::Egl) {
+    auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+        eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    // Mesa: surfaceless platform. NVIDIA: the device platform (first device).
+    if (getPlatformDisplay) display_ = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr)) {
+      display_ = EGL_NO_DISPLAY;
+      auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+      EGLDeviceEXT devices[8];
+      EGLint n = 0;
+      if (queryDevices && getPlatformDisplay && queryDevices(8, devices, &n) && n > 0) {
+        display_ = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[0], nullptr);
+        if (display_ != EGL_NO_DISPLAY && !eglInitialize(display_, nullptr, nullptr)) display_ = EGL_NO_DISPLAY;
+      }
+    }
+    if (display_ == EGL_NO_DISPLAY) noContext("EGL: no surfaceless or device display could be initialised");
+    if (!eglBindAPI(EGL_OPENGL_API)) noContext("EGL: OpenGL API not available");
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                              EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE, EGL_NONE};
+    // EGL_KHR_no_config_context: no surface, so no config needed.
+    context_ = eglCreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
+    if (context_ == EGL_NO_CONTEXT) {
+      EGLint cfgAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+      EGLConfig cfg;
+      EGLint count = 0;
+      if (eglChooseConfig(display_, cfgAttribs, &cfg, 1, &count) && count > 0)
+        context_ = eglCreateContext(display_, cfg, EGL_NO_CONTEXT, attribs);
+    }
+    if (context_ == EGL_NO_CONTEXT) noContext("EGL: cannot create a GL 4.5 core context");
+    if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
+      noContext("EGL: cannot make the context current without a surface");
+    loadEntryPoints([](const char* n) { return reinterpret_cast<void*>(eglGetProcAddress(n)); });
+  }
+  ~EglContext() override {
+    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(display_, context_);
+  }
+
+ private:
+  EGLDisplay display_ = EGL_NO_DISPLAY;
+  EGLContext context_ = EGL_NO_CONTEXT;
+};
+
+class OSMesaBackend final : public Context {
+ public:
+  OSMesaBackend() : Context(Backend::OSMesa) {
+    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
+                           OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 4,
+                           OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+    context_ = OSMesaCreateContextAttribs(attribs, nullptr);
+    if (!context_) noContext("OSMesa: cannot create a GL 4.5 core context");
+    // OSMesa needs a colour buffer to make a context current; all rendering goes to FBOs.
+    if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1))
+      noContext("OSMesa: cannot make the context current");
+    loadEntryPoints([](const char* n) { return reinterpret_cast<void*>(OSMesaGetProcAddress(n)); });
+  }
+  ~OSMesaBackend() override { OSMesaDestroyContext(context_); }
+
+ private:
+  OSMesaContext context_ = nullptr;
+  std::vector<unsigned char> buffer_ = std::vector<unsigned char>(4, 0);
+};
+
+}  // namespace
+
+Backend parseBackend(const std::string& name) {
+  if (name == "egl") return Backend::Egl;
+  if (name == "osmesa") return Backend::OSMesa;
+  throw Error("--backend", "unknown backend '" + name + "' (egl, osmesa)", ExitCode::Usage);
+}
+
+const char* toString(Backend b) { return b == Backend::Egl ? "egl" : "osmesa"; }
+
+std::unique_ptr<Context> Context::create(Backend backend) {
+  std::unique_ptr<Context> c;
+  if (backend == Backend::Egl) c = std::make_unique<EglContext>();
+  else c = std::make_unique<OSMesaBackend>();
+  return c;
+}
+
+Context::~Context() = default;
+
+bool Context::isSoftware() const {
+  return renderer_.find("llvmpipe") != std::string::npos ||
+         renderer_.find("softpipe") != std::string::npos;
+}
+
+void Context::loadEntryPoints(void* (*getProc)(const char*)) {
+  std::vector<std::string> missing;
+#define X(type, name)                                              \
+  penumbra::name = reinterpret_cast<type>(getProc(#name));         \
+  if (!penumbra::name) missing.push_back(#name);
+#include "gl/functions.inl"
+#undef X
+  if (!missing.empty()) noContext("missing GL entry point " + missing.front());
+  auto str = [](GLenum e) {
+    const GLubyte* s = glGetString(e);
+    return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+  };
+  renderer_ = str(GL_RENDERER);
+  version_ = str(GL_VERSION);
+  vendor_ = str(GL_VENDOR);
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  if (major * 10 + minor < 45) noContext("GL 4.5 required, got " + version_);
+  glEnable(GL_DEBUG_OUTPUT);
+  glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+  glDebugMessageCallback(debugCallback, nullptr);
+  // Conventions used everywhere (see README "Conventions"): window row 0 is the top image row,
+  // so readbacks need no flip and gl_FragCoord.xy is the image pixel; depth in [0,1] with
+  // reversed Z (near = 1, infinity = 0) for precision.
+  glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  checkErrors("context setup");
+}
+
+int Context::takeErrorCount() { return gErrorCount.exchange(0); }
+
+void Context::checkErrors(const char* where) {
+  for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) {
+    ++gErrorCount;
+    PLOG_ERROR("GL error 0x{:x} at {}", e, where);
+  }
+}
+
+}  // namespace penumbra::gl

@@ -1,0 +1,41 @@
+// Headless GL 4.5 core contexts: EGL surfaceless (default; also NVIDIA's EGL) and OSMesa.
+// Both backends are in one binary; the active one supplies every GL entry point.
+#pragma once
+
+#include <memory>
+#include <string>
+
+namespace penumbra::gl {
+
+enum class Backend { Egl, OSMesa };
+Backend parseBackend(const std::string& name);  // "egl" | "osmesa", else Error("--backend")
+const char* toString(Backend b);
+
+class Context {
+ public:
+  // Creates and makes current a GL 4.5 core context with KHR_debug output routed to the log.
+  // Throws penumbra::Error(..., ExitCode::NoContext) when no context can be made.
+  static std::unique_ptr<Context> create(Backend backend);
+  virtual ~Context();
+
+  Backend backend() const { return backend_; }
+  const std::string& renderer() const { return renderer_; }  // GL_RENDERER
+  const std::string& version() const { return version_; }    // GL_VERSION
+  const std::string& vendor() const { return vendor_; }
+  bool isSoftware() const;  // llvmpipe/softpipe: GL timer queries are not meaningful
+
+  // GL errors and high-severity debug messages seen since the last call (tests fail on any).
+  static int takeErrorCount();
+  // Drains glGetError; counts and logs each error with `where`.
+  static void checkErrors(const char* where);
+
+ protected:
+  explicit Context(Backend b) : backend_(b) {}
+  void loadEntryPoints(void* (*getProc)(const char*));
+
+ private:
+  Backend backend_;
+  std::string renderer_, version_, vendor_;
+};
+
+}  // namespace penumbra::gl

@@ -1,0 +1,302 @@
+#include "gl/objects.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/error.h"
+#include "gl/context.h"
+
+namespace penumbra::gl {
+
+// Generated at build time from shaders/ (see shaders/CMakeLists.txt).
+const std::map<std::string, std::string>& embeddedShaders();
+
+void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
+void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
+void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
+void deleteProgram(GLuint id) { glDeleteProgram(id); }
+
+// ---- Buffer ----------------------------------------------------------------------------------
+
+Buffer::Buffer(std::size_t bytes, const void* data) : size_(bytes) {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  // GL rejects zero-size stores; keep a 16-byte buffer so binding an empty list is valid.
+  glNamedBufferData(id, GLsizeiptr(bytes ? bytes : 16), bytes ? data : nullptr, GL_STATIC_DRAW);
+  static_cast<Object&>(*this) = Object(id);
+}
+
+void Buffer::bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, id()); }
+
+// ---- Texture ---------------------------------------------------------------------------------
+
+namespace {
+struct FormatInfo {
+  GLenum internal;
+  int channels;
+  int bytesPerTexel;
+};
+FormatInfo formatInfo(GLenum f) {
+  switch (f) {
+    case GL_R32F: return {f, 1, 4};
+    case GL_R16F: return {f, 1, 2};
+    case GL_RG32F: return {f, 2, 8};
+    case GL_RGBA32F: return {f, 4, 16};
+    case GL_RGBA16F: return {f, 4, 8};
+    case GL_RGBA8: return {f, 4, 4};
+    case GL_DEPTH_COMPONENT32F: return {f, 1, 4};
+    case GL_R32UI: return {f, 1, 4};
+    case GL_RGBA32UI: return {f, 4, 16};
+    default: PENUMBRA_CHECK(false, "unknown texture format");
+  }
+}
+GLenum pixelFormat(int channels) {
+  static const GLenum fmts[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+  PENUMBRA_CHECK(channels >= 1 && channels <= 4, "channels");
+  return fmts[channels - 1];
+}
+void setSampling(GLuint id) {
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+}  // namespace
+
+Texture Texture::make2D(GLenum internalFormat, int width, int height) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &id);
+  glTextureStorage2D(id, 1, internalFormat, width, height);
+  setSampling(id);
+  Texture t;
+  static_cast<Object&>(t) = Object(id);
+  t.w_ = width, t.h_ = height, t.layers_ = 0, t.fmt_ = internalFormat;
+  return t;
+}
+
+Texture Texture::make2DArray(GLenum internalFormat, int width, int height, int layers) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+  glTextureStorage3D(id, 1, internalFormat, width, height, layers);
+  setSampling(id);
+  Texture t;
+  static_cast<Object&>(t) = Object(id);
+  t.w_ = width, t.h_ = height, t.layers_ = layers, t.fmt_ = internalFormat;
+  return t;
+}
+
+void Texture::bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
+
+void Texture::clear(const glm::vec4& value) const {
+  if (fmt_ == GL_R32UI || fmt_ == GL_RGBA32UI) {
+    glm::uvec4 u(value);
+    glClearTexImage(id(), 0, fmt_ == GL_R32UI ? GL_RED_INTEGER : GL_RGBA_INTEGER, GL_UNSIGNED_INT, &u);
+  } else if (fmt_ == GL_DEPTH_COMPONENT32F) {
+    glClearTexImage(id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &value.x);
+  } else {
+    glClearTexImage(id(), 0, GL_RGBA, GL_FLOAT, glm::value_ptr(value));
+  }
+}
+
+Image Texture::read(int channels, int layer) const {
+  PENUMBRA_CHECK(layer < 0 || layers_ > 0, "layer of a 2D texture");
+  if (layers_ > 0 && layer < 0) {  // all layers, stacked vertically
+    Image all(w_, h_ * layers_, channels);
+    glGetTextureImage(id(), 0, pixelFormat(channels), GL_FLOAT, GLsizei(all.data.size() * sizeof(float)), all.data.data());
+    Context::checkErrors("Texture::read");
+    return all;
+  }
+  Image img(w_, h_, channels);
+  GLenum fmt = fmt_ == GL_DEPTH_COMPONENT32F ? GL_DEPTH_COMPONENT : pixelFormat(channels);
+  if (layers_ == 0) {
+    glGetTextureImage(id(), 0, fmt, GL_FLOAT, GLsizei(img.data.size() * sizeof(float)), img.data.data());
+  } else {
+    // One layer of an array: read all and copy out (arrays are small in the tests' sizes).
+    std::vector<float> all(std::size_t(w_) * h_ * layers_ * channels);
+    glGetTextureImage(id(), 0, fmt, GL_FLOAT, GLsizei(all.size() * sizeof(float)), all.data());
+    std::copy_n(all.begin() + std::ptrdiff_t(img.data.size()) * layer, img.data.size(), img.data.begin());
+  }
+  Context::checkErrors("Texture::read");
+  return img;
+}
+
+void Texture::upload(const float* data, int channels, int layer) const {
+  if (layers_ == 0)
+    glTextureSubImage2D(id(), 0, 0, 0, w_, h_, pixelFormat(channels), GL_FLOAT, data);
+  else
+    glTextureSubImage3D(id(), 0, 0, 0, layer, w_, h_, 1, pixelFormat(channels), GL_FLOAT, data);
+}
+
+std::size_t Texture::bytes() const {
+  return std::size_t(w_) * h_ * std::max(1, layers_) * formatInfo(fmt_).bytesPerTexel;
+}
+
+// ---- Framebuffer -----------------------------------------------------------------------------
+
+Framebuffer::Framebuffer(const std::vector<const Texture*>& colors, const Texture* depth) {
+  GLuint id = 0;
+  glCreateFramebuffers(1, &id);
+  static_cast<Object&>(*this) = Object(id);
+  std::vector<GLenum> bufs;
+  for (std::size_t i = 0; i < colors.size(); ++i) {
+    glNamedFramebufferTexture(id, GLenum(GL_COLOR_ATTACHMENT0 + i), colors[i]->id(), 0);
+    bufs.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
+    w_ = colors[i]->width(), h_ = colors[i]->height();
+  }
+  glNamedFramebufferDrawBuffers(id, GLsizei(bufs.size()), bufs.data());
+  if (depth) {
+    glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth->id(), 0);
+    w_ = depth->width(), h_ = depth->height();
+  }
+  GLenum status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
+  PENUMBRA_CHECK(status == GL_FRAMEBUFFER_COMPLETE, "framebuffer incomplete");
+}
+
+void Framebuffer::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, id());
+  glViewport(0, 0, w_, h_);
+}
+
+// ---- VertexArray -----------------------------------------------------------------------------
+
+VertexArray::VertexArray() {
+  GLuint id = 0;
+  glCreateVertexArrays(1, &id);
+  static_cast<Object&>(*this) = Object(id);
+}
+
+VertexArray& VertexArray::attribute(GLuint index, int components, std::size_t offset, GLuint binding) {
+  glEnableVertexArrayAttrib(id(), index);
+  glVertexArrayAttribFormat(id(), index, components, GL_FLOAT, GL_FALSE, GLuint(offset));
+  glVertexArrayAttribBinding(id(), index, binding);
+  return *this;
+}
+
+VertexArray& VertexArray::attributeInt(GLuint index, int components, std::size_t offset, GLuint binding) {
+  glEnableVertexArrayAttrib(id(), index);
+  glVertexArrayAttribIFormat(id(), index, components, GL_INT, GLuint(offset));
+  glVertexArrayAttribBinding(id(), index, binding);
+  return *this;
+}
+
+VertexArray& VertexArray::vertexBuffer(const Buffer& b, std::size_t stride, GLuint binding) {
+  glVertexArrayVertexBuffer(id(), binding, b.id(), 0, GLsizei(stride));
+  return *this;
+}
+
+VertexArray& VertexArray::elementBuffer(const Buffer& b) {
+  glVertexArrayElementBuffer(id(), b.id());
+  return *this;
+}
+
+void VertexArray::bind() const { glBindVertexArray(id()); }
+
+// ---- Program ---------------------------------------------------------------------------------
+
+std::string shaderSource(const std::string& file) {
+  if (const char* dir = std::getenv("PENUMBRA_SHADER_DIR")) {
+    std::ifstream in(std::string(dir) + "/" + file);
+    if (!in) throw Error(std::string(dir) + "/" + file, "cannot read shader");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+  auto& m = embeddedShaders();
+  auto it = m.find(file);
+  if (it == m.end()) throw Error(file, "no such embedded shader");
+  return it->second;
+}
+
+namespace {
+
+// Replaces each line `#include "name"` by the named shader file (one level is enough here, but
+// nested includes work too; each file is included once).
+std::string resolveIncludes(const std::string& src, std::vector<std::string>& seen) {
+  std::istringstream in(src);
+  std::string line, out;
+  int lineNo = 0;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    auto pos = line.find("#include \"");
+    if (pos != std::string::npos && line.find_first_not_of(" \t") == pos) {
+      std::string name = line.substr(pos + 10, line.find('"', pos + 10) - pos - 10);
+      if (std::find(seen.begin(), seen.end(), name) == seen.end()) {
+        seen.push_back(name);
+        out += resolveIncludes(shaderSource(name), seen);
+      }
+      continue;
+    }
+    out += line + "\n";
+  }
+  return out;
+}
+
+GLenum stageOf(const std::string& file) {
+  auto ext = file.substr(file.rfind('.') + 1);
+  if (ext == "vert") return GL_VERTEX_SHADER;
+  if (ext == "frag") return GL_FRAGMENT_SHADER;
+  if (ext == "geom") return GL_GEOMETRY_SHADER;
+  if (ext == "comp") return GL_COMPUTE_SHADER;
+  throw Error(file, "unknown shader stage (.vert .frag .geom .comp)");
+}
+
+}  // namespace
+
+Program::Program(const std::vector<std::string>& files, const std::vector<std::string>& defines) {
+  GLuint prog = glCreateProgram();
+  static_cast<Object&>(*this) = Object(prog);
+  std::vector<GLuint> shaders;
+  for (auto& file : files) {
+    std::string header = "#version 450 core\n";
+    for (auto& d : defines) header += "#define " + d + "\n";
+    std::vector<std::string> seen{"shared.h"};
+    std::string src = header + shaderSource("shared.h") + "#line 1\n" + resolveIncludes(shaderSource(file), seen);
+    GLuint sh = glCreateShader(stageOf(file));
+    const char* p = src.c_str();
+    glShaderSource(sh, 1, &p, nullptr);
+    glCompileShader(sh);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      char log[4096];
+      glGetShaderInfoLog(sh, sizeof log, nullptr, log);
+      glDeleteShader(sh);
+      std::string msg(log);
+      for (auto& c : msg) if (c == '\n') c = ' ';
+      throw Error("shaders/" + file, "compile error: " + msg);
+    }
+    glAttachShader(prog, sh);
+    shaders.push_back(sh);
+  }
+  glLinkProgram(prog);
+  for (GLuint sh : shaders) glDeleteShader(sh);
+  GLint ok = 0;
+  glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096];
+    glGetProgramInfoLog(prog, sizeof log, nullptr, log);
+    std::string msg(log);
+    for (auto& c : msg) if (c == '\n') c = ' ';
+    throw Error("shaders/" + files.front(), "link error: " + msg);
+  }
+}
+
+void Program::use() const { glUseProgram(id()); }
+GLint Program::location(const char* name) const { return glGetUniformLocation(id(), name); }
+void Program::set(const char* n, int v) const { glProgramUniform1i(id(), location(n), v); }
+void Program::set(const char* n, unsigned v) const { glProgramUniform1ui(id(), location(n), v); }
+void Program::set(const char* n, float v) const { glProgramUniform1f(id(), location(n), v); }
+void Program::set(const char* n, const glm::vec2& v) const { glProgramUniform2f(id(), location(n), v.x, v.y); }
+void Program::set(const char* n, const glm::vec3& v) const { glProgramUniform3fv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(const char* n, const glm::vec4& v) const { glProgramUniform4fv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(const char* n, const glm::mat4& v) const {
+  glProgramUniformMatrix4fv(id(), location(n), 1, GL_FALSE, glm::value_ptr(v));
+}
+
+}  // namespace penumbra::gl

@@ -1,0 +1,132 @@
+// RAII wrappers for GL objects and the shader-program loader. Raw GL names stay inside these
+// types; techniques hold wrappers and call GL (from gl/gl.h) only for draw state.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/image.h"
+#include "gl/gl.h"
+
+namespace penumbra::gl {
+
+// Move-only owner of one GL name.
+template <void (*Delete)(GLuint)>
+class Object {
+ public:
+  Object() = default;
+  explicit Object(GLuint id) : id_(id) {}
+  ~Object() { reset(); }
+  Object(Object&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
+  Object& operator=(Object&& o) noexcept {
+    if (this != &o) { reset(); id_ = std::exchange(o.id_, 0); }
+    return *this;
+  }
+  Object(const Object&) = delete;
+  Object& operator=(const Object&) = delete;
+  GLuint id() const { return id_; }
+  explicit operator bool() const { return id_ != 0; }
+  void reset() {
+    if (id_) Delete(id_);
+    id_ = 0;
+  }
+
+ private:
+  GLuint id_ = 0;
+};
+
+void deleteBuffer(GLuint id);
+void deleteTexture(GLuint id);
+void deleteFramebuffer(GLuint id);
+void deleteVertexArray(GLuint id);
+void deleteProgram(GLuint id);
+
+class Buffer : public Object<deleteBuffer> {
+ public:
+  Buffer() = default;
+  // Immutable-size buffer with `bytes` of data (data may be null).
+  Buffer(std::size_t bytes, const void* data);
+  template <class T>
+  explicit Buffer(const std::vector<T>& v) : Buffer(v.size() * sizeof(T), v.empty() ? nullptr : v.data()) {}
+  std::size_t size() const { return size_; }
+  void bindBase(GLenum target, GLuint index) const;
+
+ private:
+  std::size_t size_ = 0;
+};
+
+class Texture : public Object<deleteTexture> {
+ public:
+  Texture() = default;
+  // 2D texture with one level; nearest filtering, clamp to edge.
+  static Texture make2D(GLenum internalFormat, int width, int height);
+  // 2D array texture with `layers` layers.
+  static Texture make2DArray(GLenum internalFormat, int width, int height, int layers);
+  int width() const { return w_; }
+  int height() const { return h_; }
+  int layers() const { return layers_; }
+  GLenum format() const { return fmt_; }
+  void bind(GLuint unit) const;
+  void clear(const glm::vec4& value) const;  // all layers
+  // Reads a float texture back as an Image with `channels` (1, 2, 3 or 4) channels. For an
+  // array texture, layer -1 reads all layers stacked vertically (height * layers rows).
+  Image read(int channels, int layer = -1) const;
+  // Uploads float data (channels 1..4) to the whole texture (or one layer of an array).
+  void upload(const float* data, int channels, int layer = -1) const;
+  std::size_t bytes() const;  // GPU memory estimate for reports
+
+ private:
+  int w_ = 0, h_ = 0, layers_ = 0;
+  GLenum fmt_ = 0;
+};
+
+class Framebuffer : public Object<deleteFramebuffer> {
+ public:
+  Framebuffer() = default;
+  // Colour attachments in order (draw buffers 0..n-1), optional depth texture.
+  Framebuffer(const std::vector<const Texture*>& colors, const Texture* depth);
+  void bind() const;  // binds and sets the viewport to the attachment size
+
+ private:
+  int w_ = 0, h_ = 0;
+};
+
+class VertexArray : public Object<deleteVertexArray> {
+ public:
+  VertexArray();
+  // Float attribute `index` of `components` floats at `offset` in vertex buffer binding `binding`.
+  VertexArray& attribute(GLuint index, int components, std::size_t offset, GLuint binding = 0);
+  VertexArray& attributeInt(GLuint index, int components, std::size_t offset, GLuint binding = 0);
+  VertexArray& vertexBuffer(const Buffer& b, std::size_t stride, GLuint binding = 0);
+  VertexArray& elementBuffer(const Buffer& b);
+  void bind() const;
+};
+
+// A program from shader files under shaders/ (embedded at build time; read from
+// $PENUMBRA_SHADER_DIR instead when set, for iterating). Each source gets "#version 450 core",
+// the given defines ("NAME" or "NAME VALUE"), shaders/shared.h and its #include "file" lines
+// resolved. Compile/link errors throw penumbra::Error naming the shader file.
+class Program : public Object<deleteProgram> {
+ public:
+  Program() = default;
+  Program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});
+  void use() const;
+  GLint location(const char* name) const;
+  void set(const char* name, int v) const;
+  void set(const char* name, unsigned v) const;
+  void set(const char* name, float v) const;
+  void set(const char* name, const glm::vec2& v) const;
+  void set(const char* name, const glm::vec3& v) const;
+  void set(const char* name, const glm::vec4& v) const;
+  void set(const char* name, const glm::mat4& v) const;
+};
+
+// Source text of a shader file (embedded or from $PENUMBRA_SHADER_DIR).
+std::string shaderSource(const std::string& file);
+
+}  // namespace penumbra::gl

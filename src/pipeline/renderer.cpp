@@ -1,0 +1,305 @@
+#include "pipeline/renderer.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "sampling/shared.hpp"
+
+namespace penumbra {
+
+ShadingMode parseShadingMode(const std::string& s) {
+  if (s == "modulate") return ShadingMode::Modulate;
+  if (s == "per-sample") return ShadingMode::PerSample;
+  throw Error("--shading", "unknown shading mode '" + s + "' (modulate, per-sample)", ExitCode::Usage);
+}
+
+const char* toString(ShadingMode m) { return m == ShadingMode::Modulate ? "modulate" : "per-sample"; }
+
+glm::mat4 viewFromWorld(const Camera& camera) {
+  return glm::lookAt(camera.position, camera.target, camera.up);
+}
+
+glm::mat4 clipFromViewReversedInfinite(const Camera& camera, float aspect) {
+  // Reversed-Z infinite projection for glClipControl(..., GL_ZERO_TO_ONE): z_clip = near,
+  // w_clip = -z_view, so depth = near / -z_view: 1 at the near plane, 0 at infinity. Points at
+  // infinity (w = 0) land exactly on depth 0, which shadow-volume far caps rely on.
+  float f = 1.0f / std::tan(glm::radians(camera.fovY) * 0.5f);
+  glm::mat4 m(0.0f);
+  m[0][0] = f / aspect;
+  m[1][1] = f;
+  m[2][3] = -1.0f;
+  m[3][2] = camera.zNear;
+  return m;
+}
+
+void setLightUniforms(const gl::Program& prog, const Light& light, const LightSampleSet& s) {
+  static_assert(int(LightShape::Point) == PENUMBRA_LIGHT_POINT && int(LightShape::Sphere) == PENUMBRA_LIGHT_SPHERE);
+  prog.set("lightShape", int(light.shape));
+  prog.set("lightPosition", light.position);
+  prog.set("lightNormal", s.lightNormal);
+  prog.set("lightEmission", light.color * light.intensity);
+  float scale = 1.0f;
+  if (light.shape == LightShape::Rect || light.shape == LightShape::Disk) scale = light.area();
+  if (light.shape == LightShape::Sphere) scale = float(M_PI) * light.size.x * light.size.x;
+  prog.set("lightScale", scale);
+  prog.set("sampleWeight", s.sampleWeight);
+  prog.set("sampleCount", unsigned(s.count));
+  prog.set("samplePattern", unsigned(s.pattern));
+  prog.set("sampleSets", unsigned(s.setCount));
+  prog.set("sampleK", unsigned(s.interleaveK));
+  prog.set("sampleSeed", unsigned(s.seed));
+}
+
+void resolveVisibility(LightPass& pass, const gl::Program& program) {
+  gl::Framebuffer fbo({&pass.visibility}, nullptr);
+  fbo.bind();
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  pass.gpu.bindGBuffer();
+  program.use();
+  setLightUniforms(program, pass.light, pass.samples);
+  gl::VertexArray vao;
+  vao.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+// ---- GpuScene --------------------------------------------------------------------------------
+
+namespace {
+struct GVertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec2 uv;
+};
+}  // namespace
+
+GpuScene::GpuScene(const Scene& scene, int width, int height)
+    : scene_(scene), width_(width), height_(height) {
+  float aspect = float(width) / float(height);
+  clipFromWorld_ = clipFromViewReversedInfinite(scene.camera, aspect) * viewFromWorld(scene.camera);
+  cameraPos_ = scene.camera.position;
+
+  // Triangles are expanded (not indexed) so each vertex carries its face normal: the G-buffer
+  // holds geometric normals, the ones the horizon rule and the reference's ray offset use.
+  std::vector<GVertex> verts;
+  verts.reserve(scene.triangleCount() * 3);
+  for (auto& m : scene.meshes) {
+    Draw d{GLint(verts.size()), 0, m.material};
+    const auto& mesh = m.mesh;
+    bool hasUv = mesh.uvs.size() == mesh.positions.size();
+    for (auto& t : mesh.triangles) {
+      glm::vec3 p[3] = {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
+      glm::vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+      float len = glm::length(n);
+      n = len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+      for (int i = 0; i < 3; ++i)
+        verts.push_back({p[i], n, hasUv ? mesh.uvs[t[i]] : glm::vec2(0.0f)});
+    }
+    d.count = GLsizei(verts.size()) - d.first;
+    if (d.count > 0) draws_.push_back(d);
+  }
+  vertices_ = gl::Buffer(verts);
+  vao_.vertexBuffer(vertices_, sizeof(GVertex))
+      .attribute(0, 3, offsetof(GVertex, position))
+      .attribute(1, 3, offsetof(GVertex, normal))
+      .attribute(2, 2, offsetof(GVertex, uv));
+
+  for (auto& t : scene.textures) {
+    auto tex = gl::Texture::make2D(GL_RGBA32F, t.image.width, t.image.height);
+    Image rgba = t.image;
+    if (rgba.channels != 4) {  // loaders give RGBA; tolerate RGB
+      rgba = Image(t.image.width, t.image.height, 4, 1.0f);
+      for (std::size_t i = 0; i < t.image.pixelCount(); ++i)
+        for (int c = 0; c < std::min(3, t.image.channels); ++c) rgba.data[i * 4 + c] = t.image.data[i * t.image.channels + c];
+    }
+    tex.upload(rgba.data.data(), 4);
+    glTextureParameteri(tex.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(tex.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(tex.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(tex.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+    materialTextures_.push_back(std::move(tex));
+  }
+
+  position_ = gl::Texture::make2D(GL_RGBA32F, width, height);
+  normal_ = gl::Texture::make2D(GL_RGBA32F, width, height);
+  albedo_ = gl::Texture::make2D(GL_RGBA16F, width, height);
+  depth_ = gl::Texture::make2D(GL_DEPTH_COMPONENT32F, width, height);
+  fbo_ = gl::Framebuffer({&position_, &normal_, &albedo_}, &depth_);
+  program_ = gl::Program({"gbuffer.vert", "gbuffer.frag"});
+  gl::Context::checkErrors("GpuScene upload");
+}
+
+void GpuScene::drawGBuffer(const gl::Program& program) const {
+  vao_.bind();
+  for (auto& d : draws_) {
+    const Material& mat = scene_.materials[std::size_t(d.material)];
+    program.set("baseColor", mat.baseColor);
+    program.set("opacity", mat.opacity);
+    program.set("materialId", d.material);
+    bool tex = mat.baseColorTexture >= 0 && std::size_t(mat.baseColorTexture) < materialTextures_.size();
+    program.set("hasTexture", tex ? 1 : 0);
+    if (tex) materialTextures_[std::size_t(mat.baseColorTexture)].bind(PENUMBRA_UNIT_MATERIAL_TEX);
+    glDrawArrays(GL_TRIANGLES, d.first, d.count);
+  }
+}
+
+void GpuScene::renderGBuffer() {
+  fbo_.bind();
+  const float zero[4] = {0, 0, 0, 0};
+  for (int i = 0; i < 3; ++i) glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, i, zero);
+  const float depthClear = 0.0f;  // reversed Z: 0 is infinitely far
+  glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &depthClear);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  program_.use();
+  program_.set("clipFromWorld", clipFromWorld_);
+  program_.set("cameraPosition", cameraPos_);
+  drawGBuffer(program_);
+  gl::Context::checkErrors("G-buffer");
+}
+
+void GpuScene::bindGBuffer() const {
+  position_.bind(PENUMBRA_UNIT_GBUF_POSITION);
+  normal_.bind(PENUMBRA_UNIT_GBUF_NORMAL);
+  albedo_.bind(PENUMBRA_UNIT_GBUF_ALBEDO);
+}
+
+CpuGBuffer GpuScene::readGBuffer() const {
+  Image pos = position_.read(4), nrm = normal_.read(4);
+  CpuGBuffer g;
+  g.width = width_, g.height = height_;
+  std::size_t n = pos.pixelCount();
+  g.position.resize(n), g.normal.resize(n), g.valid.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    g.position[i] = {pos.data[i * 4], pos.data[i * 4 + 1], pos.data[i * 4 + 2]};
+    g.normal[i] = {nrm.data[i * 4], nrm.data[i * 4 + 1], nrm.data[i * 4 + 2]};
+    g.valid[i] = pos.data[i * 4 + 3] > 0.5f;
+  }
+  return g;
+}
+
+std::size_t GpuScene::memoryBytes() const {
+  return position_.bytes() + normal_.bytes() + albedo_.bytes() + depth_.bytes() + vertices_.size();
+}
+
+// ---- Renderer --------------------------------------------------------------------------------
+
+Renderer::Renderer(gl::Context& context, const Scene& scene, const RenderSettings& settings)
+    : context_(context), scene_(scene), settings_(settings) {
+  GLint maxSize = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  if (settings.width <= 0 || settings.height <= 0 || settings.width > maxSize || settings.height > maxSize)
+    throw Error("-W/-H", "image size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+                             " outside 1.." + std::to_string(maxSize), ExitCode::Usage);
+  if (scene.lights.empty()) throw Error(scene.sourcePath.empty() ? scene.name : scene.sourcePath, "scene has no light");
+  gpu_ = std::make_unique<GpuScene>(scene, settings.width, settings.height);
+  color_ = gl::Texture::make2D(GL_RGBA32F, settings.width, settings.height);
+  visibility_ = gl::Texture::make2D(GL_RGBA32F, settings.width, settings.height);
+  colorFbo_ = gl::Framebuffer({&color_}, nullptr);
+  shadeModulate_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"MODULATE"});
+  shadePerSample_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"PER_SAMPLE"});
+}
+
+Renderer::~Renderer() = default;
+
+FrameResult Renderer::render(Technique& technique) {
+  FrameResult result;
+  result.timer = StageTimer([] { glFinish(); });
+  StageTimer& timer = result.timer;
+  bool perSample = settings_.shading == ShadingMode::PerSample;
+  if (perSample && !technique.providesPerSample())
+    throw Error("--shading", "per-sample shading (eq. 6) needs a technique with per-sample visibility",
+                ExitCode::Usage);
+
+  if (prepared_ != &technique) {
+    timer.time("prepare", [&] { technique.prepare(scene_, *gpu_); });
+    prepared_ = &technique;
+  }
+  timer.time("gbuffer", [&] { gpu_->renderGBuffer(); });
+
+  bool haveCpuGBuffer = false;
+  auto cpuGBuffer = [&]() -> const CpuGBuffer& {
+    if (!haveCpuGBuffer) {
+      timer.time("gbuffer readback", [&] { result.gbuffer = gpu_->readGBuffer(); });
+      haveCpuGBuffer = true;
+    }
+    return result.gbuffer;
+  };
+
+  const float zero[4] = {0, 0, 0, 0};
+  glClearNamedFramebufferfv(colorFbo_.id(), GL_COLOR, 0, zero);
+
+  for (std::size_t li = 0; li < scene_.lights.size(); ++li) {
+    const Light& light = scene_.lights[li];
+    LightSampleSet samples = makeLightSamples(scene_, light, settings_.sampling, settings_.time);
+    std::vector<glm::vec4> pos(samples.positions.size()), lum(samples.luminance.size());
+    for (std::size_t i = 0; i < pos.size(); ++i) pos[i] = glm::vec4(samples.positions[i], 1.0f);
+    for (std::size_t i = 0; i < lum.size(); ++i) lum[i] = glm::vec4(samples.luminance[i], 1.0f);
+    gl::Buffer posBuf(pos), lumBuf(lum);
+    posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
+    lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
+
+    bool wantSamples = technique.providesPerSample();
+    if (wantSamples && (perSample_.width() != settings_.width || perSample_.layers() != samples.count))
+      perSample_ = gl::Texture::make2DArray(GL_R32F, settings_.width, settings_.height, samples.count);
+    visibility_.clear(glm::vec4(0.0f));
+    LightResult lr;
+    lr.samples = samples.count;
+    LightPass pass{scene_, light, int(li), samples, *gpu_, timer, cpuGBuffer, visibility_,
+                   wantSamples ? &perSample_ : nullptr, &lr.perSample};
+    gpu_->bindGBuffer();
+    technique.renderVisibility(pass);
+    gl::Context::checkErrors("visibility");
+
+    timer.time("shading", [&] {
+      const gl::Program& prog = perSample ? shadePerSample_ : shadeModulate_;
+      colorFbo_.bind();
+      glDisable(GL_DEPTH_TEST);
+      glEnable(GL_BLEND);
+      glBlendEquation(GL_FUNC_ADD);
+      glBlendFunc(GL_ONE, GL_ONE);
+      gpu_->bindGBuffer();
+      posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
+      lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
+      if (perSample) perSample_.bind(PENUMBRA_UNIT_SAMPLE_VIS);
+      else visibility_.bind(PENUMBRA_UNIT_VISIBILITY);
+      prog.use();
+      setLightUniforms(prog, light, samples);
+      emptyVao_.bind();
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      glDisable(GL_BLEND);
+    });
+    timer.time("readback", [&] {
+      Image v4 = visibility_.read(4);
+      lr.visibility = Image(v4.width, v4.height, 3);
+      for (std::size_t i = 0; i < v4.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c) lr.visibility.data[i * 3 + c] = v4.data[i * 4 + c];
+      if (wantSamples && lr.perSample.empty()) {
+        // GPU per-sample results: gather the layers into [pixel * N + k].
+        std::size_t n = lr.visibility.pixelCount();
+        lr.perSample.resize(n * std::size_t(samples.count));
+        Image layers = perSample_.read(1);
+        for (std::size_t k = 0; k < std::size_t(samples.count); ++k)
+          for (std::size_t i = 0; i < n; ++i) lr.perSample[i * std::size_t(samples.count) + k] = layers.data[k * n + i];
+      }
+    });
+    result.lights.push_back(std::move(lr));
+  }
+  Image c4 = timer.time("readback", [&] { return color_.read(4); });
+  result.color = Image(c4.width, c4.height, 3);
+  for (std::size_t i = 0; i < c4.pixelCount(); ++i)
+    for (int c = 0; c < 3; ++c) result.color.data[i * 3 + c] = c4.data[i * 4 + c];
+  cpuGBuffer();  // always return the G-buffer: comparisons mask background pixels with it
+  result.memoryBytes = gpu_->memoryBytes() + color_.bytes() + visibility_.bytes() +
+                       (perSample_ ? perSample_.bytes() : 0) + technique.memoryBytes();
+  gl::Context::checkErrors("frame");
+  return result;
+}
+
+}  // namespace penumbra

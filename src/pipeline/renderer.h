@@ -1,0 +1,132 @@
+// The one lighting pipeline (deferred): G-buffer, then per light a visibility stage supplied by
+// a Technique, then shading; several lights add into a linear HDR image.
+//
+// Shading modes (DCS paper section 6):
+//  * Modulate (eq. 3): the light is shaded as a point at its centre carrying the whole light's
+//    power, multiplied by the RGB visibility buffer of eq. 2.
+//  * PerSample (eq. 6): the sum over light samples of the direct illumination of each sample,
+//    with each sample's transmittance; needs a technique that provides per-sample results.
+// Both use a Lambertian BRDF (albedo / pi), the same one the reference uses.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/image.h"
+#include "core/timer.h"
+#include "gl/context.h"
+#include "gl/objects.h"
+#include "pipeline/technique.h"
+#include "sampling/light_samples.h"
+#include "scene/scene.h"
+
+namespace penumbra {
+
+enum class ShadingMode { Modulate, PerSample };
+ShadingMode parseShadingMode(const std::string& s);  // "modulate" | "per-sample"
+const char* toString(ShadingMode m);
+
+struct RenderSettings {
+  int width = 256, height = 256;
+  SamplingParams sampling;
+  float time = 0.0f;
+  ShadingMode shading = ShadingMode::Modulate;
+};
+
+struct LightResult {
+  Image visibility;              // RGB, eq. 2
+  std::vector<float> perSample;  // [pixel * N + k] transmittance, empty if not provided
+  int samples = 0;
+};
+
+struct FrameResult {
+  Image color;  // RGB linear radiance
+  std::vector<LightResult> lights;
+  CpuGBuffer gbuffer;
+  StageTimer timer;
+  std::size_t memoryBytes = 0;  // pipeline + technique render targets
+};
+
+// Geometry uploaded once per scene, the camera, and the G-buffer for one output size.
+class GpuScene {
+ public:
+  GpuScene(const Scene& scene, int width, int height);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // Camera: reversed-Z infinite perspective (depth 1 at the near plane, 0 at infinity).
+  const glm::mat4& clipFromWorld() const { return clipFromWorld_; }
+  const glm::vec3& cameraPosition() const { return cameraPos_; }
+
+  // Draws every triangle of the scene (G-buffer layout: position, face normal, uv).
+  void drawGBuffer(const gl::Program& program) const;
+  void renderGBuffer();  // fills the G-buffer textures below
+  const gl::Texture& position() const { return position_; }
+  const gl::Texture& normal() const { return normal_; }
+  const gl::Texture& albedo() const { return albedo_; }
+  const gl::Texture& depth() const { return depth_; }
+  void bindGBuffer() const;  // to the PENUMBRA_UNIT_GBUF_* units
+  CpuGBuffer readGBuffer() const;
+  std::size_t memoryBytes() const;
+
+ private:
+  struct Draw {
+    GLint first;
+    GLsizei count;
+    int material;
+  };
+  const Scene& scene_;
+  int width_, height_;
+  glm::mat4 clipFromWorld_;
+  glm::vec3 cameraPos_;
+  gl::Buffer vertices_;
+  gl::VertexArray vao_;
+  std::vector<Draw> draws_;
+  std::vector<gl::Texture> materialTextures_;  // parallel to scene.textures
+  gl::Texture position_, normal_, albedo_, depth_;
+  gl::Framebuffer fbo_;
+  gl::Program program_;
+};
+
+// Renders frames of one scene with one technique. Holds the GL context.
+class Renderer {
+ public:
+  Renderer(gl::Context& context, const Scene& scene, const RenderSettings& settings);
+  ~Renderer();
+
+  // Renders one frame. Throws penumbra::Error for settings the technique cannot honour (e.g.
+  // per-sample shading with a technique that has no per-sample results).
+  FrameResult render(Technique& technique);
+
+  gl::Context& context() { return context_; }
+
+ private:
+  gl::Context& context_;
+  const Scene& scene_;
+  RenderSettings settings_;
+  std::unique_ptr<GpuScene> gpu_;
+  gl::Texture color_, visibility_, perSample_;
+  gl::Framebuffer colorFbo_;
+  gl::Program shadeModulate_, shadePerSample_;
+  gl::VertexArray emptyVao_;
+  const Technique* prepared_ = nullptr;
+};
+
+// Camera matrices shared by the pipeline and the reference (so both see the same pixels).
+glm::mat4 viewFromWorld(const Camera& camera);
+glm::mat4 clipFromViewReversedInfinite(const Camera& camera, float aspect);
+
+}  // namespace penumbra
+
+namespace penumbra {
+// Sets the uniforms of shaders/common_light.glsl on `program` for `light` and its samples. The
+// sample buffers themselves are bound by the pipeline before each light's visibility stage.
+void setLightUniforms(const gl::Program& program, const Light& light, const LightSampleSet& samples);
+
+// Runs a full-screen fragment program (fullscreen.vert + a resolve shader) into
+// pass.visibility, with the G-buffer bound and the light uniforms set.
+void resolveVisibility(LightPass& pass, const gl::Program& program);
+}  // namespace penumbra
