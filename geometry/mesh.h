@@ -72,10 +72,14 @@ void cleanMesh(TriangleMesh& mesh, MeshReport& report);
 // Builds the welded edge topology of a cleaned mesh.
 EdgeTopology buildEdgeTopology(const TriangleMesh& mesh);
 
-// Loads OBJ, PLY, OFF or STL through OpenMesh and cleans it. Throws penumbra::Error naming the
-// file on a missing/unreadable/unsupported file or one with no triangle left. Faces that
-// OpenMesh refuses (complex edges) are recovered from the file's face list where possible and
-// counted in report.duplicatedVertices otherwise.
+// Loads OBJ, PLY (ASCII and binary), OFF or STL (ASCII and binary) with penumbra's own parsers,
+// which keep every face or count why it was dropped, then cleans the mesh. We do not use
+// OpenMesh 9.0's readers here: measured, an ASCII PLY with one `nan` loads 0 faces and zeroes
+// every later vertex while reporting success, an ASCII STL with a `nan` keeps a wrong face,
+// and a binary PLY list length of 2^32 is reserved before reading (hard-cases.md, bad inputs).
+// The tests cross-check our readers against OpenMesh on valid real models. Throws
+// penumbra::Error naming the file on a missing/unreadable/unsupported/truncated file, a header
+// claiming more data than the file holds, or no triangle left.
 TriangleMesh loadMeshFile(const std::string& path, MeshReport& report);
 
 }  // namespace penumbra::geo

@@ -5,6 +5,13 @@
 #ifndef PENUMBRA_SHARED_H
 #define PENUMBRA_SHARED_H
 
+// Functions here are `inline` in C++ (the header is included by several translation units).
+#ifdef __cplusplus
+#define PENUMBRA_FN inline
+#else
+#define PENUMBRA_FN
+#endif
+
 // ---- G-buffer layout (pipeline) ------------------------------------------------------------
 #define PENUMBRA_GBUF_POSITION 0   // RGBA32F: world position, w = 1 where a surface was hit
 #define PENUMBRA_GBUF_NORMAL 1     // RGBA32F: world normal facing the camera, w = material id
@@ -38,7 +45,7 @@
 #define PENUMBRA_MAX_SAMPLES 128
 
 // Integer hash (PCG output permutation); identical in C++ and GLSL.
-uint penumbraHash(uint v) {
+PENUMBRA_FN uint penumbraHash(uint v) {
   uint state = v * 747796405u + 2891336453u;
   uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
   return (word >> 22u) ^ word;
@@ -47,7 +54,7 @@ uint penumbraHash(uint v) {
 // The light-sample set a pixel uses. Correlated: set 0 everywhere. Decorrelated: a hash of the
 // pixel and seed picks one of `sets` rotated sets. Interleaved: the pixel's position in a K x K
 // tile picks the set (sets == K*K).
-uint penumbraSetForPixel(uint x, uint y, uint pattern, uint sets, uint k, uint seed) {
+PENUMBRA_FN uint penumbraSetForPixel(uint x, uint y, uint pattern, uint sets, uint k, uint seed) {
   if (pattern == uint(PENUMBRA_PATTERN_DECORRELATED))
     return penumbraHash(x ^ penumbraHash(y ^ penumbraHash(seed))) % sets;
   if (pattern == uint(PENUMBRA_PATTERN_INTERLEAVED)) return (y % k) * k + (x % k);

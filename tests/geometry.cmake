@@ -1,1 +1,6 @@
 # tests of geometry (see tests/CMakeLists.txt)
+# OpenMesh is linked only as an oracle for reading valid files (geometry_io_test.cpp).
+penumbra_add_test(test_geometry
+  ${CMAKE_CURRENT_SOURCE_DIR}/geometry_topology_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/geometry_io_test.cpp
+  LIBS penumbra_geometry OpenMeshCore)

@@ -1,1 +1,7 @@
 # tests of scene (see tests/CMakeLists.txt)
+penumbra_add_test(test_scene
+  ${CMAKE_CURRENT_SOURCE_DIR}/scene_json_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/scene_shapes_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/scene_gltf_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/scene_files_test.cpp
+  LIBS penumbra_scene)

@@ -28,9 +28,10 @@ Scene loadSceneFor(const CommonOptions& o) {
 
 RenderSettings settingsFor(const CommonOptions& o, const Scene& scene) {
   RenderSettings s;
+  if (o.width == 0 || o.height == 0 || o.width < -1 || o.height < -1)
+    throw Error("-W/-H", "image size must be positive", ExitCode::Usage);
   s.width = o.width > 0 ? o.width : scene.width;
   s.height = o.height > 0 ? o.height : scene.height;
-  if (o.width < 0 || o.height < 0) throw Error("-W/-H", "image size must be positive", ExitCode::Usage);
   if (o.samples < 1 || o.samples > PENUMBRA_MAX_SAMPLES)
     throw Error("--samples", "must be in 1.." + std::to_string(PENUMBRA_MAX_SAMPLES) + ", got " +
                                  std::to_string(o.samples), ExitCode::Usage);

@@ -12,7 +12,7 @@ struct CommonOptions {
   std::string scene;  // empty: the built-in default scene
   std::vector<std::string> overrides;  // --set key=value
   std::string backend = "egl";
-  int width = 0, height = 0;  // 0: the scene's resolution
+  int width = -1, height = -1;  // -1: the scene's resolution
   int samples = 16;
   std::string strategy = "stratified";
   std::string pattern = "correlated";

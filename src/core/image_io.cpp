@@ -1,1 +1,497 @@
-// in progress
+#include "core/image_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <csetjmp>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfCheckFile.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/openexr.h>
+#include <png.h>
+
+#include "core/error.h"
+#include "core/log.h"
+
+namespace penumbra {
+namespace {
+
+constexpr std::int64_t kMaxDimension = 16384;
+
+// Library messages can span lines; main() promises one line per error.
+std::string oneLine(std::string s) {
+  std::replace_if(s.begin(), s.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+std::string errnoText(int err) { return err != 0 ? std::strerror(err) : "unknown error"; }
+
+std::string sizeText(std::int64_t w, std::int64_t h) {
+  return std::to_string(w) + "x" + std::to_string(h);
+}
+
+float srgbToLinear(float s) {
+  return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f);
+}
+
+float linearToSrgb(float v) {
+  return v <= 0.0031308f ? v * 12.92f : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+using FilePtr = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+
+// ---------------------------------------------------------------------------------------------
+// EXR
+
+// The core library reports errors through a callback (default: stderr); keep the last one.
+thread_local std::string tExrCoreMessage;
+
+void exrCoreError(exr_const_context_t, exr_result_t, const char* msg) {
+  tExrCoreMessage = msg ? msg : "";
+}
+
+// Validates everything that decides how much memory a read will take, before any reader
+// allocates: the core API parses only the header (the chunk table is read lazily), whereas
+// Imf::InputFile sizes its line-offset table from the data window straight away.
+void checkExrFile(const std::string& path) {
+  {
+    FilePtr probe(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!probe) throw Error(path, "cannot open: " + errnoText(errno));
+  }
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = &exrCoreError;
+  exr_context_t ctx = nullptr;
+  tExrCoreMessage.clear();
+  exr_result_t rv = exr_start_read(&ctx, path.c_str(), &init);
+  std::unique_ptr<exr_context_t, void (*)(exr_context_t*)> guard(
+      &ctx, [](exr_context_t* c) { exr_finish(c); });
+  if (rv != EXR_ERR_SUCCESS) {
+    std::string why = tExrCoreMessage.empty() ? exr_get_default_error_message(rv) : tExrCoreMessage;
+    throw Error(path, "not a valid OpenEXR file (" + oneLine(why) + ")");
+  }
+  int parts = 0;
+  exr_storage_t storage = EXR_STORAGE_SCANLINE;
+  exr_attr_box2i_t dw{};
+  if (exr_get_count(ctx, &parts) != EXR_ERR_SUCCESS ||
+      exr_get_storage(ctx, 0, &storage) != EXR_ERR_SUCCESS ||
+      exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS) {
+    throw Error(path, "not a valid OpenEXR file (unreadable header)");
+  }
+  if (parts != 1) throw Error(path, "multi-part OpenEXR files are not supported");
+  if (storage == EXR_STORAGE_DEEP_SCANLINE || storage == EXR_STORAGE_DEEP_TILED) {
+    throw Error(path, "deep OpenEXR files are not supported");
+  }
+  const std::int64_t w = std::int64_t(dw.max.x) - dw.min.x + 1;
+  const std::int64_t h = std::int64_t(dw.max.y) - dw.min.y + 1;
+  if (w <= 0 || h <= 0) throw Error(path, "empty data window");
+  if (w > kMaxDimension || h > kMaxDimension) {
+    throw Error(path, "data window " + sizeText(w, h) + " is larger than " +
+                          sizeText(kMaxDimension, kMaxDimension));
+  }
+  guard.reset();
+  // reduceMemory/reduceTime bound what the check itself may allocate and read.
+  if (Imf::checkOpenEXRFile(path.c_str(), /*reduceMemory=*/true, /*reduceTime=*/true)) {
+    throw Error(path, "corrupt or truncated OpenEXR file");
+  }
+}
+
+struct LayerChannels {
+  bool r = false, g = false, b = false, a = false, y = false;
+  bool rgb() const { return r && g && b; }
+};
+
+// Layers by name ("" = unprefixed channels); std::map keeps "" first, then alphabetical.
+std::map<std::string, LayerChannels> exrLayers(const Imf::Header& header) {
+  std::map<std::string, LayerChannels> layers;
+  for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+    const std::string name = it.name();
+    const std::size_t dot = name.rfind('.');
+    const std::string layer = dot == std::string::npos ? "" : name.substr(0, dot);
+    const std::string suffix = dot == std::string::npos ? name : name.substr(dot + 1);
+    LayerChannels& l = layers[layer];
+    const bool subsampled = it.channel().xSampling != 1 || it.channel().ySampling != 1;
+    bool* flag = suffix == "R" ? &l.r : suffix == "G" ? &l.g : suffix == "B" ? &l.b
+               : suffix == "A" ? &l.a : suffix == "Y" ? &l.y : nullptr;
+    // A subsampled channel cannot be read into a full-resolution float buffer; ignore it so
+    // the layer is rejected (or skipped) as lacking that channel.
+    if (flag && !subsampled) *flag = true;
+  }
+  return layers;
+}
+
+std::string prefixed(const std::string& layer, const char* channel) {
+  return layer.empty() ? std::string(channel) : layer + "." + channel;
+}
+
+// Which file channel goes to which output channel; "" leaves that channel at its `fills` value.
+struct ChannelPlan {
+  std::vector<std::string> names;
+  std::vector<float> fills;
+  bool greyToRgb = false;  // copy output channel 0 into 1 and 2
+};
+
+using Planner = ChannelPlan (*)(const std::string& path,
+                                const std::map<std::string, LayerChannels>& layers,
+                                const std::string& layer);
+
+Image readExrWith(const std::string& path, Planner planner, const std::string& layer,
+                  int* sanitized) {
+  checkExrFile(path);
+  Image img;
+  ChannelPlan plan;
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i dw = file.header().dataWindow();
+    const std::int64_t w = std::int64_t(dw.max.x) - dw.min.x + 1;
+    const std::int64_t h = std::int64_t(dw.max.y) - dw.min.y + 1;
+    // Checked in checkExrFile already; repeated in case the file changed since.
+    if (w <= 0 || h <= 0 || w > kMaxDimension || h > kMaxDimension) {
+      throw Error(path, "data window " + sizeText(w, h) + " is empty or too large");
+    }
+    plan = planner(path, exrLayers(file.header()), layer);
+    const int c = int(plan.names.size());
+    img = Image(int(w), int(h), c, 0.0f);
+    Imf::FrameBuffer fb;
+    const std::size_t xStride = sizeof(float) * c;
+    for (int i = 0; i < c; ++i) {
+      if (plan.names[i].empty()) {
+        for (std::size_t p = 0; p < img.pixelCount(); ++p) img.data[p * c + i] = plan.fills[i];
+        continue;
+      }
+      fb.insert(plan.names[i], Imf::Slice::Make(Imf::FLOAT, img.data.data() + i, dw, xStride,
+                                                xStride * w, 1, 1, plan.fills[i]));
+    }
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(path, "cannot read OpenEXR file: " + oneLine(e.what()));
+  }
+  int bad = 0;
+  for (std::size_t p = 0; p < img.pixelCount(); ++p) {
+    bool texelBad = false;
+    for (int i = 0; i < img.channels; ++i) {
+      float& v = img.data[p * img.channels + i];
+      if (!std::isfinite(v)) {
+        v = 0.0f;
+        texelBad = true;
+      }
+    }
+    bad += texelBad ? 1 : 0;
+  }
+  if (plan.greyToRgb) {
+    for (std::size_t p = 0; p < img.pixelCount(); ++p) {
+      float* px = &img.data[p * img.channels];
+      px[1] = px[2] = px[0];
+    }
+  }
+  if (sanitized) *sanitized = bad;
+  return img;
+}
+
+// ---------------------------------------------------------------------------------------------
+// PNG
+
+// State shared with libpng's callbacks. Everything here is trivially destructible because a
+// libpng error longjmps over the frames in between.
+struct PngIo {
+  std::FILE* file = nullptr;
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+  char message[256] = {};
+};
+
+void pngError(png_structp png, png_const_charp msg) {
+  auto* io = static_cast<PngIo*>(png_get_error_ptr(png));
+  std::snprintf(io->message, sizeof io->message, "%s", msg ? msg : "libpng error");
+  png_longjmp(png, 1);
+}
+
+void pngWarning(png_structp, png_const_charp msg) { PLOG_DEBUG("libpng: {}", msg ? msg : ""); }
+
+using PngStep = void (*)(PngIo&, void*);
+
+// Runs `step` and returns false if libpng raised an error. No object with a destructor lives
+// between this setjmp and the longjmp in pngError, so jumping over the frames is well defined.
+bool pngGuarded(PngIo& io, PngStep step, void* arg) {
+  if (setjmp(png_jmpbuf(io.png))) return false;
+  step(io, arg);
+  return true;
+}
+
+struct PngWriteArgs {
+  png_uint_32 width, height;
+  int colorType;
+  png_bytep* rows;
+};
+
+struct PngHeader {
+  png_uint_32 width = 0, height = 0;
+  int bitDepth = 0, colorType = 0;
+  png_size_t rowBytes = 0;
+  int channels = 0;
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+void writeExr(const std::string& path, const std::vector<ExrLayer>& layers) {
+  PENUMBRA_CHECK(!layers.empty(), "writeExr needs at least one layer");
+  PENUMBRA_CHECK(layers.front().image != nullptr, "writeExr: null image");
+  const int w = layers.front().image->width;
+  const int h = layers.front().image->height;
+  PENUMBRA_CHECK(w > 0 && h > 0, "writeExr: empty image");
+  Imf::Header header(w, h);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  Imf::FrameBuffer fb;
+  for (const ExrLayer& layer : layers) {
+    const Image* img = layer.image;
+    PENUMBRA_CHECK(img != nullptr, "writeExr: null image in layer " + layer.name);
+    PENUMBRA_CHECK(img->width == w && img->height == h, "writeExr: layer sizes differ");
+    PENUMBRA_CHECK(img->channels == 1 || img->channels == 3 || img->channels == 4,
+                   "writeExr: layer " + layer.name + " needs 1, 3 or 4 channels");
+    PENUMBRA_CHECK(img->data.size() == img->pixelCount() * img->channels,
+                   "writeExr: image data size does not match its dimensions");
+    static const char* const kRgba[] = {"R", "G", "B", "A"};
+    const std::size_t xStride = sizeof(float) * img->channels;
+    for (int c = 0; c < img->channels; ++c) {
+      const std::string name = prefixed(layer.name, img->channels == 1 ? "Y" : kRgba[c]);
+      PENUMBRA_CHECK(header.channels().findChannel(name) == nullptr,
+                     "writeExr: duplicate channel " + name);
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      // OpenEXR's Slice wants a mutable pointer even for writing; it only reads.
+      char* base = reinterpret_cast<char*>(const_cast<float*>(img->data.data() + c));
+      fb.insert(name, Imf::Slice(Imf::FLOAT, base, xStride, xStride * w));
+    }
+  }
+
+  errno = 0;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw Error(path, "cannot write: " + errnoText(errno));
+  try {
+    Imf::StdOFStream stream(out, path.c_str());
+    Imf::OutputFile file(stream, header);
+    file.setFrameBuffer(fb);
+    file.writePixels(h);
+  } catch (const std::exception& e) {
+    out.close();
+    std::remove(path.c_str());
+    throw Error(path, "cannot write OpenEXR file: " + oneLine(e.what()));
+  }
+  // ~OutputFile writes the line-offset table and swallows failures; the stream state does not.
+  out.close();
+  if (out.fail()) {
+    std::remove(path.c_str());
+    throw Error(path, "cannot write OpenEXR file: write failed");
+  }
+}
+
+Image readExr(const std::string& path, int* sanitized) {
+  // First layer in exrLayers order with R,G,B, else the first with Y (read as grey).
+  Planner plan = [](const std::string& path, const std::map<std::string, LayerChannels>& layers,
+                    const std::string&) -> ChannelPlan {
+    for (const auto& [p, l] : layers) {
+      if (!l.rgb()) continue;
+      return {{prefixed(p, "R"), prefixed(p, "G"), prefixed(p, "B"), l.a ? prefixed(p, "A") : ""},
+              {0.0f, 0.0f, 0.0f, 1.0f}};
+    }
+    for (const auto& [p, l] : layers) {
+      if (!l.y) continue;
+      return {{prefixed(p, "Y"), "", "", l.a ? prefixed(p, "A") : ""},
+              {0.0f, 0.0f, 0.0f, 1.0f},
+              true};
+    }
+    throw Error(path, "no R,G,B or Y channels");
+  };
+  return readExrWith(path, plan, "", sanitized);
+}
+
+Image readExrLayer(const std::string& path, const std::string& layer, int* sanitized) {
+  Planner plan = [](const std::string& path, const std::map<std::string, LayerChannels>& layers,
+                    const std::string& layer) -> ChannelPlan {
+    const auto it = layers.find(layer);
+    if (it != layers.end() && it->second.rgb()) {
+      ChannelPlan plan{{prefixed(layer, "R"), prefixed(layer, "G"), prefixed(layer, "B")}, {}};
+      if (it->second.a) plan.names.push_back(prefixed(layer, "A"));
+      plan.fills.assign(plan.names.size(), 0.0f);
+      return plan;
+    }
+    if (it != layers.end() && it->second.y) return {{prefixed(layer, "Y")}, {0.0f}};
+    throw Error(path, "no layer '" + layer + "' with R,G,B or Y channels");
+  };
+  return readExrWith(path, plan, layer, sanitized);
+}
+
+void writePng(const std::string& path, const Image& linear, float exposure) {
+  PENUMBRA_CHECK(!linear.empty() && linear.width > 0 && linear.height > 0,
+                 "writePng: empty image");
+  PENUMBRA_CHECK(linear.channels >= 1 && linear.channels <= 4,
+                 "writePng: image needs 1 to 4 channels");
+  PENUMBRA_CHECK(linear.data.size() == linear.pixelCount() * linear.channels,
+                 "writePng: image data size does not match its dimensions");
+  // 2-channel (grey + alpha) images are written as grey; alpha is dropped either way because
+  // the PNG is a view of radiance, not a compositing layer.
+  const int outChannels = linear.channels >= 3 ? 3 : 1;
+  const float scale = std::exp2(exposure);
+  std::vector<png_byte> pixels(linear.pixelCount() * outChannels);
+  for (std::size_t p = 0; p < linear.pixelCount(); ++p) {
+    for (int c = 0; c < outChannels; ++c) {
+      float v = linear.data[p * linear.channels + c] * scale;
+      v = v > 0.0f ? std::min(v, 1.0f) : 0.0f;  // also maps NaN to 0
+      pixels[p * outChannels + c] = png_byte(std::lround(linearToSrgb(v) * 255.0f));
+    }
+  }
+  std::vector<png_bytep> rows(linear.height);
+  for (int y = 0; y < linear.height; ++y) {
+    rows[y] = pixels.data() + std::size_t(y) * linear.width * outChannels;
+  }
+
+  errno = 0;
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (!file) throw Error(path, "cannot write: " + errnoText(errno));
+  PngIo io;
+  io.file = file;
+  io.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &io, &pngError, &pngWarning);
+  const bool created = io.png != nullptr;
+  if (created) io.info = png_create_info_struct(io.png);
+  PngWriteArgs args{png_uint_32(linear.width), png_uint_32(linear.height),
+                    outChannels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, rows.data()};
+  const bool ok = io.info && pngGuarded(io, [](PngIo& io, void* arg) {
+    const auto& a = *static_cast<PngWriteArgs*>(arg);
+    png_init_io(io.png, io.file);
+    png_set_IHDR(io.png, io.info, a.width, a.height, 8, a.colorType, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_sRGB(io.png, io.info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_write_info(io.png, io.info);
+    png_write_image(io.png, a.rows);
+    png_write_end(io.png, nullptr);
+  }, &args);
+  if (io.png) png_destroy_write_struct(&io.png, &io.info);
+  const bool closed = std::fclose(file) == 0;
+  if (!ok || !closed) {
+    std::remove(path.c_str());
+    const std::string why = !created || !ok ? (io.message[0] ? io.message : "out of memory")
+                                            : errnoText(errno);
+    throw Error(path, "cannot write PNG file: " + oneLine(why));
+  }
+}
+
+Image readPng(const std::string& path, bool srgb) {
+  FilePtr file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) throw Error(path, "cannot open: " + errnoText(errno));
+  png_byte signature[8];
+  const std::size_t got = std::fread(signature, 1, sizeof signature, file.get());
+  if (got == 0) throw Error(path, "empty file, not a PNG image");
+  if (got != sizeof signature || png_sig_cmp(signature, 0, sizeof signature) != 0) {
+    throw Error(path, "not a PNG file");
+  }
+
+  PngIo io;
+  io.file = file.get();
+  io.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &io, &pngError, &pngWarning);
+  if (!io.png) throw Error(path, "cannot read PNG file: out of memory");
+  io.info = png_create_info_struct(io.png);
+  std::unique_ptr<PngIo, void (*)(PngIo*)> destroy(
+      &io, [](PngIo* p) { png_destroy_read_struct(&p->png, &p->info, nullptr); });
+  if (!io.info) throw Error(path, "cannot read PNG file: out of memory");
+
+  PngHeader hdr;
+  if (!pngGuarded(io, [](PngIo& io, void* arg) {
+        auto& h = *static_cast<PngHeader*>(arg);
+        png_init_io(io.png, io.file);
+        png_set_sig_bytes(io.png, 8);
+        png_read_info(io.png, io.info);
+        png_get_IHDR(io.png, io.info, &h.width, &h.height, &h.bitDepth, &h.colorType, nullptr,
+                     nullptr, nullptr);
+      }, &hdr)) {
+    throw Error(path, "invalid PNG file: " + oneLine(io.message));
+  }
+  if (hdr.width > kMaxDimension || hdr.height > kMaxDimension) {
+    throw Error(path, "image " + sizeText(hdr.width, hdr.height) + " is larger than " +
+                          sizeText(kMaxDimension, kMaxDimension));
+  }
+
+  // Every layout becomes 8- or 16-bit RGBA: palette/low-bit grey/tRNS expand, grey widens to
+  // RGB, and a missing alpha is filled opaque.
+  if (!pngGuarded(io, [](PngIo& io, void* arg) {
+        auto& h = *static_cast<PngHeader*>(arg);
+        png_set_expand(io.png);
+        png_set_gray_to_rgb(io.png);
+        const bool hasAlpha = (h.colorType & PNG_COLOR_MASK_ALPHA) != 0 ||
+                              png_get_valid(io.png, io.info, PNG_INFO_tRNS) != 0;
+        if (!hasAlpha) png_set_add_alpha(io.png, 0xffff, PNG_FILLER_AFTER);
+        png_set_interlace_handling(io.png);
+        png_read_update_info(io.png, io.info);
+        h.bitDepth = png_get_bit_depth(io.png, io.info);
+        h.channels = png_get_channels(io.png, io.info);
+        h.rowBytes = png_get_rowbytes(io.png, io.info);
+      }, &hdr)) {
+    throw Error(path, "invalid PNG file: " + oneLine(io.message));
+  }
+  const int bytesPerSample = hdr.bitDepth / 8;
+  if (hdr.channels != 4 || (hdr.bitDepth != 8 && hdr.bitDepth != 16) ||
+      hdr.rowBytes != png_size_t(hdr.width) * 4 * bytesPerSample) {
+    throw Error(path, "unsupported PNG layout");
+  }
+
+  std::vector<png_byte> pixels(hdr.rowBytes * hdr.height);
+  std::vector<png_bytep> rows(hdr.height);
+  for (png_uint_32 y = 0; y < hdr.height; ++y) rows[y] = pixels.data() + y * hdr.rowBytes;
+  if (!pngGuarded(io, [](PngIo& io, void* arg) {
+        png_read_image(io.png, static_cast<png_bytep*>(arg));
+        png_read_end(io.png, nullptr);
+      }, rows.data())) {
+    throw Error(path, "truncated or corrupt PNG file: " + oneLine(io.message));
+  }
+
+  Image img(int(hdr.width), int(hdr.height), 4);
+  auto colour = [srgb](float v) { return srgb ? srgbToLinear(v) : v; };
+  if (bytesPerSample == 1) {
+    float lut[256];
+    for (int i = 0; i < 256; ++i) lut[i] = colour(float(i) / 255.0f);
+    for (std::size_t i = 0; i < img.data.size(); ++i) {
+      img.data[i] = (i % 4 == 3) ? float(pixels[i]) / 255.0f : lut[pixels[i]];
+    }
+  } else {
+    for (std::size_t i = 0; i < img.data.size(); ++i) {
+      const float v = float((pixels[2 * i] << 8) | pixels[2 * i + 1]) / 65535.0f;  // big-endian
+      img.data[i] = (i % 4 == 3) ? v : colour(v);
+    }
+  }
+  return img;
+}
+
+Image readTexture(const std::string& path, bool srgb) {
+  const std::size_t dot = path.rfind('.');
+  const std::size_t slash = path.find_last_of('/');
+  const bool hasExt = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  std::string ext = hasExt ? path.substr(dot) : "";
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".exr") {
+    int sanitized = 0;
+    Image img = readExr(path, &sanitized);
+    if (sanitized > 0) PLOG_WARN("{}: replaced {} non-finite texels with 0", path, sanitized);
+    return img;
+  }
+  if (ext == ".png") return readPng(path, srgb);
+  throw Error(path, "unsupported texture format '" + (hasExt ? ext : "no extension") +
+                        "' (expected .exr or .png)");
+}
+
+}  // namespace penumbra

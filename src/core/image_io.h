@@ -26,6 +26,10 @@ void writeExr(const std::string& path, const std::vector<ExrLayer>& layers);
 // in *sanitized (if given).
 Image readExr(const std::string& path, int* sanitized = nullptr);
 
+// Reads one layer as written by writeExr ("" = unprefixed channels) with its own channel
+// count: RGBA -> 4, RGB -> 3, Y -> 1. Same validation and sanitizing as readExr.
+Image readExrLayer(const std::string& path, const std::string& layer, int* sanitized = nullptr);
+
 // Writes an 8-bit sRGB PNG: linear value * 2^exposure, Reinhard-free clamp, sRGB OETF.
 // 1-channel images are written as grey. Throws on an unwritable path.
 void writePng(const std::string& path, const Image& linear, float exposure = 0.0f);

@@ -20,10 +20,13 @@ struct ErrorStats {
 // Mask of pixels to exclude: 1 where the pixel lies within `radius` pixels (Chebyshev distance)
 // of a shadow edge of `reference`, i.e. of a pixel whose neighbour differs in visibility by more
 // than `threshold` in any channel. Pixels with mask 1 are left out of the statistics.
+// Both pixels of a differing 4-neighbour pair are edge pixels, so radius 0 marks exactly those
+// (a two-pixel-wide line along a hard edge) and each radius step widens it by one on each side.
 std::vector<std::uint8_t> edgeBandMask(const Image& reference, int radius = 1, float threshold = 1e-4f);
 
 // Statistics of a against b over pixels where `exclude` is 0 (or all pixels if exclude is
 // empty) and where `valid` is 1 (or all if empty; e.g. background pixels can be left out).
+// A NaN difference makes rmse, meanAbs and maxAbs NaN and counts its pixel in pixelsOver.
 ErrorStats compareImages(const Image& a, const Image& b,
                          const std::vector<std::uint8_t>& exclude = {},
                          const std::vector<std::uint8_t>& valid = {});

@@ -70,6 +70,9 @@ class EglContext final : public Context {
         context_ = eglCreateContext(display_, cfg, EGL_NO_CONTEXT, attribs);
     }
     if (context_ == EGL_NO_CONTEXT) noContext("EGL: cannot create a GL 4.5 core context");
+    makeCurrent();
+  }
+  void makeCurrent() override {
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
       noContext("EGL: cannot make the context current without a surface");
     loadEntryPoints([](const char* n) { return reinterpret_cast<void*>(eglGetProcAddress(n)); });
@@ -92,6 +95,9 @@ class OSMesaBackend final : public Context {
                            OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
     context_ = OSMesaCreateContextAttribs(attribs, nullptr);
     if (!context_) noContext("OSMesa: cannot create a GL 4.5 core context");
+    makeCurrent();
+  }
+  void makeCurrent() override {
     // OSMesa needs a colour buffer to make a context current; all rendering goes to FBOs.
     if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1))
       noContext("OSMesa: cannot make the context current");

@@ -18,6 +18,10 @@ class Context {
   static std::unique_ptr<Context> create(Backend backend);
   virtual ~Context();
 
+  // Makes this context current again (after another was made current) and reloads the entry
+  // points from its backend.
+  virtual void makeCurrent() = 0;
+
   Backend backend() const { return backend_; }
   const std::string& renderer() const { return renderer_; }  // GL_RENDERER
   const std::string& version() const { return version_; }    // GL_VERSION

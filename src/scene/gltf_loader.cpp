@@ -1,1 +1,646 @@
-// in progress
+// glTF 2.0 to penumbra meshes, materials and lights. gltf_validate.cpp has already checked the
+// container, URIs and buffer/bufferView bounds; here every accessor is checked against its
+// bufferView before a byte is read, the node graph is checked for cycles and shared children,
+// and the hierarchy is flattened to the file's space (mirrored instances get reversed winding).
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <map>
+#include <sstream>
+
+#include "core/error.h"
+#include "scene/loaders.h"
+
+namespace penumbra::detail {
+
+namespace {
+
+struct Loader {
+  std::string path;
+  std::string file;  // file name, for mesh names
+  const tinygltf::Model& gltf;
+  const Json& json;
+  Model& out;
+  // Drops summed over distinct primitives, reported once per file rather than per primitive
+  // (CAD exports have hundreds); each SceneMesh keeps its own counts in its report.
+  geo::MeshReport drops;
+  std::size_t primitivesWithDrops = 0;
+  std::size_t primitivesSkipped = 0;  // points, lines, no POSITION, sparse
+
+  std::string dropSummary() const {
+    std::string s;
+    auto add = [&](std::size_t n, const char* what) {
+      if (n) s += (s.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+    };
+    add(drops.droppedInvalidIndex, "with an index out of range");
+    add(drops.droppedNonFinite, "with non-finite positions");
+    add(drops.droppedDegenerate, "degenerate");
+    add(drops.droppedDuplicate, "duplicate");
+    return s;
+  }
+
+  [[noreturn]] void fail(const std::string& what) const { throw Error(path, what); }
+  void warn(const std::string& what) { out.warnings.push_back(path + ": " + what); }
+};
+
+// A checked view of an accessor's elements: element i starts at data + i * stride.
+struct AccessorView {
+  const unsigned char* data = nullptr;
+  std::size_t stride = 0;
+  std::size_t count = 0;
+  int componentType = 0;
+  int components = 0;
+  bool normalized = false;
+};
+
+int componentBytes(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+  }
+}
+
+int typeComponents(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT2: return 4;
+    case TINYGLTF_TYPE_MAT3: return 9;
+    case TINYGLTF_TYPE_MAT4: return 16;
+    default: return 0;
+  }
+}
+
+// Thrown for a primitive that is skipped with a warning rather than failing the file.
+struct SkipPrimitive {
+  std::string why;
+};
+
+// Checks accessor `index` (used as `role`) and returns a view of it. `types` lists the allowed
+// (type, componentType) pairs. Layout faults throw Error; unsupported-but-valid layouts skip.
+AccessorView viewAccessor(const Loader& L, int index, const std::string& role,
+                          std::initializer_list<std::pair<int, int>> types) {
+  const std::string what = "accessor " + std::to_string(index) + " (" + role + ")";
+  if (index < 0 || std::size_t(index) >= L.gltf.accessors.size()) {
+    L.fail(role + " refers to accessor " + std::to_string(index) + ", which does not exist");
+  }
+  const tinygltf::Accessor& a = L.gltf.accessors[std::size_t(index)];
+  bool typeOk = false;
+  for (const auto& [type, component] : types)
+    typeOk = typeOk || (a.type == type && a.componentType == component);
+  if (!typeOk) {
+    L.fail(what + ": unsupported type/componentType " + std::to_string(a.type) + "/" +
+           std::to_string(a.componentType));
+  }
+  if (a.count == 0) L.fail(what + ": count is 0");
+  if (a.sparse.isSparse) throw SkipPrimitive{what + " is sparse (not supported)"};
+  if (a.bufferView < 0) throw SkipPrimitive{what + " has no bufferView (all zeros)"};
+  if (std::size_t(a.bufferView) >= L.gltf.bufferViews.size()) {
+    L.fail(what + ": bufferView " + std::to_string(a.bufferView) + " does not exist");
+  }
+  const tinygltf::BufferView& v = L.gltf.bufferViews[std::size_t(a.bufferView)];
+  if (v.buffer < 0 || std::size_t(v.buffer) >= L.gltf.buffers.size()) {
+    L.fail(what + ": buffer " + std::to_string(v.buffer) + " does not exist");
+  }
+  const std::vector<unsigned char>& data = L.gltf.buffers[std::size_t(v.buffer)].data;
+  if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset) {
+    L.fail("bufferView " + std::to_string(a.bufferView) + " overruns buffer " +
+           std::to_string(v.buffer));
+  }
+  const std::size_t component = std::size_t(componentBytes(a.componentType));
+  const std::size_t element = component * std::size_t(typeComponents(a.type));
+  const std::size_t stride = v.byteStride ? v.byteStride : element;
+  if (stride < element) {
+    L.fail(what + ": byteStride " + std::to_string(stride) + " is smaller than an element (" +
+           std::to_string(element) + " bytes)");
+  }
+  if ((v.byteOffset + a.byteOffset) % component != 0 || stride % component != 0) {
+    L.fail(what + ": offset " + std::to_string(v.byteOffset + a.byteOffset) + " or stride " +
+           std::to_string(stride) + " is not a multiple of the component size " +
+           std::to_string(component));
+  }
+  // The last element ends at offset + stride * (count - 1) + element: the stride's padding
+  // after the last element need not be there.
+  const std::size_t available = v.byteLength;
+  if (a.byteOffset > available || element > available - a.byteOffset ||
+      a.count - 1 > (available - a.byteOffset - element) / stride) {
+    const long double needed =
+        (long double)a.byteOffset + (long double)stride * (long double)(a.count - 1) + element;
+    L.fail(what + ": needs " + std::to_string((unsigned long long)needed) + " bytes (offset " +
+           std::to_string(a.byteOffset) + ", stride " + std::to_string(stride) + ", count " +
+           std::to_string(a.count) + ") but bufferView " + std::to_string(a.bufferView) + " has " +
+           std::to_string(v.byteLength));
+  }
+  AccessorView out;
+  out.data = data.data() + v.byteOffset + a.byteOffset;
+  out.stride = stride;
+  out.count = a.count;
+  out.componentType = a.componentType;
+  out.components = typeComponents(a.type);
+  out.normalized = a.normalized;
+  return out;
+}
+
+float readComponent(const AccessorView& a, std::size_t i, int c) {
+  const unsigned char* p = a.data + i * a.stride;
+  switch (a.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float f;
+      std::memcpy(&f, p + 4 * c, 4);
+      return f;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return float(p[c]) / 255.0f;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t u;
+      std::memcpy(&u, p + 2 * c, 2);
+      return float(u) / 65535.0f;
+    }
+    default: return 0.0f;
+  }
+}
+
+std::uint32_t readIndex(const AccessorView& a, std::size_t i) {
+  const unsigned char* p = a.data + i * a.stride;
+  switch (a.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t u;
+      std::memcpy(&u, p, 2);
+      return u;
+    }
+    default: {
+      std::uint32_t u;
+      std::memcpy(&u, p, 4);
+      return u;
+    }
+  }
+}
+
+struct Primitive {
+  geo::TriangleMesh mesh;
+  geo::MeshReport report;
+  int material = -1;
+  bool skipped = false;
+};
+
+Primitive convertPrimitive(Loader& L, const tinygltf::Primitive& p, const std::string& name) {
+  Primitive out;
+  const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+  if (mode > TINYGLTF_MODE_TRIANGLE_FAN)
+    L.fail(name + ": unknown primitive mode " + std::to_string(mode));
+  if (mode < TINYGLTF_MODE_TRIANGLES) {
+    static const char* kNames[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
+    L.warn(name + ": " + kNames[mode] + " primitive ignored (casts no shadow)");
+    ++L.primitivesSkipped;
+    out.skipped = true;
+    return out;
+  }
+  if (p.material >= 0 && std::size_t(p.material) >= L.gltf.materials.size()) {
+    L.fail(name + ": material " + std::to_string(p.material) + " does not exist");
+  }
+  out.material = p.material;
+  if (!p.targets.empty()) L.warn(name + ": morph targets ignored (base shape used)");
+  const auto position = p.attributes.find("POSITION");
+  if (position == p.attributes.end()) {
+    L.warn(name + ": no POSITION attribute; primitive dropped");
+    ++L.primitivesSkipped;
+    out.skipped = true;
+    return out;
+  }
+  try {
+    const AccessorView pos = viewAccessor(L, position->second, name + " POSITION",
+                                          {{TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT}});
+    geo::TriangleMesh& m = out.mesh;
+    m.positions.resize(pos.count);
+    for (std::size_t i = 0; i < pos.count; ++i) {
+      for (int c = 0; c < 3; ++c) m.positions[i][c] = readComponent(pos, i, c);
+    }
+    if (const auto it = p.attributes.find("NORMAL"); it != p.attributes.end()) {
+      const AccessorView nrm = viewAccessor(L, it->second, name + " NORMAL",
+                                            {{TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT}});
+      if (nrm.count != pos.count) {
+        L.warn(name + ": NORMAL count differs from POSITION; normals ignored");
+      } else {
+        m.normals.resize(nrm.count);
+        for (std::size_t i = 0; i < nrm.count; ++i) {
+          for (int c = 0; c < 3; ++c) m.normals[i][c] = readComponent(nrm, i, c);
+        }
+      }
+    }
+    if (const auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end()) {
+      const AccessorView uv =
+          viewAccessor(L, it->second, name + " TEXCOORD_0",
+                       {{TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_FLOAT},
+                        {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
+                        {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}});
+      if (uv.count != pos.count) {
+        L.warn(name + ": TEXCOORD_0 count differs from POSITION; texture coordinates ignored");
+      } else {
+        m.uvs.resize(uv.count);
+        for (std::size_t i = 0; i < uv.count; ++i) {
+          m.uvs[i] = {readComponent(uv, i, 0), readComponent(uv, i, 1)};
+        }
+      }
+    }
+    std::vector<std::uint32_t> indices;
+    if (p.indices >= 0) {
+      const AccessorView idx =
+          viewAccessor(L, p.indices, name + " indices",
+                       {{TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
+                        {TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                        {TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}});
+      indices.resize(idx.count);
+      for (std::size_t i = 0; i < idx.count; ++i) indices[i] = readIndex(idx, i);
+    } else {
+      indices.resize(pos.count);
+      for (std::size_t i = 0; i < pos.count; ++i) indices[i] = std::uint32_t(i);
+    }
+    const std::size_t n = indices.size();
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      if (n % 3 != 0) {
+        L.fail(name + ": TRIANGLES primitive with " + std::to_string(n) +
+               " indices (not a multiple of 3)");
+      }
+      for (std::size_t i = 0; i < n; i += 3) {
+        m.triangles.push_back({indices[i], indices[i + 1], indices[i + 2]});
+      }
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      // Every other triangle swaps its first two vertices to keep the strip's winding.
+      for (std::size_t i = 0; i + 2 < n; ++i) {
+        if (i % 2 == 0)
+          m.triangles.push_back({indices[i], indices[i + 1], indices[i + 2]});
+        else
+          m.triangles.push_back({indices[i + 1], indices[i], indices[i + 2]});
+      }
+    } else {
+      for (std::size_t i = 1; i + 1 < n; ++i) {
+        m.triangles.push_back({indices[i], indices[i + 1], indices[0]});
+      }
+    }
+    std::size_t outOfRange = 0;
+    for (std::uint32_t i : indices) outOfRange += i >= pos.count ? 1 : 0;
+    if (outOfRange > 0) {
+      L.warn(name + ": " + std::to_string(outOfRange) + " indices >= vertex count " +
+             std::to_string(pos.count) + "; their triangles are dropped");
+    }
+  } catch (const SkipPrimitive& skip) {
+    L.warn(name + ": " + skip.why + "; primitive dropped");
+    ++L.primitivesSkipped;
+    out.skipped = true;
+    return out;
+  }
+  out.report.inputVertices = out.mesh.positions.size();
+  out.report.inputFaces = out.mesh.triangles.size();
+  geo::cleanMesh(out.mesh, out.report);
+  if (out.report.droppedTotal() > 0) {
+    ++L.primitivesWithDrops;
+    L.drops.droppedInvalidIndex += out.report.droppedInvalidIndex;
+    L.drops.droppedNonFinite += out.report.droppedNonFinite;
+    L.drops.droppedDegenerate += out.report.droppedDegenerate;
+    L.drops.droppedDuplicate += out.report.droppedDuplicate;
+  }
+  if (out.report.hugeCoordinates > 0) {
+    L.warn(name + ": " + std::to_string(out.report.hugeCoordinates) +
+           " vertices with coordinates beyond 1e6 (kept; precision suffers)");
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+void convertMaterials(Loader& L) {
+  std::map<int, int> textureOfImage;
+  for (std::size_t i = 0; i < L.gltf.materials.size(); ++i) {
+    const tinygltf::Material& g = L.gltf.materials[i];
+    const std::string what = "material " + std::to_string(i);
+    Material m;
+    m.name = g.name.empty() ? L.file + "#" + what : g.name;
+    const auto& factor = g.pbrMetallicRoughness.baseColorFactor;
+    float alpha = 1.0f;
+    if (factor.size() == 4) {
+      m.baseColor = glm::vec3(float(factor[0]), float(factor[1]), float(factor[2]));
+      alpha = float(factor[3]);
+    }
+    if (!std::isfinite(alpha) || !std::isfinite(m.baseColor.x + m.baseColor.y + m.baseColor.z)) {
+      L.fail(what + ": baseColorFactor is not finite");
+    }
+    m.baseColor = glm::clamp(m.baseColor, 0.0f, 1.0f);
+    alpha = std::clamp(alpha, 0.0f, 1.0f);
+    m.alphaCutoff = float(g.alphaCutoff);
+    if (g.alphaMode == "MASK") {
+      m.alphaMode = AlphaMode::Mask;
+      m.opacity = alpha >= m.alphaCutoff ? 1.0f : 0.0f;
+    } else if (g.alphaMode == "BLEND") {
+      m.alphaMode = AlphaMode::Blend;
+      m.opacity = alpha;
+    } else if (!g.alphaMode.empty() && g.alphaMode != "OPAQUE") {
+      L.warn(what + ": unknown alphaMode '" + g.alphaMode + "', treated as OPAQUE");
+    }
+    const int tex = g.pbrMetallicRoughness.baseColorTexture.index;
+    if (tex >= 0) {
+      if (std::size_t(tex) >= L.gltf.textures.size()) {
+        L.fail(what + ": baseColorTexture " + std::to_string(tex) + " does not exist");
+      }
+      const int image = L.gltf.textures[std::size_t(tex)].source;
+      if (image < 0 || std::size_t(image) >= L.gltf.images.size()) {
+        L.warn(what + ": texture " + std::to_string(tex) + " has no image; texture ignored");
+      } else if (const auto it = textureOfImage.find(image); it != textureOfImage.end()) {
+        m.baseColorTexture = it->second;
+      } else {
+        const tinygltf::Image& img = L.gltf.images[std::size_t(image)];
+        Texture t;
+        t.source = L.path + (img.uri.empty() || img.uri.rfind("data:", 0) == 0
+                                 ? "#image" + std::to_string(image)
+                                 : "#" + img.uri);
+        std::string why = "no data";
+        if (!img.image.empty() && decodeGltfImage(img.image, t.image, why)) {
+          m.baseColorTexture = int(L.out.textures.size());
+          textureOfImage[image] = m.baseColorTexture;
+          L.out.textures.push_back(std::move(t));
+        } else {
+          L.warn(what + ": image " + std::to_string(image) + ": " + why + "; texture ignored");
+        }
+      }
+      if (g.pbrMetallicRoughness.baseColorTexture.texCoord != 0) {
+        L.warn(what + ": baseColorTexture uses TEXCOORD_" +
+               std::to_string(g.pbrMetallicRoughness.baseColorTexture.texCoord) +
+               "; only TEXCOORD_0 is loaded");
+      }
+      if (g.pbrMetallicRoughness.baseColorTexture.extensions.count("KHR_texture_transform")) {
+        L.warn(what + ": KHR_texture_transform ignored");
+      }
+      if (m.alphaMode != AlphaMode::Opaque) {
+        std::ostringstream opacity;
+        opacity << m.opacity;
+        L.warn(what + ": texture alpha is not used for shadows (constant opacity " + opacity.str() +
+               ")");
+      }
+    }
+    L.out.materials.push_back(std::move(m));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+glm::dmat4 localMatrix(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
+  glm::dmat4 m(1.0);
+  if (n.translation.size() == 3) m = glm::translate(m, glm::make_vec3(n.translation.data()));
+  if (n.rotation.size() == 4) {
+    // glTF stores x, y, z, w; glm's quaternion constructor takes w first.
+    glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);
+    const double len = glm::length(q);
+    q = len > 0.0 ? q / len : glm::dquat(std::nan(""), 0, 0, 0);
+    m = m * glm::mat4_cast(q);
+  }
+  if (n.scale.size() == 3) m = glm::scale(m, glm::make_vec3(n.scale.data()));
+  return m;
+}
+
+// A usable world matrix: finite, and not (nearly) collapsing space onto a plane. The
+// determinant is compared with the product of the column lengths, so scale does not matter.
+bool usable(const glm::dmat4& m) {
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) {
+      if (!std::isfinite(m[c][r])) return false;
+    }
+  }
+  const glm::dmat3 l(m);
+  const double volume = glm::length(l[0]) * glm::length(l[1]) * glm::length(l[2]);
+  return std::abs(glm::determinant(l)) > 1e-12 * volume;
+}
+
+// Checks the node graph: children exist, each node has at most one parent, no cycles.
+// Returns the parent of every node (-1 for roots).
+std::vector<int> checkHierarchy(const Loader& L) {
+  const std::size_t count = L.gltf.nodes.size();
+  std::vector<int> parent(count, -1);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int c : L.gltf.nodes[i].children) {
+      if (c < 0 || std::size_t(c) >= count) {
+        L.fail("node " + std::to_string(i) + ": child " + std::to_string(c) + " does not exist");
+      }
+      if (std::size_t(c) == i) L.fail("node " + std::to_string(i) + " is its own child");
+      if (parent[std::size_t(c)] >= 0) {
+        L.fail("node " + std::to_string(c) + " has two parents (nodes " +
+               std::to_string(parent[std::size_t(c)]) + " and " + std::to_string(i) + ")");
+      }
+      parent[std::size_t(c)] = int(i);
+    }
+  }
+  // With one parent each, a cycle is a chain of parents that never reaches a root.
+  std::vector<char> state(count, 0);  // 0 unseen, 1 on the current walk, 2 reaches a root
+  for (std::size_t start = 0; start < count; ++start) {
+    std::vector<std::size_t> walk;
+    for (std::size_t n = start; state[n] != 2;) {
+      if (state[n] == 1) L.fail("node hierarchy has a cycle through node " + std::to_string(n));
+      state[n] = 1;
+      walk.push_back(n);
+      if (parent[n] < 0) break;
+      n = std::size_t(parent[n]);
+    }
+    for (std::size_t w : walk) state[w] = 2;
+  }
+  return parent;
+}
+
+void addLight(Loader& L, Light light, const glm::dmat4& world, const std::string& what) {
+  Light placed = transformLight(light, glm::mat4(world));
+  placed.name = what;
+  L.out.lights.push_back(std::move(placed));
+}
+
+void nodeLights(Loader& L, std::size_t index, const glm::dmat4& world, const std::string& label) {
+  const Json& node = L.json["nodes"][index];
+  const auto ext = node.find("extensions");
+  if (ext == node.end() || !ext->is_object()) return;
+  auto lightIndex = [&](const char* name, const Json*& defs) -> int {
+    const auto e = ext->find(name);
+    if (e == ext->end()) return -1;
+    const auto top = L.json.find("extensions");
+    const Json* lights = nullptr;
+    if (top != L.json.end() && top->contains(name) && (*top)[name].contains("lights")) {
+      lights = &(*top)[name]["lights"];
+    }
+    if (!e->is_object() || !e->contains("light") || !(*e)["light"].is_number_unsigned() ||
+        !lights || !lights->is_array() || (*e)["light"].get<std::size_t>() >= lights->size()) {
+      L.fail(label + ": " + name + " light reference is invalid");
+    }
+    defs = lights;
+    return (*e)["light"].get<int>();
+  };
+  auto color = [&](const Json& def) {
+    glm::vec3 c(1.0f);
+    if (def.contains("color") && def["color"].is_array() && def["color"].size() == 3) {
+      for (int k = 0; k < 3; ++k) c[k] = def["color"][std::size_t(k)].get<float>();
+    }
+    return c;
+  };
+  const Json* defs = nullptr;
+  if (const int i = lightIndex("KHR_lights_punctual", defs); i >= 0) {
+    const Json& def = (*defs)[std::size_t(i)];
+    const std::string type = def.value("type", "");
+    const std::string what = label + " KHR_lights_punctual " + std::to_string(i);
+    if (type == "directional") {
+      L.warn(what + ": directional lights are not supported; dropped");
+    } else if (type == "point" || type == "spot") {
+      if (type == "spot") L.warn(what + ": spot light treated as a point light");
+      Light light;
+      light.shape = LightShape::Point;
+      light.position = glm::vec3(0.0f);
+      light.color = color(def);
+      light.intensity = def.value("intensity", 1.0f);
+      addLight(L, light, world, def.value("name", what));
+    } else {
+      L.fail(what + ": unknown light type '" + type + "'");
+    }
+  }
+  if (const int i = lightIndex("EXT_lights_area", defs); i >= 0) {
+    const Json& def = (*defs)[std::size_t(i)];
+    const std::string type = def.value("type", "");
+    const std::string what = label + " EXT_lights_area " + std::to_string(i);
+    // Following the draft as Babylon.js reads it: "size" is the height (rect, along local Y)
+    // or the diameter (disk); rect width = size * rect.aspect. Emission along local -Z.
+    const float size = def.value("size", 1.0f);
+    float aspect = 1.0f;
+    if (def.contains("rect") && def["rect"].is_object()) aspect = def["rect"].value("aspect", 1.0f);
+    if (!(size > 0.0f) || !(aspect > 0.0f) || !std::isfinite(size * aspect)) {
+      L.fail(what + ": size and rect.aspect must be positive");
+    }
+    Light light;
+    light.position = glm::vec3(0.0f);
+    light.normal = {0.0f, 0.0f, -1.0f};
+    light.tangent = {1.0f, 0.0f, 0.0f};
+    light.color = color(def);
+    light.intensity = def.value("intensity", 1.0f);
+    if (type == "rect") {
+      light.shape = LightShape::Rect;
+      light.size = {size * aspect, size};
+    } else if (type == "disk") {
+      light.shape = LightShape::Disk;
+      light.size = glm::vec2(0.5f * size);
+    } else {
+      L.fail(what + ": unknown area light type '" + type + "'");
+    }
+    addLight(L, light, world, def.value("name", what));
+  }
+}
+
+}  // namespace
+
+Model loadGltf(const std::string& path) {
+  Model out;
+  tinygltf::Model gltf;
+  Json json;
+  parseGltfSandboxed(path, gltf, json, out.warnings);
+  Loader L{path, std::filesystem::path(path).filename().string(), gltf, json, out};
+  try {
+    convertMaterials(L);
+    const std::vector<int> parent = checkHierarchy(L);
+
+    std::vector<int> roots;
+    if (gltf.defaultScene >= 0 || !gltf.scenes.empty()) {
+      const int s = std::max(gltf.defaultScene, 0);
+      if (std::size_t(s) >= gltf.scenes.size())
+        L.fail("scene " + std::to_string(s) + " does not exist");
+      for (int n : gltf.scenes[std::size_t(s)].nodes) {
+        if (n < 0 || std::size_t(n) >= gltf.nodes.size()) {
+          L.fail("scene " + std::to_string(s) + ": node " + std::to_string(n) + " does not exist");
+        }
+        if (parent[std::size_t(n)] >= 0) {
+          L.fail("scene " + std::to_string(s) + " lists node " + std::to_string(n) +
+                 ", which is a child of node " + std::to_string(parent[std::size_t(n)]));
+        }
+        if (std::find(roots.begin(), roots.end(), n) != roots.end()) {
+          L.fail("scene " + std::to_string(s) + " lists node " + std::to_string(n) + " twice");
+        }
+        roots.push_back(n);
+      }
+    } else {
+      for (std::size_t n = 0; n < gltf.nodes.size(); ++n) {
+        if (parent[n] < 0) roots.push_back(int(n));
+      }
+    }
+    if (!gltf.skins.empty() || !gltf.animations.empty()) {
+      L.warn("skins and animations ignored: nodes are placed by their static transforms");
+    }
+
+    std::map<std::pair<int, int>, Primitive> primitives;  // (mesh, primitive) -> converted
+    std::size_t dropped = 0;
+    // Iterative traversal: a deep chain of nodes must not exhaust the stack.
+    std::vector<std::pair<int, glm::dmat4>> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it)
+      stack.push_back({*it, glm::dmat4(1.0)});
+    while (!stack.empty()) {
+      const auto [index, parentWorld] = stack.back();
+      stack.pop_back();
+      const tinygltf::Node& node = gltf.nodes[std::size_t(index)];
+      const std::string label =
+          "node " + std::to_string(index) + (node.name.empty() ? "" : " '" + node.name + "'");
+      const glm::dmat4 world = parentWorld * localMatrix(node);
+      if (!usable(world)) {
+        L.warn(label + ": singular or non-finite transform; node and its children dropped");
+        ++dropped;
+        continue;
+      }
+      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
+        stack.push_back({*c, world});
+      nodeLights(L, std::size_t(index), world, label);
+      if (node.mesh < 0) continue;
+      if (std::size_t(node.mesh) >= gltf.meshes.size()) {
+        L.fail(label + ": mesh " + std::to_string(node.mesh) + " does not exist");
+      }
+      const tinygltf::Mesh& mesh = gltf.meshes[std::size_t(node.mesh)];
+      for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+        const std::string name =
+            L.file + "#" + (mesh.name.empty() ? "mesh " + std::to_string(node.mesh) : mesh.name) +
+            (mesh.primitives.size() > 1 ? "/" + std::to_string(p) : "");
+        const auto key = std::make_pair(node.mesh, int(p));
+        auto it = primitives.find(key);
+        if (it == primitives.end()) {
+          it = primitives.emplace(key, convertPrimitive(L, mesh.primitives[p], name)).first;
+        }
+        if (it->second.skipped || it->second.mesh.triangles.empty()) continue;
+        SceneMesh sm;
+        sm.name = name + (node.name.empty() ? "" : "@" + node.name);
+        sm.mesh = it->second.mesh;
+        sm.report = it->second.report;
+        sm.material = it->second.material;
+        transformMesh(sm.mesh, glm::mat4(world));
+        out.meshes.push_back(std::move(sm));
+      }
+    }
+    const std::string summary = L.dropSummary();
+    if (out.meshes.empty() && out.lights.empty()) {
+      std::string why;
+      if (!summary.empty()) why += "triangles dropped: " + summary;
+      if (dropped) why += (why.empty() ? "" : "; ") + std::to_string(dropped) + " nodes dropped";
+      if (L.primitivesSkipped) {
+        why += (why.empty() ? "" : "; ") + std::to_string(L.primitivesSkipped) +
+               " primitives without triangles (points, lines, no POSITION or sparse)";
+      }
+      if (roots.empty()) why += (why.empty() ? "" : "; ") + std::string("the scene has no nodes");
+      L.fail("no triangles to load" + (why.empty() ? std::string() : " (" + why + ")"));
+    }
+    if (!summary.empty()) {
+      L.warn("triangles dropped in " + std::to_string(L.primitivesWithDrops) + " of " +
+             std::to_string(primitives.size()) + " primitives: " + summary);
+    }
+  } catch (const Json::exception& e) {
+    throw Error(path, std::string("malformed glTF: ") + e.what());
+  }
+  return out;
+}
+
+}  // namespace penumbra::detail

@@ -1,1 +1,610 @@
-// in progress
+// The scene description interpreter and --set overrides. The format is documented in
+// docs/scene-format.md; every key read here is listed there.
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/log.h"
+#include "scene/loaders.h"
+
+namespace penumbra::detail {
+
+namespace {
+
+constexpr const char* kProceduralPrefix = "procedural:";
+constexpr int kMaxSegments = 4096;
+constexpr int kMaxResolution = 16384;
+
+struct Context {
+  std::string where;
+  std::string baseDir;
+  Scene& scene;
+  std::map<std::string, int> materialByName;
+  std::map<std::string, int> textureByKey;  // resolved path or procedural name
+  std::map<std::pair<int, float>, int> opacityVariants;
+  struct Placed {
+    std::shared_ptr<const Model> model;
+    int materialBase = 0;
+    int textureBase = 0;
+  };
+  std::map<std::string, Placed> models;  // by resolved path
+
+  void warn(const std::string& message) {
+    scene.warnings.push_back(message);
+    PLOG_WARN("{}", message);
+  }
+  [[noreturn]] void fail(const std::string& context, const std::string& what) const {
+    throw Error(where, context.empty() ? what : context + ": " + what);
+  }
+};
+
+// One JSON object being interpreted. Keys read through it are marked used; finish() warns about
+// the rest so that a misspelt key is never silently ignored.
+class Fields {
+ public:
+  Fields(Context& ctx, const Json& object, std::string context)
+      : ctx_(ctx), object_(object), context_(std::move(context)) {
+    if (!object_.is_object()) ctx_.fail(context_, "expected a JSON object");
+  }
+
+  const std::string& context() const { return context_; }
+  std::string at(const std::string& key) const { return context_ + "." + key; }
+  bool has(const std::string& key) const { return object_.contains(key); }
+
+  const Json* get(const std::string& key) {
+    used_.insert(key);
+    const auto it = object_.find(key);
+    return it == object_.end() ? nullptr : &*it;
+  }
+
+  float number(const std::string& key, float fallback) {
+    const Json* v = get(key);
+    return v ? toFloat(*v, at(key)) : fallback;
+  }
+  float positive(const std::string& key, float fallback) {
+    const float x = number(key, fallback);
+    if (!(x > 0.0f)) ctx_.fail(at(key), "must be positive, got " + fmtFloat(x));
+    return x;
+  }
+  int integer(const std::string& key, int fallback, int lo, int hi) {
+    const Json* v = get(key);
+    if (!v) return fallback;
+    if (!v->is_number_integer() || v->get<long long>() < lo || v->get<long long>() > hi) {
+      ctx_.fail(at(key), "expected an integer in [" + std::to_string(lo) + ", " +
+                             std::to_string(hi) + "], got " + v->dump());
+    }
+    return int(v->get<long long>());
+  }
+  bool boolean(const std::string& key, bool fallback) {
+    const Json* v = get(key);
+    if (!v) return fallback;
+    if (!v->is_boolean()) ctx_.fail(at(key), "expected true or false, got " + v->dump());
+    return v->get<bool>();
+  }
+  std::string string(const std::string& key, const std::string& fallback) {
+    const Json* v = get(key);
+    if (!v) return fallback;
+    if (!v->is_string()) ctx_.fail(at(key), "expected a string, got " + v->dump());
+    return v->get<std::string>();
+  }
+  glm::vec3 vec3(const std::string& key, glm::vec3 fallback) {
+    const Json* v = get(key);
+    return v ? toVec(*v, at(key), 3) : fallback;
+  }
+  // A number (all components) or an array of n numbers.
+  glm::vec3 scalarOrVec(const std::string& key, glm::vec3 fallback, int n) {
+    const Json* v = get(key);
+    if (!v) return fallback;
+    if (v->is_number()) return glm::vec3(toFloat(*v, at(key)));
+    return toVec(*v, at(key), n);
+  }
+
+  void finish() {
+    for (const auto& item : object_.items()) {
+      if (used_.count(item.key())) continue;
+      ctx_.warn(ctx_.where + ": " + context_ + ": unknown key '" + item.key() + "' ignored");
+    }
+  }
+
+  float toFloat(const Json& v, const std::string& context) const {
+    if (!v.is_number()) ctx_.fail(context, "expected a number, got " + v.dump());
+    const float x = v.get<float>();
+    if (!std::isfinite(x)) ctx_.fail(context, "not a finite number: " + v.dump());
+    return x;
+  }
+  glm::vec3 toVec(const Json& v, const std::string& context, int n) const {
+    if (!v.is_array() || int(v.size()) != n) {
+      ctx_.fail(context, "expected " + std::to_string(n) + " numbers, got " + v.dump());
+    }
+    glm::vec3 out(0.0f);
+    for (int i = 0; i < n; ++i) out[i] = toFloat(v[std::size_t(i)], context);
+    return out;
+  }
+  static std::string fmtFloat(float x) {
+    std::string s = std::to_string(x);
+    while (s.size() > 1 && s.back() == '0') s.pop_back();
+    if (!s.empty() && s.back() == '.') s.pop_back();
+    return s;
+  }
+
+ private:
+  Context& ctx_;
+  const Json& object_;
+  std::string context_;
+  std::set<std::string> used_;
+};
+
+bool isFinite(glm::vec3 v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+std::string describe(const std::string& base, int index, const std::string& name) {
+  std::string s = base + "[" + std::to_string(index) + "]";
+  if (!name.empty()) s += " '" + name + "'";
+  return s;
+}
+
+const Json* arrayField(Fields& f, const std::string& key, Context& ctx) {
+  const Json* v = f.get(key);
+  if (v && !v->is_array()) ctx.fail(key, "expected an array, got " + v->dump());
+  return v;
+}
+
+std::string nameOf(const Json& item) {
+  if (item.is_object()) {
+    const auto it = item.find("name");
+    if (it != item.end() && it->is_string()) return it->get<std::string>();
+  }
+  return {};
+}
+
+int loadTexture(Context& ctx, const std::string& reference, const std::string& context) {
+  const bool procedural = reference.rfind(kProceduralPrefix, 0) == 0;
+  std::string key = reference;
+  if (procedural) {
+    const std::string name = reference.substr(std::string(kProceduralPrefix).size());
+    if (name != "stained-glass") {
+      ctx.fail(context, "unknown procedural texture '" + name + "' (known: stained-glass)");
+    }
+  } else {
+    key = resolveSceneReference(reference, ctx.baseDir, ctx.where, context);
+  }
+  if (const auto it = ctx.textureByKey.find(key); it != ctx.textureByKey.end()) return it->second;
+  Texture texture;
+  texture.source = key;
+  texture.image = procedural ? stainedGlassImage(64) : readTexture(key, /*srgb=*/true);
+  if (texture.image.empty()) ctx.fail(context, "texture '" + reference + "' is empty");
+  const int index = int(ctx.scene.textures.size());
+  ctx.scene.textures.push_back(std::move(texture));
+  ctx.textureByKey[key] = index;
+  return index;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+void readMaterial(Context& ctx, const Json& item, int index) {
+  Fields f(ctx, item, describe("materials", index, nameOf(item)));
+  Material m;
+  m.name = f.string("name", "");
+  if (m.name.empty()) ctx.fail(f.context(), "a material needs a \"name\"");
+  if (ctx.materialByName.count(m.name)) ctx.fail(f.context(), "duplicate material name");
+  m.baseColor = f.scalarOrVec("baseColor", m.baseColor, 3);
+  if (glm::any(glm::lessThan(m.baseColor, glm::vec3(0.0f)))) {
+    ctx.fail(f.at("baseColor"), "components must be >= 0");
+  }
+  if (f.has("texture"))
+    m.baseColorTexture = loadTexture(ctx, f.string("texture", ""), f.at("texture"));
+  m.opacity = f.number("opacity", 1.0f);
+  if (m.opacity < 0.0f || m.opacity > 1.0f) {
+    ctx.fail(f.at("opacity"), "must be in [0, 1], got " + Fields::fmtFloat(m.opacity));
+  }
+  m.alphaMode = m.opacity < 1.0f ? AlphaMode::Blend : AlphaMode::Opaque;
+  f.finish();
+  ctx.materialByName[m.name] = int(ctx.scene.materials.size());
+  ctx.scene.materials.push_back(std::move(m));
+}
+
+glm::mat4 readTransform(Context& ctx, Fields& f) {
+  glm::mat4 matrix(1.0f);
+  if (const Json* v = f.get("matrix")) {
+    if (!v->is_array() || v->size() != 16) {
+      ctx.fail(f.at("matrix"), "expected 16 numbers (column-major)");
+    }
+    float values[16];
+    for (std::size_t i = 0; i < 16; ++i) values[i] = f.toFloat((*v)[i], f.at("matrix"));
+    matrix = glm::make_mat4(values);
+  }
+  glm::vec3 scale = f.scalarOrVec("scale", glm::vec3(1.0f), 3);
+  glm::mat4 rotation(1.0f);
+  if (const Json* v = f.get("rotate")) {
+    if (v->is_object()) {
+      Fields r(ctx, *v, f.at("rotate"));
+      const glm::vec3 axis = r.vec3("axis", glm::vec3(0.0f, 1.0f, 0.0f));
+      const float angle = r.number("angle", 0.0f);
+      r.finish();
+      if (!(glm::length(axis) > 0.0f)) ctx.fail(f.at("rotate.axis"), "must not be zero");
+      rotation = glm::rotate(glm::mat4(1.0f), glm::radians(angle), glm::normalize(axis));
+    } else {
+      const glm::vec3 deg = f.toVec(*v, f.at("rotate"), 3);
+      // Degrees about X, then Y, then Z (R = Rz Ry Rx).
+      rotation = glm::rotate(glm::mat4(1.0f), glm::radians(deg.z), {0, 0, 1}) *
+                 glm::rotate(glm::mat4(1.0f), glm::radians(deg.y), {0, 1, 0}) *
+                 glm::rotate(glm::mat4(1.0f), glm::radians(deg.x), {1, 0, 0});
+    }
+  }
+  const glm::vec3 translate = f.vec3("translate", glm::vec3(0.0f));
+  const glm::mat4 world = glm::translate(glm::mat4(1.0f), translate) * rotation *
+                          glm::scale(glm::mat4(1.0f), scale) * matrix;
+  const float det = glm::determinant(glm::mat3(world));
+  if (!std::isfinite(det) || std::abs(det) < 1e-24f) {
+    ctx.fail(f.context(), "the transform is singular (zero scale or degenerate matrix)");
+  }
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) {
+      if (!std::isfinite(world[c][r])) ctx.fail(f.context(), "the transform is not finite");
+    }
+  }
+  return world;
+}
+
+geo::TriangleMesh readShape(Context& ctx, Fields& f, const std::string& shape) {
+  auto segments = [&](int fallback) { return f.integer("segments", fallback, 3, kMaxSegments); };
+  if (shape == "box") return makeBox(f.scalarOrVec("size", glm::vec3(1.0f), 3));
+  if (shape == "plane" || shape == "quad") {
+    if (shape == "quad" && f.has("corners")) {
+      const Json* v = f.get("corners");
+      if (!v->is_array() || v->size() != 4) ctx.fail(f.at("corners"), "expected 4 points");
+      glm::vec3 corners[4];
+      for (std::size_t i = 0; i < 4; ++i) corners[i] = f.toVec((*v)[i], f.at("corners"), 3);
+      return makeQuad(corners);
+    }
+    const glm::vec3 size = f.scalarOrVec("size", glm::vec3(shape == "plane" ? 10.0f : 1.0f), 2);
+    return makeQuad(glm::vec2(size));
+  }
+  if (shape == "sphere") {
+    const float radius = f.positive("radius", 0.5f);
+    const int seg = segments(32);
+    return makeSphere(radius, seg, f.integer("rings", std::max(2, seg / 2), 2, kMaxSegments));
+  }
+  if (shape == "cylinder") {
+    const float radius = f.positive("radius", 0.5f);
+    const float height = f.positive("height", 1.0f);
+    const int seg = segments(32);
+    const std::string caps = f.string("caps", "both");
+    if (caps != "both" && caps != "top" && caps != "bottom" && caps != "none") {
+      ctx.fail(f.at("caps"),
+               "expected \"both\", \"top\", \"bottom\" or \"none\", got '" + caps + "'");
+    }
+    bool top = caps == "both" || caps == "top", bottom = caps == "both" || caps == "bottom";
+    if (f.boolean("open_bottom", false)) bottom = false;
+    return makeCylinder(radius, height, seg, top, bottom);
+  }
+  if (shape == "disk") {
+    const float radius = f.positive("radius", 0.5f);
+    return makeDisk(radius, segments(32));
+  }
+  ctx.fail(f.at("shape"),
+           "unknown shape '" + shape + "' (expected box, plane, quad, sphere, cylinder or disk)");
+}
+
+int withOpacity(Context& ctx, int material, float opacity) {
+  const auto key = std::make_pair(material, opacity);
+  if (const auto it = ctx.opacityVariants.find(key); it != ctx.opacityVariants.end()) {
+    return it->second;
+  }
+  Material m = ctx.scene.materials[std::size_t(material)];
+  m.name += "@opacity=" + Fields::fmtFloat(opacity);
+  m.opacity = opacity;
+  m.alphaMode = opacity < 1.0f ? AlphaMode::Blend : AlphaMode::Opaque;
+  const int index = int(ctx.scene.materials.size());
+  ctx.scene.materials.push_back(std::move(m));
+  ctx.opacityVariants[key] = index;
+  return index;
+}
+
+const Context::Placed& placeModel(Context& ctx, const std::string& path) {
+  if (const auto it = ctx.models.find(path); it != ctx.models.end()) return it->second;
+  auto model = std::make_shared<Model>(loadGeometryFile(path));
+  Context::Placed placed;
+  placed.model = model;
+  placed.materialBase = int(ctx.scene.materials.size());
+  placed.textureBase = int(ctx.scene.textures.size());
+  for (Material m : model->materials) {
+    if (m.baseColorTexture >= 0) m.baseColorTexture += placed.textureBase;
+    ctx.scene.materials.push_back(std::move(m));
+  }
+  for (const Texture& t : model->textures) ctx.scene.textures.push_back(t);
+  for (const std::string& w : model->warnings) ctx.warn(w);
+  return ctx.models[path] = std::move(placed);
+}
+
+void readObject(Context& ctx, const Json& item, int index) {
+  const std::string name = nameOf(item);
+  Fields f(ctx, item, describe("objects", index, name));
+  f.string("name", "");
+  int material = -1;
+  if (f.has("material")) {
+    const std::string m = f.string("material", "");
+    const auto it = ctx.materialByName.find(m);
+    if (it == ctx.materialByName.end()) {
+      std::string known;
+      for (const auto& [k, v] : ctx.materialByName) known += (known.empty() ? "" : ", ") + k;
+      ctx.fail(f.at("material"), "unknown material '" + m + "' (known: " + known + ")");
+    }
+    material = it->second;
+  }
+  const bool hasOpacity = f.has("opacity");
+  const float opacity = f.number("opacity", 1.0f);
+  if (opacity < 0.0f || opacity > 1.0f) {
+    ctx.fail(f.at("opacity"), "must be in [0, 1], got " + Fields::fmtFloat(opacity));
+  }
+  const glm::mat4 world = readTransform(ctx, f);
+  const std::string label = name.empty() ? "objects[" + std::to_string(index) + "]" : name;
+
+  std::vector<SceneMesh> placed;
+  if (f.has("file") && f.has("shape"))
+    ctx.fail(f.context(), "give \"file\" or \"shape\", not both");
+  if (f.has("file")) {
+    const std::string path =
+        resolveSceneReference(f.string("file", ""), ctx.baseDir, ctx.where, f.at("file"));
+    const Context::Placed& model = placeModel(ctx, path);
+    for (const SceneMesh& source : model.model->meshes) {
+      SceneMesh m = source;
+      m.name = label + "/" + source.name;
+      transformMesh(m.mesh, world);
+      m.material = material >= 0          ? material
+                   : source.material >= 0 ? model.materialBase + source.material
+                                          : 0;
+      placed.push_back(std::move(m));
+    }
+    for (const Light& light : model.model->lights) {
+      ctx.scene.lights.push_back(transformLight(light, world));
+    }
+  } else if (f.has("shape")) {
+    SceneMesh m;
+    m.name = label;
+    m.mesh = readShape(ctx, f, f.string("shape", ""));
+    transformMesh(m.mesh, world);
+    m.report.inputVertices = m.mesh.positions.size();
+    m.report.inputFaces = m.mesh.triangles.size();
+    geo::cleanMesh(m.mesh, m.report);
+    m.material = material >= 0 ? material : 0;
+    placed.push_back(std::move(m));
+  } else {
+    ctx.fail(f.context(), "an object needs \"file\" or \"shape\"");
+  }
+  f.finish();
+  for (SceneMesh& m : placed) {
+    if (hasOpacity) m.material = withOpacity(ctx, m.material, opacity);
+    ctx.scene.meshes.push_back(std::move(m));
+  }
+}
+
+glm::vec3 unitOrFail(Context& ctx, glm::vec3 v, const std::string& context) {
+  const float len = glm::length(v);
+  if (!(len > 0.0f) || !std::isfinite(len)) ctx.fail(context, "must be a non-zero vector");
+  return v / len;
+}
+
+void readLight(Context& ctx, const Json& item, int index) {
+  Fields f(ctx, item, describe("lights", index, nameOf(item)));
+  Light light;
+  light.name = f.string("name", "light" + std::to_string(index));
+  const std::string type = f.string("type", "rect");
+  if (type == "rect")
+    light.shape = LightShape::Rect;
+  else if (type == "disk")
+    light.shape = LightShape::Disk;
+  else if (type == "sphere")
+    light.shape = LightShape::Sphere;
+  else if (type == "point")
+    light.shape = LightShape::Point;
+  else
+    ctx.fail(f.at("type"),
+             "unknown light type '" + type + "' (expected rect, disk, sphere or point)");
+
+  light.position = f.vec3("position", light.position);
+  light.color = f.scalarOrVec("color", light.color, 3);
+  if (glm::any(glm::lessThan(light.color, glm::vec3(0.0f)))) {
+    ctx.fail(f.at("color"), "components must be >= 0");
+  }
+  light.intensity = f.number("intensity", light.intensity);
+  if (light.intensity < 0.0f) ctx.fail(f.at("intensity"), "must be >= 0");
+
+  if (light.shape == LightShape::Rect || light.shape == LightShape::Disk) {
+    if (f.has("normal") && f.has("target"))
+      ctx.fail(f.context(), "give \"normal\" or \"target\", not both");
+    if (f.has("target")) {
+      light.normal = unitOrFail(ctx, f.vec3("target", {}) - light.position,
+                                f.at("target") + " (minus position)");
+    } else {
+      light.normal = unitOrFail(ctx, f.vec3("normal", light.normal), f.at("normal"));
+    }
+  }
+  if (light.shape != LightShape::Point) {
+    if (f.has("tangent") && f.has("up"))
+      ctx.fail(f.context(), "give \"tangent\" or \"up\", not both");
+    const glm::vec3 n = light.normal;
+    glm::vec3 t;
+    if (f.has("tangent")) {
+      t = f.vec3("tangent", {});
+    } else if (f.has("up")) {
+      t = glm::cross(f.vec3("up", {}), n);  // so that bitangent = n x t follows "up"
+    } else {
+      t = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
+    }
+    t -= glm::dot(t, n) * n;
+    light.tangent = unitOrFail(
+        ctx, t, f.has("up") ? f.at("up") : f.at("tangent") + " (projected onto the light's plane)");
+  }
+
+  if (light.shape == LightShape::Rect) {
+    light.size = glm::vec2(f.scalarOrVec("size", glm::vec3(1.0f), 2));
+    if (!(light.size.x > 0.0f && light.size.y > 0.0f)) {
+      ctx.fail(f.at("size"), "an area light needs a positive size, got [" +
+                                 Fields::fmtFloat(light.size.x) + ", " +
+                                 Fields::fmtFloat(light.size.y) + "]");
+    }
+  } else if (light.shape != LightShape::Point) {
+    const float r = f.number("radius", 0.5f);
+    if (!(r > 0.0f)) {
+      ctx.fail(f.at("radius"), "an area light needs a positive radius, got " + Fields::fmtFloat(r));
+    }
+    light.size = glm::vec2(r, r);
+  }
+
+  if (light.shape != LightShape::Point) {
+    if (f.has("texture") && f.has("frames"))
+      ctx.fail(f.context(), "give \"texture\" or \"frames\", not both");
+    if (f.has("texture")) {
+      light.emissionFrames.push_back(loadTexture(ctx, f.string("texture", ""), f.at("texture")));
+    } else if (const Json* frames = f.get("frames")) {
+      if (!frames->is_array() || frames->empty())
+        ctx.fail(f.at("frames"), "expected a list of texture paths");
+      for (std::size_t i = 0; i < frames->size(); ++i) {
+        const std::string context = f.at("frames") + "[" + std::to_string(i) + "]";
+        if (!(*frames)[i].is_string()) ctx.fail(context, "expected a path");
+        light.emissionFrames.push_back(loadTexture(ctx, (*frames)[i].get<std::string>(), context));
+      }
+      light.fps = f.number("fps", 0.0f);
+      if (light.emissionFrames.size() > 1 && !(light.fps > 0.0f)) {
+        ctx.fail(f.at("fps"), "an animated light needs \"fps\" > 0");
+      }
+    }
+  }
+  f.finish();
+  ctx.scene.lights.push_back(std::move(light));
+}
+
+void readCamera(Context& ctx, const Json& item) {
+  Fields f(ctx, item, "camera");
+  Camera& c = ctx.scene.camera;
+  c.position = f.vec3("position", c.position);
+  c.target = f.vec3("target", c.target);
+  c.up = f.vec3("up", c.up);
+  c.fovY = f.number("fov", c.fovY);
+  c.zNear = f.number("near", c.zNear);
+  f.finish();
+  const glm::vec3 view = c.target - c.position;
+  if (!(glm::length(view) > 0.0f)) ctx.fail("camera", "position and target coincide");
+  if (!(glm::length(c.up) > 0.0f)) ctx.fail("camera.up", "must be a non-zero vector");
+  if (!(glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) > 1e-6f)) {
+    ctx.fail("camera.up", "is parallel to the viewing direction");
+  }
+  if (!(c.fovY > 0.0f && c.fovY < 180.0f)) ctx.fail("camera.fov", "must be in (0, 180) degrees");
+  if (!(c.zNear > 0.0f)) ctx.fail("camera.near", "must be positive");
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+void applyOverrides(Json& doc, const std::vector<std::string>& overrides) {
+  for (const std::string& pair : overrides) {
+    const std::size_t eq = pair.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw Error("--set", "'" + pair + "': expected key=value");
+    }
+    const std::string key = pair.substr(0, eq);
+    const std::string text = pair.substr(eq + 1);
+    // Mitsuba -D style: JSON when it parses ("2", "[1,2]", "true", "\"s\""), a string otherwise.
+    Json value = Json::parse(text, nullptr, /*allow_exceptions=*/false);
+    if (value.is_discarded()) value = text;
+
+    Json* node = &doc;
+    std::string walked;
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t dot = key.find('.', start);
+      const std::string part = key.substr(start, dot == std::string::npos ? dot : dot - start);
+      if (part.empty()) throw Error("--set", "'" + key + "': empty path component");
+      if (node->is_null()) *node = Json::object();
+      if (node->is_array()) {
+        const bool numeric = part.find_first_not_of("0123456789") == std::string::npos;
+        if (!numeric || part.size() > 9) {
+          throw Error("--set", "'" + key + "': '" + walked + "' is an array, '" + part +
+                                   "' is not an index");
+        }
+        const std::size_t i = std::stoul(part);
+        if (i >= node->size()) {
+          throw Error("--set", "'" + key + "': index " + part + " out of range ('" + walked +
+                                   "' has " + std::to_string(node->size()) + " elements)");
+        }
+        node = &(*node)[i];
+      } else if (node->is_object()) {
+        node = &(*node)[part];
+      } else {
+        throw Error("--set", "'" + key + "': '" + walked + "' is " + node->type_name() +
+                                 ", not an object or array");
+      }
+      walked += (walked.empty() ? "" : ".") + part;
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+    *node = std::move(value);
+  }
+}
+
+Scene interpretScene(const Json& doc, const std::string& where, const std::string& baseDir) {
+  Scene scene;
+  Context ctx{where, baseDir, scene, {}, {}, {}, {}};
+  Fields f(ctx, doc, "scene");
+  scene.name = f.string("name", "scene");
+  f.get("description");  // free text, documented
+
+  Material fallback;
+  fallback.name = "default";
+  scene.materials.push_back(fallback);
+
+  if (const Json* v = f.get("resolution")) {
+    const glm::vec3 r = f.toVec(*v, "resolution", 2);
+    if (r.x != std::floor(r.x) || r.y != std::floor(r.y) || r.x < 1 || r.y < 1 ||
+        r.x > kMaxResolution || r.y > kMaxResolution) {
+      ctx.fail("resolution", "expected two integers in [1, " + std::to_string(kMaxResolution) +
+                                 "], got " + v->dump());
+    }
+    scene.width = int(r.x);
+    scene.height = int(r.y);
+  }
+  scene.background = f.scalarOrVec("background", scene.background, 3);
+
+  if (const Json* materials = arrayField(f, "materials", ctx)) {
+    for (std::size_t i = 0; i < materials->size(); ++i) readMaterial(ctx, (*materials)[i], int(i));
+  }
+  if (const Json* objects = arrayField(f, "objects", ctx)) {
+    for (std::size_t i = 0; i < objects->size(); ++i) readObject(ctx, (*objects)[i], int(i));
+  }
+  if (const Json* lights = arrayField(f, "lights", ctx)) {
+    for (std::size_t i = 0; i < lights->size(); ++i) readLight(ctx, (*lights)[i], int(i));
+  }
+  if (const Json* camera = f.get("camera")) {
+    readCamera(ctx, *camera);
+  } else {
+    glm::vec3 lo, hi;
+    scene.bounds(lo, hi);
+    readCamera(ctx, framingCamera(lo, hi));
+  }
+  f.finish();
+
+  // Lights that came from glTF files are checked here too: a zero-scale node or a NaN in a
+  // file must not reach a renderer.
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    const std::string context = describe("lights", int(i), l.name);
+    const bool finite = isFinite(l.position) && isFinite(l.normal) && isFinite(l.tangent) &&
+                        isFinite(glm::vec3(l.size, 0.0f)) && isFinite(l.color) &&
+                        std::isfinite(l.intensity);
+    if (!finite) ctx.fail(context, "has a NaN or infinite parameter");
+    if (l.isArea() && !(l.area() > 0.0f)) ctx.fail(context, "an area light needs a positive size");
+  }
+  if (scene.meshes.empty()) ctx.warn(where + ": the scene has no geometry");
+  if (scene.lights.empty()) ctx.warn(where + ": the scene has no lights");
+  return scene;
+}
+
+}  // namespace penumbra::detail

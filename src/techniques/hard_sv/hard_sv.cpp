@@ -13,6 +13,7 @@
 #include "techniques/hard_sv/hard_sv.h"
 
 #include "geometry/silhouette.h"
+#include "core/log.h"
 #include "gl/objects.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
@@ -23,6 +24,8 @@ namespace {
 class HardShadowVolumes final : public Technique {
  public:
   void prepare(const Scene& scene, GpuScene& gpu) override {
+    if (scene.hasSemiOpaque())
+      PLOG_WARN("hard-sv treats semi-opaque occluders as opaque (its error against the reference says how much)");
     meshes_.clear();
     for (auto& m : scene.meshes) {
       MeshVolumes v;

@@ -1,1 +1,370 @@
-// in progress
+// CPU ray-traced reference (Embree 3): the transmittance of every (pixel, light sample) segment,
+// i.e. 1 - Sat(D(s_i <-> p)) of the DCS paper eq. 1-2 with D computed exactly by ray casting.
+// Semi-opaque occluders multiply their (1 - opacity) along the segment (the physically correct
+// attenuation the paper's section 3 "Surface opaqueness" says its summed Dr only approximates).
+#include "techniques/raytrace/embree_reference.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "core/error.h"
+
+namespace penumbra {
+namespace {
+
+// Segment end: the ray stops just before the light sample (t < 1 - 1e-5 of the unnormalised
+// direction), so a sample lying on a surface does not shadow itself.
+constexpr float kTFar = 1.0f - 1e-5f;
+
+// A hit counted by the occlusion filter for the current ray.
+struct CountedHit {
+  unsigned geomID, primID;
+  float t;
+};
+
+// Per-thread scratch: the rays of one stream and, per ray (indexed by RTCRay::id), the hits the
+// filter counted and their running transmittance.
+struct Scratch {
+  std::vector<RTCRay> rays;
+  std::vector<std::vector<CountedHit>> hits;
+  std::vector<float> transmittance;
+  void reset(std::size_t n) {
+    rays.clear();
+    if (hits.size() < n) hits.resize(n), transmittance.resize(n);
+    for (std::size_t i = 0; i < n; ++i) hits[i].clear(), transmittance[i] = 1.0f;
+  }
+};
+
+// Reached from the filter. RTCIntersectContext must be the first member: Embree passes the
+// filter a pointer to it (the extended-context idiom of the Embree tutorials).
+struct RayContext {
+  RTCIntersectContext rtc;
+  const float* opacity;  // per geomID
+  Scratch* scratch;
+};
+
+// Occlusion filter of semi-opaque geometries: counts the hit and rejects it so that traversal
+// continues. Embree may report one crossing several times: a triangle referenced from several
+// BVH leaves (spatial splits of RTC_BUILD_QUALITY_HIGH) is reported once per leaf, and a ray
+// through an edge or vertex shared by triangles of the same mesh hits each of them (robust mode
+// tests edges inclusively; both measured in tests/raytrace_embree.cpp). Both are one surface
+// crossing, so a hit is ignored when the same (geomID, primID), or the same geometry at the same
+// distance, was already counted for this ray. The ray is found by its id, not by its lane: a
+// stream may reach the filter in packets of any size.
+void occlusionFilter(const RTCFilterFunctionNArguments* args) {
+  auto* ctx = reinterpret_cast<RayContext*>(const_cast<RTCIntersectContext*>(args->context));
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned id = RTCRayN_id(args->ray, args->N, i);
+    const unsigned geomID = RTCHitN_geomID(args->hit, args->N, i);
+    const unsigned primID = RTCHitN_primID(args->hit, args->N, i);
+    const float t = RTCRayN_tfar(args->ray, args->N, i);  // the hit distance during the filter
+    std::vector<CountedHit>& hits = ctx->scratch->hits[id];
+    float& tr = ctx->scratch->transmittance[id];
+    bool seen = false;
+    for (const CountedHit& h : hits) {
+      if (h.geomID == geomID && (h.primID == primID || std::abs(h.t - t) <= 1e-6f)) {
+        seen = true;
+        break;
+      }
+    }
+    if (!seen) {
+      hits.push_back({geomID, primID, t});
+      tr *= 1.0f - ctx->opacity[geomID];
+    }
+    // Accept (stop, transmittance 0) only when nothing gets through any more.
+    if (tr > 0.0f) args->valid[i] = 0;
+  }
+}
+
+RTCRay makeRay(const glm::vec3& o, const glm::vec3& d, unsigned id) {
+  RTCRay ray;
+  ray.org_x = o.x, ray.org_y = o.y, ray.org_z = o.z;
+  ray.dir_x = d.x, ray.dir_y = d.y, ray.dir_z = d.z;
+  ray.tnear = 0.0f;
+  ray.tfar = kTFar;
+  ray.time = 0.0f;
+  ray.mask = ~0u;
+  ray.id = id;
+  ray.flags = 0;
+  return ray;
+}
+
+unsigned threadCount(int requested) {
+  if (requested > 0) return unsigned(requested);
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+// Runs body(y, rays) for every row y on `threads` threads. Rows are taken from a shared counter;
+// each pixel's result depends only on the pixel, so the output does not depend on the thread
+// count or schedule. Rethrows the first exception of any thread.
+template <class Body>
+std::uint64_t forEachRow(int height, unsigned threads, Body body) {
+  std::atomic<int> next{0};
+  std::atomic<std::uint64_t> rays{0};
+  std::exception_ptr error;
+  std::mutex errorMutex;
+  auto worker = [&] {
+    std::uint64_t local = 0;
+    try {
+      for (int y = next++; y < height; y = next++) body(y, local);
+    } catch (...) {
+      std::lock_guard lock(errorMutex);
+      if (!error) error = std::current_exception();
+      next = height;
+    }
+    rays += local;
+  };
+  threads = std::min<unsigned>(threads, std::max(1, height));
+  std::vector<std::thread> pool;
+  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  return rays;
+}
+
+void checkGBuffer(const CpuGBuffer& g) {
+  const std::size_t n = std::size_t(g.width) * g.height;
+  PENUMBRA_CHECK(g.width >= 0 && g.height >= 0 && g.position.size() == n && g.normal.size() == n &&
+                     g.valid.size() == n,
+                 "CpuGBuffer arrays do not match width x height");
+}
+
+}  // namespace
+
+struct EmbreeReference::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::vector<float> opacity;  // per geomID
+  unsigned threads = 1;
+  float defaultOffset = 1e-6f;
+  mutable std::atomic<std::uint64_t> rays{0};
+  std::string lastError;  // set by the device error callback
+
+  // Here rather than in ~EmbreeReference so that a constructor that throws releases them too.
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  void throwIfError(const char* what) {
+    const RTCError code = rtcGetDeviceError(device);
+    if (code != RTC_ERROR_NONE)
+      throw Error("embree",
+                  std::string(what) + ": " +
+                      (lastError.empty() ? "error " + std::to_string(int(code)) : lastError));
+  }
+
+  // Transmittances of the rays in s.rays (ray j has id j) into out[j].
+  void traceStream(Scratch& s, float* out) const {
+    if (s.rays.empty()) return;
+    RayContext ctx;
+    rtcInitIntersectContext(&ctx.rtc);
+    ctx.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // one origin, nearby directions
+    ctx.opacity = opacity.data();
+    ctx.scratch = &s;
+    rtcOccluded1M(scene, &ctx.rtc, s.rays.data(), unsigned(s.rays.size()), sizeof(RTCRay));
+    for (std::size_t j = 0; j < s.rays.size(); ++j) {
+      std::vector<CountedHit>& hits = s.hits[j];
+      if (s.rays[j].tfar < 0.0f) {  // an accepted hit: opaque surface
+        out[j] = 0.0f;
+        continue;
+      }
+      // Multiply in a fixed order (by geometry, then primitive), not in traversal order, so the
+      // float result does not depend on the BVH or the traversal.
+      std::sort(hits.begin(), hits.end(), [](const CountedHit& a, const CountedHit& b) {
+        return a.geomID != b.geomID ? a.geomID < b.geomID : a.primID < b.primID;
+      });
+      float tr = 1.0f;
+      for (const CountedHit& h : hits) tr *= 1.0f - opacity[h.geomID];
+      out[j] = tr;
+    }
+  }
+
+  // Visibility of one pixel against `count` samples (positions/luminance arrays of that set),
+  // with the conventions of the header: horizon rule, origin offset along the normal. All rays
+  // of the pixel go to Embree as one stream.
+  glm::vec3 shadePixel(const glm::vec3& p, const glm::vec3& n, const glm::vec3* pos,
+                       const glm::vec3* lum, int count, float offset, float* perSample, Scratch& s,
+                       std::vector<int>& sampleOf, std::vector<float>& tr,
+                       std::uint64_t& rayCount) const {
+    const glm::vec3 o = p + n * offset;
+    s.reset(std::size_t(count));
+    sampleOf.clear();
+    for (int k = 0; k < count; ++k) {
+      if (!(glm::dot(n, pos[k] - p) > 0.0f)) continue;  // below the horizon: 0, no ray
+      s.rays.push_back(makeRay(o, pos[k] - o, unsigned(s.rays.size())));
+      sampleOf.push_back(k);
+    }
+    tr.assign(s.rays.size(), 0.0f);
+    traceStream(s, tr.data());
+    rayCount += s.rays.size();
+    if (perSample) std::fill(perSample, perSample + count, 0.0f);
+    glm::dvec3 sum(0.0);
+    for (std::size_t j = 0; j < sampleOf.size(); ++j) {
+      const int k = sampleOf[j];
+      if (perSample) perSample[k] = tr[j];
+      sum += glm::dvec3(lum[k]) * double(tr[j]);  // eq. 2: L_i * (1 - Sat(D)), in sample order
+    }
+    return glm::vec3(sum / double(count));
+  }
+};
+
+EmbreeReference::EmbreeReference(const Scene& scene, int threads)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.threads = threadCount(threads);
+  const std::string config = "threads=" + std::to_string(m.threads);
+  m.device = rtcNewDevice(config.c_str());
+  if (!m.device)
+    throw Error("embree", "cannot create device (error " +
+                              std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+  rtcSetDeviceErrorFunction(
+      m.device,
+      [](void* user, RTCError, const char* msg) {
+        static_cast<Impl*>(user)->lastError = msg ? msg : "";
+      },
+      &m);
+
+  m.scene = rtcNewScene(m.device);
+  m.throwIfError("creating the scene");
+  rtcSetSceneFlags(m.scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(m.scene, RTC_BUILD_QUALITY_HIGH);
+
+  for (const SceneMesh& sm : scene.meshes) {
+    if (sm.material < 0 || sm.material >= int(scene.materials.size()))
+      throw Error(sm.name, "material index " + std::to_string(sm.material) + " out of range");
+    const float op = std::min(scene.materials[sm.material].opacity, 1.0f);
+    // Fully transparent surfaces (opacity 0, e.g. alpha MASK below the cutoff) never occlude:
+    // they are left out of the BVH rather than filtered on every hit.
+    if (!(op > 0.0f) || sm.mesh.triangles.empty()) continue;
+    const std::size_t nv = sm.mesh.positions.size(), nt = sm.mesh.triangles.size();
+    for (const glm::uvec3& t : sm.mesh.triangles)
+      PENUMBRA_CHECK(t.x < nv && t.y < nv && t.z < nv, "triangle index out of range in " + sm.name);
+
+    RTCGeometry g = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
+    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), nt));
+    if (!vb || !ib) {
+      rtcReleaseGeometry(g);
+      m.throwIfError(sm.name.c_str());
+      throw Error("embree", "cannot allocate buffers for " + sm.name);
+    }
+    for (std::size_t i = 0; i < nv; ++i) {
+      vb[3 * i] = sm.mesh.positions[i].x;
+      vb[3 * i + 1] = sm.mesh.positions[i].y;
+      vb[3 * i + 2] = sm.mesh.positions[i].z;
+    }
+    for (std::size_t i = 0; i < nt; ++i) {
+      ib[3 * i] = sm.mesh.triangles[i].x;
+      ib[3 * i + 1] = sm.mesh.triangles[i].y;
+      ib[3 * i + 2] = sm.mesh.triangles[i].z;
+    }
+    // Only semi-opaque geometry gets a filter; opaque hits end traversal at once.
+    if (op < 1.0f) rtcSetGeometryOccludedFilterFunction(g, occlusionFilter);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(m.scene, g, unsigned(m.opacity.size()));
+    rtcReleaseGeometry(g);
+    m.opacity.push_back(op);
+    m.throwIfError(sm.name.c_str());
+  }
+  rtcCommitScene(m.scene);
+  m.throwIfError("building the BVH");
+
+  // 1e-4 of the bounding-sphere radius: large enough to leave the surface at any scene scale,
+  // small enough not to skip contact shadows.
+  glm::vec3 lo, hi;
+  scene.bounds(lo, hi);
+  const float radius = 0.5f * glm::length(hi - lo);
+  m.defaultOffset = std::max(1e-4f * radius, 1e-6f);
+}
+
+EmbreeReference::~EmbreeReference() = default;
+
+VisibilityResult EmbreeReference::sameSamples(const CpuGBuffer& gbuf, const LightSampleSet& samples,
+                                              float originOffset) const {
+  checkGBuffer(gbuf);
+  const int n = samples.count;
+  const std::size_t total = std::size_t(samples.setCount) * n;
+  PENUMBRA_CHECK(n >= 1 && samples.setCount >= 1 && samples.positions.size() == total &&
+                     samples.luminance.size() == total,
+                 "LightSampleSet arrays do not match count x setCount");
+  const float offset = originOffset >= 0.0f ? originOffset : impl_->defaultOffset;
+  VisibilityResult out;
+  out.samples = n;
+  out.visibility = Image(gbuf.width, gbuf.height, 3, 0.0f);
+  out.perSample.assign(std::size_t(gbuf.width) * gbuf.height * n, 0.0f);
+  impl_->rays += forEachRow(gbuf.height, impl_->threads, [&](int y, std::uint64_t& rays) {
+    Scratch scratch;
+    std::vector<int> sampleOf;
+    std::vector<float> tr;
+    for (int x = 0; x < gbuf.width; ++x) {
+      const std::size_t i = std::size_t(y) * gbuf.width + x;
+      if (!gbuf.valid[i]) continue;  // no surface: visibility 0
+      const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
+      const glm::vec3 v = impl_->shadePixel(
+          gbuf.position[i], gbuf.normal[i], &samples.positions[first], &samples.luminance[first], n,
+          offset, &out.perSample[i * n], scratch, sampleOf, tr, rays);
+      for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
+    }
+  });
+  return out;
+}
+
+VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light& light,
+                                            const Scene& scene, int count, float time,
+                                            float originOffset) const {
+  checkGBuffer(gbuf);
+  // Validates count and light up front, so errors are thrown here rather than in a worker.
+  const int n = makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, 1, time).count;
+  const float offset = originOffset >= 0.0f ? originOffset : impl_->defaultOffset;
+  VisibilityResult out;
+  out.samples = n;
+  out.visibility = Image(gbuf.width, gbuf.height, 3, 0.0f);
+  impl_->rays += forEachRow(gbuf.height, impl_->threads, [&](int y, std::uint64_t& rays) {
+    Scratch scratch;
+    std::vector<int> sampleOf;
+    std::vector<float> tr;
+    for (int x = 0; x < gbuf.width; ++x) {
+      const std::size_t i = std::size_t(y) * gbuf.width + x;
+      if (!gbuf.valid[i]) continue;
+      // A fresh stratified set per pixel, seeded by the pixel index (makeLightSampleSet hashes
+      // the seed): decorrelated (section 5.1) and independent of the thread that computes it.
+      const std::uint32_t seed = std::uint32_t(i);
+      const LightSampleSet s =
+          makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, seed, time);
+      const glm::vec3 v =
+          impl_->shadePixel(gbuf.position[i], gbuf.normal[i], s.positions.data(),
+                            s.luminance.data(), n, offset, nullptr, scratch, sampleOf, tr, rays);
+      for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
+    }
+  });
+  return out;
+}
+
+float EmbreeReference::transmittance(const glm::vec3& from, const glm::vec3& to) const {
+  Scratch s;
+  s.reset(1);
+  s.rays.push_back(makeRay(from, to - from, 0));
+  float tr = 0.0f;
+  impl_->traceStream(s, &tr);
+  ++impl_->rays;
+  return tr;
+}
+
+double EmbreeReference::raysCast() const { return double(impl_->rays.load()); }
+
+float EmbreeReference::defaultOriginOffset() const { return impl_->defaultOffset; }
+
+}  // namespace penumbra

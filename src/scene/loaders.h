@@ -1,0 +1,107 @@
+// Private to src/scene/: the pieces loadScene() and defaultScene() are built from. The scene
+// description is a JSON document (scene_json.cpp) that names geometry files (gltf_loader.cpp,
+// geo::loadMeshFile) and procedural shapes (scene.cpp).
+#pragma once
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace tinygltf {
+class Model;
+}
+
+namespace penumbra::detail {
+
+using Json = nlohmann::json;
+
+// What one geometry file contributes, in the file's own space (glTF nodes already flattened).
+// Material and texture indices are local to the model; materials may be empty (OBJ & co).
+struct Model {
+  std::vector<SceneMesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Light> lights;
+  std::vector<std::string> warnings;
+};
+
+// glTF 2.0 (.gltf / .glb). Every URI must stay inside the file's folder. Throws
+// penumbra::Error(path, ...) on anything malformed; recoverable problems become warnings.
+Model loadGltf(const std::string& path);
+
+// gltf_validate.cpp: reads a .gltf/.glb, checks everything tinygltf would trust (GLB container,
+// URIs, buffer and bufferView bounds, data: URIs, required extensions) and parses it with
+// tinygltf confined to the file's folder. Images are kept encoded (Image::as_is) for
+// decodeGltfImage. `json` receives the document tinygltf parsed, for extensions it skips.
+void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& json,
+                        std::vector<std::string>& warnings);
+
+// Decodes an encoded glTF image (PNG/JPEG, at most 8192^2) to linear RGBA float, colour
+// channels converted from sRGB. Returns false with `why` set if it cannot.
+bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std::string& why);
+
+// Any supported geometry file by extension: glTF through loadGltf, OBJ/PLY/OFF/STL through
+// geo::loadMeshFile.
+Model loadGeometryFile(const std::string& path);
+
+bool isGeometryExtension(const std::string& extension);  // lower-case, with the dot
+
+// Procedural shapes, centred on the origin, +Y up, counter-clockwise seen from outside.
+geo::TriangleMesh makeBox(glm::vec3 size);
+geo::TriangleMesh makeSphere(float radius, int segments, int rings);
+geo::TriangleMesh makeCylinder(float radius, float height, int segments, bool topCap,
+                               bool bottomCap);
+// Open, single-sided, in the XZ plane facing +Y.
+geo::TriangleMesh makeQuad(glm::vec2 size);
+geo::TriangleMesh makeQuad(const glm::vec3 corners[4]);  // corners counter-clockwise from the front
+geo::TriangleMesh makeDisk(float radius, int segments);
+
+// Places geometry: positions by `m`, normals by its inverse transpose; a mirroring transform
+// (negative determinant) reverses the triangle order so faces stay counter-clockwise outward.
+void transformMesh(geo::TriangleMesh& mesh, const glm::mat4& m);
+
+// Places a light: its frame follows `m` (the normal as a surface normal), its size scales with
+// the lengths of the transformed tangent and bitangent.
+Light transformLight(const Light& light, const glm::mat4& m);
+
+// A camera document ({position, target, up, fov, near}) that frames the bounds from the front,
+// slightly above.
+Json framingCamera(glm::vec3 lo, glm::vec3 hi);
+
+// "key=value" overrides (see scene.h) applied to the document in place. Throws
+// penumbra::Error("--set", ...) on a malformed pair or an array index out of range.
+void applyOverrides(Json& doc, const std::vector<std::string>& overrides);
+
+// Interprets a scene document. `where` names it in messages (the file, or "<default scene>");
+// relative paths resolve against `baseDir`. Empty `baseDir` forbids file references.
+Scene interpretScene(const Json& doc, const std::string& where, const std::string& baseDir);
+
+// The document of the built-in scene.
+Json defaultSceneDocument();
+
+// The document for a bare geometry file: the file at the origin, a floor under its bounds, a
+// camera framing it and a rect light above. `fileName` is relative to the file's folder.
+Json bareGeometryDocument(const std::string& fileName, glm::vec3 lo, glm::vec3 hi);
+
+// The procedural stained-glass emission texture ("procedural:stained-glass"): linear RGBA,
+// saturated panes separated by dark leading.
+Image stainedGlassImage(int size);
+
+// Resolves a file reference from a scene document: a path relative to `baseDir` that stays
+// inside it, or "assimp:<path>" under /usr/share/assimp/models. Throws Error(where, ...).
+std::string resolveSceneReference(const std::string& reference, const std::string& baseDir,
+                                  const std::string& where, const std::string& context);
+
+// Why `path` (already percent-decoded) is not a plain relative path inside its folder, or ""
+// if it is: no scheme, not absolute, no "..", no shell metacharacters.
+std::string relativePathProblem(const std::string& path);
+
+// True when `path` lies inside `folder` once both are made canonical (symlinks resolved).
+bool isInsideFolder(const std::string& path, const std::string& folder);
+
+std::string lowerExtension(const std::string& path);
+
+}  // namespace penumbra::detail

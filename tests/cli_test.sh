@@ -1,0 +1,45 @@
+#!/bin/sh
+# CLI exit codes and one-line errors (README "Exit codes"). Usage: cli_test.sh PENUMBRA SRCDIR
+# Exits 77 (skipped) when no GL context is available for the rendering cases.
+P="$1"; SRC="$2"; T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
+fail=0
+expect() {  # expect CODE PATTERN -- command...
+  code="$1"; pattern="$2"; shift 3
+  "$@" >"$T/out" 2>"$T/err"; got=$?
+  if [ "$got" -ne "$code" ]; then echo "FAIL: exit $got, want $code: $*"; cat "$T/err"; fail=1; return; fi
+  if [ -n "$pattern" ] && ! grep -q -- "$pattern" "$T/err"; then
+    echo "FAIL: stderr lacks '$pattern': $*"; cat "$T/err"; fail=1; return
+  fi
+  if [ "$code" -ne 0 ] && [ "$(grep -c '^penumbra: ' "$T/err")" -ne 1 ]; then
+    echo "FAIL: want exactly one 'penumbra: ' error line: $*"; cat "$T/err"; fail=1; return
+  fi
+  echo "ok: exit $got: $*"
+}
+expect 0 "" -- "$P" list
+"$P" list | grep -q '^hard-sv ' || { echo "FAIL: list lacks hard-sv"; fail=1; }
+expect 2 "" -- "$P" frobnicate
+expect 2 "unknown technique" -- "$P" render --technique nope -o "$T/x.png"
+expect 1 "missing.json" -- "$P" info "$T/missing.json"
+printf '{ "lights": [ ' > "$T/broken.json"
+expect 1 "broken.json" -- "$P" info "$T/broken.json"
+expect 2 "\-\-samples" -- "$P" render --samples 0 -o "$T/x.png"
+expect 2 "\-\-samples" -- "$P" render --samples 100000 -o "$T/x.png"
+expect 2 ".exr or .png" -- "$P" render -o "$T/x.txt"
+expect 1 "does not exist" -- "$P" render -o "$T/no/such/dir/x.png"
+expect 1 "/etc/hostname" -- "$P" render -o /etc/hostname/x.png
+expect 2 "\-\-backend" -- "$P" render --backend vulkan -o "$T/x.png"
+# Rendering cases need a GL context.
+"$P" render -W 32 -H 32 --samples 1 -o "$T/probe.png" 2>"$T/err"; rc=$?
+if [ "$rc" -eq 77 ]; then echo "no GL context: skipping rendering cases"; [ $fail -eq 0 ] && exit 77; exit 1; fi
+expect 0 "" -- "$P" render -W 64 -H 64 --samples 4 -o "$T/a.exr"
+test -s "$T/a.exr" || { echo "FAIL: no EXR written"; fail=1; }
+expect 2 "\-W" -- "$P" render -W 0 -H 64 -o "$T/b.png"
+expect 0 "" -- "$P" compare -W 64 -H 64 --samples 4 --techniques hard-sv,none -o "$T/cmp"
+for f in report.json raytrace.exr hard-sv.png hard-sv_heat.png none.exr; do
+  test -s "$T/cmp/$f" || { echo "FAIL: compare did not write $f"; fail=1; }
+done
+grep -q '"misclassifiedPixelsOutsideBand"' "$T/cmp/report.json" || { echo "FAIL: report lacks errors"; fail=1; }
+# hard-sv cannot match a 16-sample area light: --max-error must trip (exit 3).
+expect 3 "exceeds --max-error" -- "$P" compare -W 64 -H 64 --samples 16 --techniques hard-sv --max-error 0.0001 -o "$T/cmp2"
+expect 0 "" -- "$P" render --backend osmesa -W 32 -H 32 --samples 1 -o "$T/o.png"
+exit $fail

@@ -1,0 +1,213 @@
+// Embree reference against closed forms (hard case 23 of shared/docs/hard-cases.md): a square
+// occluder parallel under a parallel square light, and a disc under a disc, over a floor.
+// Per sample the oracle is exact geometry: the segment from the (offset) ray origin to the
+// sample crosses the occluder plane inside or outside the occluder polygon.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "sampling/light_samples.h"
+#include "techniques/raytrace/embree_reference.h"
+
+using namespace penumbra;
+
+namespace {
+
+constexpr float kOccluderHeight = 1.0f, kLightHeight = 3.0f;
+
+// Regular polygon in the plane y = h centred at (cx, cz): `sides` triangles around the centre.
+// sides == 4 with radius r*sqrt(2), rotated 45 degrees, is the axis-aligned square of side 2r.
+SceneMesh polygon(const char* name, float cx, float cz, float h, float radius, int sides,
+                  float rotation) {
+  SceneMesh m;
+  m.name = name;
+  m.mesh.positions.push_back({cx, h, cz});
+  for (int i = 0; i < sides; ++i) {
+    const double a = rotation + 2.0 * std::numbers::pi * i / sides;
+    m.mesh.positions.push_back(
+        {cx + radius * float(std::cos(a)), h, cz + radius * float(std::sin(a))});
+  }
+  for (int i = 0; i < sides; ++i)
+    m.mesh.triangles.push_back({0u, 1u + unsigned(i), 1u + unsigned((i + 1) % sides)});
+  return m;
+}
+
+// Floor (y = 0, [-10,10]^2) and a horizontal occluder at kOccluderHeight.
+Scene plateScene(bool disc) {
+  Scene s;
+  s.materials.push_back(Material{});
+  s.meshes.push_back(
+      polygon("floor", 0.0f, 0.0f, 0.0f, 10.0f * std::sqrt(2.0f), 4, float(std::numbers::pi / 4)));
+  if (disc)
+    s.meshes.push_back(polygon("disc", 0.0f, 0.0f, kOccluderHeight, 0.5f, 64, 0.0f));
+  else
+    s.meshes.push_back(polygon("square", 0.0f, 0.0f, kOccluderHeight, 0.5f * std::sqrt(2.0f), 4,
+                               float(std::numbers::pi / 4)));
+  Light l;
+  l.name = "light";
+  l.shape = disc ? LightShape::Disk : LightShape::Rect;
+  l.position = {0.0f, kLightHeight, 0.0f};
+  l.normal = {0.0f, -1.0f, 0.0f};
+  l.tangent = {1.0f, 0.0f, 0.0f};
+  l.size = disc ? glm::vec2(0.5f, 0.0f) : glm::vec2(1.0f, 1.0f);
+  s.lights.push_back(l);
+  return s;
+}
+
+// Floor points on a w x h grid over [-2, 2]^2 (x to the right, z down the image).
+CpuGBuffer floorGBuffer(int w, int h) {
+  CpuGBuffer g;
+  g.width = w, g.height = h;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      g.position.push_back({-2.0f + 4.0f * (x + 0.5f) / w, 0.0f, -2.0f + 4.0f * (y + 0.5f) / h});
+      g.normal.push_back({0.0f, 1.0f, 0.0f});
+      g.valid.push_back(1);
+    }
+  return g;
+}
+
+// Signed distance of (x, z) to the occluder outline (negative inside), in the occluder plane.
+double occluderDistance(const Scene& s, double x, double z) {
+  const SceneMesh& m = s.meshes[1];
+  double d = -1e30;  // convex polygon: max over edges of the signed edge distance
+  const std::size_t n = m.mesh.positions.size() - 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec3 a = m.mesh.positions[1 + i], b = m.mesh.positions[1 + (i + 1) % n];
+    const glm::dvec2 e = glm::normalize(glm::dvec2(b.x - a.x, b.z - a.z));
+    // Counter-clockwise in (x, z): the outward normal is (e.y, -e.x).
+    d = std::max(d, (x - a.x) * e.y - (z - a.z) * e.x);
+  }
+  return d;
+}
+
+struct Oracle {
+  float transmittance;
+  bool nearEdge;
+};
+
+// Exact per-sample visibility: where the segment from o to the sample crosses y = h.
+Oracle oracle(const Scene& s, glm::dvec3 o, glm::dvec3 sample) {
+  const double t = (kOccluderHeight - o.y) / (sample.y - o.y);
+  const glm::dvec3 q = o + t * (sample - o);
+  const double d = occluderDistance(s, q.x, q.z);
+  return {d < 0.0 ? 0.0f : 1.0f, std::abs(d) < 1e-4};
+}
+
+void checkSameSamples(bool disc, SampleStrategy strategy, PixelPattern pattern) {
+  const Scene scene = plateScene(disc);
+  const EmbreeReference rt(scene, 2);
+  const CpuGBuffer g = floorGBuffer(40, 40);
+  SamplingParams p;
+  p.count = 64;
+  p.strategy = strategy;
+  p.pattern = pattern;
+  p.decorrelatedSets = 8;
+  const LightSampleSet samples = makeLightSamples(scene, scene.lights[0], p);
+  const float offset = 1e-4f;
+  const VisibilityResult r = rt.sameSamples(g, samples, offset);
+  ASSERT_EQ(r.samples, 64);
+  ASSERT_EQ(r.perSample.size(), g.position.size() * 64);
+  int compared = 0, penumbra = 0;
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 0; x < g.width; ++x) {
+      const std::size_t i = std::size_t(y) * g.width + x;
+      const glm::dvec3 o = glm::dvec3(g.position[i]) + glm::dvec3(g.normal[i]) * double(offset);
+      const int set = samples.setForPixel(x, y);
+      int visible = 0, excluded = 0;
+      for (int k = 0; k < 64; ++k) {
+        const Oracle want = oracle(scene, o, glm::dvec3(samples.position(set, k)));
+        const float got = r.perSample[i * 64 + k];
+        if (want.nearEdge) {
+          ++excluded;
+          EXPECT_TRUE(got == 0.0f || got == 1.0f);
+          visible += got == 1.0f;
+          continue;
+        }
+        ++compared;
+        ASSERT_EQ(got, want.transmittance) << "pixel " << x << "," << y << " sample " << k;
+        visible += want.transmittance == 1.0f;
+      }
+      const float v = r.visibility.at(x, y, 0);
+      penumbra += v > 0.0f && v < 1.0f;
+      // Eq. 1: the fraction of visible samples (exact: a multiple of 1/64).
+      EXPECT_EQ(v, float(visible) / 64.0f) << x << "," << y;
+      EXPECT_EQ(r.visibility.at(x, y, 1), v);
+      EXPECT_EQ(r.visibility.at(x, y, 2), v);
+    }
+  EXPECT_GT(compared, 40 * 40 * 60);
+  EXPECT_GT(penumbra, 100);  // the grid crosses umbra, penumbra and lit floor
+}
+
+// Fraction of the square light [-0.5,0.5]^2 (at kLightHeight) hidden from floor point (x, 0, z)
+// by the square occluder [-0.5,0.5]^2 at kOccluderHeight: the occluder projects from p onto the
+// light plane as a square of side 0.5 * 2 * s, s = kLightHeight / kOccluderHeight, centred at
+// p + (0 - p) * s; the hidden fraction is the overlap area.
+double squareHiddenFraction(double x, double z) {
+  const double s = kLightHeight / kOccluderHeight;
+  const double cx = x * (1.0 - s), cz = z * (1.0 - s), half = 0.5 * s;
+  auto overlap = [](double c, double h) {
+    return std::max(0.0, std::min(0.5, c + h) - std::max(-0.5, c - h));
+  };
+  return overlap(cx, half) * overlap(cz, half);
+}
+
+// Same for the disc of radius 0.5 under the disc light of radius 0.5: the lens area of two
+// circles (radii 0.5 and 0.5 s, centre distance d) over the light's area.
+double discHiddenFraction(double x, double z) {
+  const double s = kLightHeight / kOccluderHeight;
+  const double r1 = 0.5, r2 = 0.5 * s, d = std::hypot(x, z) * (s - 1.0);
+  const double pi = std::numbers::pi;
+  double area;
+  if (d >= r1 + r2)
+    area = 0.0;
+  else if (d <= std::abs(r2 - r1))
+    area = pi * std::min(r1, r2) * std::min(r1, r2);
+  else {
+    const double a1 = std::acos((d * d + r1 * r1 - r2 * r2) / (2 * d * r1));
+    const double a2 = std::acos((d * d + r2 * r2 - r1 * r1) / (2 * d * r2));
+    area = r1 * r1 * (a1 - std::sin(2 * a1) / 2) + r2 * r2 * (a2 - std::sin(2 * a2) / 2);
+  }
+  return area / (pi * r1 * r1);
+}
+
+}  // namespace
+
+TEST(RaytraceAnalytic, SquareUnderSquarePerSampleExact) {
+  checkSameSamples(false, SampleStrategy::Stratified, PixelPattern::Correlated);
+  checkSameSamples(false, SampleStrategy::Poisson, PixelPattern::Decorrelated);
+  checkSameSamples(false, SampleStrategy::Vogel, PixelPattern::Interleaved);
+}
+
+TEST(RaytraceAnalytic, DiscUnderDiscPerSampleExact) {
+  checkSameSamples(true, SampleStrategy::Stratified, PixelPattern::Decorrelated);
+  checkSameSamples(true, SampleStrategy::Vogel, PixelPattern::Correlated);
+}
+
+TEST(RaytraceAnalytic, ConvergedMatchesClosedForm) {
+  // 1024 stratified samples per pixel along a line through umbra, penumbra and light:
+  // the visible fraction of the light area within 0.02 (stratified error ~ N^-3/4 at edges).
+  for (bool disc : {false, true}) {
+    const Scene scene = plateScene(disc);
+    const EmbreeReference rt(scene);
+    CpuGBuffer g;
+    g.width = 41, g.height = 1;
+    for (int i = 0; i < g.width; ++i) {
+      g.position.push_back({-2.0f + 0.1f * i, 0.0f, 0.07f});
+      g.normal.push_back({0.0f, 1.0f, 0.0f});
+      g.valid.push_back(1);
+    }
+    const VisibilityResult r = rt.converged(g, scene.lights[0], scene, 1024);
+    EXPECT_EQ(r.samples, 1024);
+    EXPECT_TRUE(r.perSample.empty());
+    // The polygonal disc (64 sides) hides slightly less than the circle: cos(pi/64) area ratio.
+    for (int i = 0; i < g.width; ++i) {
+      const glm::vec3 p = g.position[i];
+      const double want =
+          1.0 - (disc ? discHiddenFraction(p.x, p.z) : squareHiddenFraction(p.x, p.z));
+      EXPECT_NEAR(r.visibility.at(i, 0, 0), want, 0.02)
+          << (disc ? "disc" : "square") << " x=" << p.x;
+    }
+  }
+}

@@ -1,0 +1,58 @@
+// Helpers for rendering tests: render a scene with a technique and compare with the reference.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "core/error.h"
+#include "gl/context.h"
+#include "pipeline/compare.h"
+#include "pipeline/renderer.h"
+#include "scene/scene.h"
+
+namespace penumbra::test {
+
+inline std::string scenePath(const std::string& rel) { return std::string(PENUMBRA_SOURCE_DIR) + "/" + rel; }
+
+inline gl::Context& context() {
+  static std::unique_ptr<gl::Context> c = gl::Context::create(gl::Backend::Egl);
+  c->makeCurrent();  // another test may have made its own context current
+  return *c;
+}
+
+inline RenderSettings settings(int size, int samples) {
+  RenderSettings s;
+  s.width = s.height = size;
+  s.sampling.count = samples;
+  return s;
+}
+
+struct Comparison {
+  FrameResult frame, reference;
+  TechniqueErrors errors;
+};
+
+// Renders `technique` and `raytrace` (same samples) and measures the errors; fails the test on
+// any GL error.
+inline Comparison renderAndCompare(const Scene& scene, const std::string& technique, const RenderSettings& s) {
+  Renderer renderer(context(), scene, s);
+  auto tech = findTechnique(technique).create();
+  auto ref = findTechnique("raytrace").create();
+  Comparison c;
+  c.frame = renderer.render(*tech);
+  c.reference = renderer.render(*ref);
+  c.errors = measureErrors(c.frame, c.reference);
+  EXPECT_EQ(gl::Context::takeErrorCount(), 0) << "GL errors while rendering " << technique;
+  return c;
+}
+
+// Fraction of surface pixels outside the edge band whose visibility decision differs.
+inline double misclassifiedFraction(const TechniqueErrors& e) {
+  return e.visibilityOutsideBand.pixelsCounted
+             ? double(e.misclassifiedPixels) / double(e.visibilityOutsideBand.pixelsCounted)
+             : 0.0;
+}
+
+}  // namespace penumbra::test
