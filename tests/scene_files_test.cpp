@@ -228,11 +228,18 @@ TEST(SceneFiles, HardLightBehindCamera) {
   EXPECT_LT(glm::dot(s.lights[0].position - s.camera.position, view), 0.0f);
 }
 
-// Regenerates scenes/textures/stained-glass.png from the procedural texture:
-//   test_scene --gtest_also_run_disabled_tests --gtest_filter='*WriteStainedGlassPng'
-TEST(SceneFiles, DISABLED_WriteStainedGlassPng) {
-  writePng(sourcePath("scenes/textures/stained-glass.png"), detail::stainedGlassImage(64));
-}
+}  // namespace
+}  // namespace penumbra
 
+namespace penumbra {
+namespace {
+// README's scene example is scenes/example.json: it must stay loadable.
+TEST(SceneFiles, ReadmeExampleLoads) {
+  const Scene s = loadScene(sourcePath("scenes/example.json"));
+  EXPECT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].emissionFrames.size(), 1u);
+  EXPECT_TRUE(s.hasSemiOpaque());
+  EXPECT_GT(s.triangleCount(), 75000u);
+}
 }  // namespace
 }  // namespace penumbra

@@ -245,6 +245,45 @@ TEST(SceneGltf, SandboxNeverReadsOutsideTheFolder) {
   expectError([&] { detail::loadGltf(path); }, path, "leaves its folder");
 }
 
+// Deterministic mutation smoke test: corrupted copies of valid files either load or throw
+// penumbra::Error; under ASan/UBSan this is the memory-safety net for the checks above.
+TEST(SceneGltf, MutatedFilesNeverCrash) {
+  test::TempDir dir;
+  std::uint32_t state = 12345;
+  auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return state >> 8;
+  };
+  const char kDigits[] = "0123456789-.e,[]{}\"";
+  int loaded = 0, rejected = 0;
+  for (const char* name : {"cube.glb", "cube.gltf", "materials.gltf", "lights.gltf"}) {
+    std::ifstream in(sceneData(name), std::ios::binary);
+    const std::string original((std::istreambuf_iterator<char>(in)), {});
+    const bool binary = std::string(name).ends_with(".glb");
+    for (int round = 0; round < 150; ++round) {
+      std::string bytes = original;
+      const int edits = 1 + int(next() % 4);
+      for (int e = 0; e < edits; ++e) {
+        const std::size_t at = next() % bytes.size();
+        bytes[at] = binary ? char(next() & 0xff) : kDigits[next() % (sizeof(kDigits) - 1)];
+      }
+      if (next() % 8 == 0) bytes.resize(next() % bytes.size());
+      const std::string path = dir.file(std::string("m") + (binary ? ".glb" : ".gltf"), bytes);
+      try {
+        detail::loadGltf(path);
+        ++loaded;
+      } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+        ++rejected;
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << name << " round " << round << ": " << e.what();
+      }
+    }
+  }
+  EXPECT_GT(rejected, 0);
+  EXPECT_GT(loaded, 0);
+}
+
 // --- assimp-testmodels
 
 TEST(SceneGltf, AssimpModelsLoad) {

@@ -4,9 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-
 #include <glm/gtc/constants.hpp>
+#include <sstream>
 
 #include "scene/loaders.h"
 #include "scene_test_util.h"

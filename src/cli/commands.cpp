@@ -144,6 +144,7 @@ int compare(const CommonOptions& o, const std::vector<std::string>& names, const
   json j = report.json;
   j["backend"] = o.backend;
   std::ofstream(fs::path(outDir) / "report.json") << j.dump(2) << "\n";
+  std::ofstream(fs::path(outDir) / "table.txt") << report.table;
   std::fprintf(stderr, "%s", report.table.c_str());
   if (o.json) std::printf("%s\n", j.dump(2).c_str());
   if (maxError >= 0.0) {

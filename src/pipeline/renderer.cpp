@@ -232,8 +232,8 @@ FrameResult Renderer::render(Technique& technique) {
     return result.gbuffer;
   };
 
-  const float zero[4] = {0, 0, 0, 0};
-  glClearNamedFramebufferfv(colorFbo_.id(), GL_COLOR, 0, zero);
+  const float background[4] = {scene_.background.r, scene_.background.g, scene_.background.b, 0};
+  glClearNamedFramebufferfv(colorFbo_.id(), GL_COLOR, 0, background);
 
   for (std::size_t li = 0; li < scene_.lights.size(); ++li) {
     const Light& light = scene_.lights[li];
