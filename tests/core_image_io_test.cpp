@@ -1,6 +1,8 @@
 // EXR/PNG files: round trips, every reader failure as a one-line penumbra::Error naming the file.
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -31,6 +33,7 @@ namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
+using test::expectError;
 
 std::vector<char> readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -50,19 +53,6 @@ void truncateTo(const std::string& path, std::size_t size) {
 }
 
 // Runs fn and checks it throws a one-line penumbra::Error about `path` mentioning `needle`.
-void expectError(const std::function<void()>& fn, const std::string& path,
-                 const std::string& needle = "") {
-  try {
-    fn();
-    ADD_FAILURE() << "no penumbra::Error for " << path;
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(e.where(), path);
-    EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-    EXPECT_NE(what.find(needle), std::string::npos) << what;
-  }
-}
 
 // A deterministic pattern with values PNG and EXR both have to carry exactly.
 Image pattern(int w, int h, int c, float offset = 0.0f) {

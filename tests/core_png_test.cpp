@@ -1,6 +1,8 @@
 // PNG files: sRGB round trip, every layout readPng accepts, truncation and size limits.
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <unistd.h>
 
 #include <cmath>
@@ -22,6 +24,7 @@ namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
+using test::expectError;
 
 std::vector<unsigned char> readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -85,19 +88,6 @@ void putBigEndian(unsigned char* p, std::uint32_t v) {
   p[0] = v >> 24, p[1] = v >> 16, p[2] = v >> 8, p[3] = v;
 }
 
-void expectError(const std::function<void()>& fn, const std::string& path,
-                 const std::string& needle = "") {
-  try {
-    fn();
-    ADD_FAILURE() << "no penumbra::Error for " << path;
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(e.where(), path);
-    EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-    EXPECT_NE(what.find(needle), std::string::npos) << what;
-  }
-}
 
 class PngTest : public ::testing::Test {
  protected:

@@ -2,6 +2,8 @@
 // models of Debian's assimp-testmodels; OpenMesh serves as an oracle where the file is valid.
 #include <gtest/gtest.h>
 
+#include "test_util.h"
+
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
@@ -51,14 +53,7 @@ void append(std::string& out, T value, bool bigEndian = false) {
 // Expects loadMeshFile to throw penumbra::Error naming the file and containing `problem`.
 void expectLoadError(const std::string& path, const std::string& problem) {
   MeshReport r;
-  try {
-    loadMeshFile(path, r);
-    ADD_FAILURE() << path << " loaded";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.where(), path);
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
-  }
+  test::expectError([&] { loadMeshFile(path, r); }, path, problem);
 }
 
 void expectClosedCube(const TriangleMesh& m, const MeshReport& r) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "test_util.h"
 #include "scene/scene.h"
 
 namespace penumbra::test {
@@ -55,19 +56,7 @@ inline double signedVolume(const geo::TriangleMesh& m) {
   return v / 6.0;
 }
 
-// Expects `f` to throw penumbra::Error whose message names `file` and contains `fragment`.
-template <class F>
-void expectError(F&& f, const std::string& file, const std::string& fragment) {
-  try {
-    f();
-    ADD_FAILURE() << "no error for " << file << " (expected '" << fragment << "')";
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(file), std::string::npos) << what;
-    EXPECT_NE(what.find(fragment), std::string::npos) << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << "multi-line: " << what;
-  }
-}
+using test::expectError;  // tests/test_util.h
 
 inline bool hasWarning(const Scene& s, const std::string& fragment) {
   for (const std::string& w : s.warnings) {
