@@ -288,7 +288,7 @@ TEST(SceneGltf, MutatedFilesNeverCrash) {
 
 TEST(SceneGltf, AssimpModelsLoad) {
   if (!std::filesystem::is_directory(kAssimpGltf))
-    GTEST_SKIP() << "assimp-testmodels not installed";
+    FAIL() << "assimp-testmodels not installed (./setup.sh --deps installs it)";
   const std::string dir = kAssimpGltf;
   const Scene engine = loadScene(dir + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
   // 75,730 distinct triangles, instanced by 82 nodes into 121,496, of which the file's
@@ -315,7 +315,7 @@ TEST(SceneGltf, AssimpModelsLoad) {
 
 TEST(SceneGltf, AssimpMalformedModelsAreRejected) {
   if (!std::filesystem::is_directory(kAssimpGltf))
-    GTEST_SKIP() << "assimp-testmodels not installed";
+    FAIL() << "assimp-testmodels not installed (./setup.sh --deps installs it)";
   const std::string dir = kAssimpGltf;
   for (const char* bad : {"/RecursiveNodes/RecursiveNodes.gltf", "/MissingBin/BoxTextured.gltf",
                           "/draco/2CylinderEngine.gltf", "/TestNoRootNode/NoScene.gltf",
@@ -330,7 +330,7 @@ TEST(SceneGltf, AssimpInfinitesAreCounted) {
   // error says why.
   const std::string path =
       std::string(kAssimpGltf) + "/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb";
-  if (!std::filesystem::exists(path)) GTEST_SKIP() << "assimp-testmodels not installed";
+  if (!std::filesystem::exists(path)) FAIL() << "assimp-testmodels not installed (./setup.sh --deps installs it)";
   expectError([&] { detail::loadGltf(path); }, path, "12 with non-finite positions");
 }
 
@@ -347,7 +347,7 @@ TEST(SceneGltf, NonFinitePositionsDroppedAndCounted) {
 // without indices: all must face the same way once converted.
 TEST(SceneGltf, AssimpPrimitiveModesAgree) {
   const std::string dir = std::string(kAssimpGltf) + "/glTF-Asset-Generator/Mesh_PrimitiveMode/";
-  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "assimp-testmodels not installed";
+  if (!std::filesystem::is_directory(dir)) FAIL() << "assimp-testmodels not installed (./setup.sh --deps installs it)";
   for (const char* n : {"04", "05", "06", "11", "12", "13"}) {
     SCOPED_TRACE(n);
     const detail::Model m = detail::loadGltf(dir + "Mesh_PrimitiveMode_" + n + ".gltf");
@@ -363,7 +363,7 @@ TEST(SceneGltf, AssimpPrimitiveModesAgree) {
 // or another exception type.
 TEST(SceneGltf, AssimpWholeFolderWalk) {
   if (!std::filesystem::is_directory(kAssimpGltf))
-    GTEST_SKIP() << "assimp-testmodels not installed";
+    FAIL() << "assimp-testmodels not installed (./setup.sh --deps installs it)";
   int loaded = 0, rejected = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(kAssimpGltf)) {
     const std::string ext = detail::lowerExtension(entry.path().string());
