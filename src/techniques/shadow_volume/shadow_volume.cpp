@@ -1,0 +1,95 @@
+#include "techniques/shadow_volume/shadow_volume.h"
+
+#include "pipeline/renderer.h"
+#include "sampling/shared.hpp"
+
+namespace penumbra {
+namespace {
+
+void drawPoints(const gl::Program& prog, const gl::Buffer& buf, std::size_t count, GLenum mode) {
+  if (count == 0) return;
+  gl::VertexArray vao;
+  vao.vertexBuffer(buf, sizeof(glm::vec4)).attribute(0, 4, 0);
+  vao.bind();
+  prog.use();
+  glDrawArrays(mode, 0, GLsizei(count));
+}
+
+}  // namespace
+
+void ShadowVolumeCounter::prepare(const Scene& scene, GpuScene& gpu) {
+  meshes_.clear();
+  for (auto& m : scene.meshes) {
+    MeshVolumes v;
+    v.topology = geo::buildEdgeTopology(m.mesh);
+    v.rule = geo::volumeRuleFor(v.topology);
+    meshes_.push_back(std::move(v));
+  }
+  sidesProgram_ = gl::Program({"hardsv_volume.vert", "hardsv_volume.geom", "hardsv_volume.frag"}, {"SIDES"});
+  capsProgram_ = gl::Program({"hardsv_volume.vert", "hardsv_volume.geom", "hardsv_volume.frag"}, {"CAPS"});
+  counter_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
+  fbo_ = gl::Framebuffer({&counter_}, &gpu.depth());
+}
+
+void ShadowVolumeCounter::count(LightPass& pass) {
+  glm::dvec3 light(pass.light.position);
+  std::vector<glm::vec4> sideVerts, capVerts;
+  pass.timer.time("silhouettes", [&] {
+    for (auto& m : meshes_) {
+      auto sil = geo::extractPointSilhouette(m.topology, light, m.rule);
+      const auto& P = m.topology.weldedPositions;
+      for (auto& s : sil.sides) {
+        const auto& e = m.topology.edges[s.edge];
+        // m > 0: the effective near cap runs v0 -> v1, so the outward side quad runs v1 -> v0
+        // (the shader emits b, a, a_inf, b_inf for input (a, b)).
+        glm::vec3 a = P[e.v0], b = P[e.v1];
+        if (s.multiplicity < 0) std::swap(a, b);
+        float w = float(std::abs(s.multiplicity));
+        sideVerts.emplace_back(a, w);
+        sideVerts.emplace_back(b, w);
+      }
+      for (std::size_t t = 0; t < sil.capSign.size(); ++t) {
+        if (sil.capSign[t] == 0) continue;
+        const auto& tri = m.topology.weldedTriangles[t];
+        // c_t = -1 (back-facing triangle of an open mesh): reverse it so the cap faces the light.
+        glm::uvec3 o = sil.capSign[t] > 0 ? tri : glm::uvec3(tri.x, tri.z, tri.y);
+        capVerts.emplace_back(P[o.x], 1.0f);
+        capVerts.emplace_back(P[o.y], 1.0f);
+        capVerts.emplace_back(P[o.z], 1.0f);
+      }
+    }
+  });
+  sideEdges_ = sideVerts.size() / 2;
+  caps_ = capVerts.size() / 3;
+
+  pass.timer.time("shadow volume", [&] {
+    gl::Buffer sideBuf(sideVerts), capBuf(capVerts);
+    fbo_.bind();
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_LESS);  // reversed Z: smaller depth = farther = behind the surface
+    glEnable(GL_DEPTH_CLAMP);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(-1.0f, -4.0f);  // push volumes back so coincident caps count
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    for (auto* prog : {&sidesProgram_, &capsProgram_}) {
+      prog->use();
+      prog->set("clipFromWorld", pass.gpu.clipFromWorld());
+      prog->set("lightPosition", pass.light.position);
+    }
+    drawPoints(sidesProgram_, sideBuf, sideVerts.size(), GL_LINES);
+    drawPoints(capsProgram_, capBuf, capVerts.size(), GL_TRIANGLES);
+    glDisable(GL_BLEND);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+  });
+}
+
+}  // namespace penumbra

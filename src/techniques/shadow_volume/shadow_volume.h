@@ -1,0 +1,51 @@
+// The z-fail shadow-volume count from a point (the light centre), shared by `hard-sv` (its
+// hard shadow) and `dcs` (the integration constant of the depth complexity, DCS paper 4.1, 7.2).
+//
+// Z-fail shadow volumes (Everitt & Kilgard, "Practical and robust stenciled shadow volumes",
+// 2002), counted by additive blending into an R32F target in one pass (DCS paper 7.2: no 8-bit
+// stencil wrap-around). Volumes come from geometry/silhouette.h: per mesh and light, the side
+// edges with multiplicity m_e and the cap sign of each triangle (closed meshes: classic
+// front-face caps; open, non-manifold or inconsistently wound meshes: one volume per triangle,
+// so boundary edges close the volume and the count does not depend on winding). The geometry
+// shader extrudes them to infinity. A volume fragment counts if it lies behind the visible
+// surface. The visible surface's own near cap coincides with it; volume fragments are pushed
+// back by a polygon offset so coincident caps always count, which gives the winding number on
+// the camera's side of the surface (the lit side whenever the horizon rule passes).
+#pragma once
+
+#include <vector>
+
+#include "geometry/silhouette.h"
+#include "gl/objects.h"
+#include "pipeline/technique.h"
+
+namespace penumbra {
+
+class ShadowVolumeCounter {
+ public:
+  struct MeshVolumes {
+    geo::EdgeTopology topology;
+    geo::VolumeRule rule;
+  };
+
+  // Builds the edge topology of every mesh and the GL resources for `gpu`'s size.
+  void prepare(const Scene& scene, GpuScene& gpu);
+  // Fills counter() with the number of volumes (from pass.light.position) containing each
+  // visible point: the count of closed objects plus open surfaces between it and the light.
+  // Times the stages "silhouettes" and "shadow volume".
+  void count(LightPass& pass);
+
+  const gl::Texture& counter() const { return counter_; }
+  const std::vector<MeshVolumes>& meshes() const { return meshes_; }
+  std::size_t sideEdges() const { return sideEdges_; }
+  std::size_t caps() const { return caps_; }
+
+ private:
+  std::vector<MeshVolumes> meshes_;
+  gl::Program sidesProgram_, capsProgram_;
+  gl::Texture counter_;
+  gl::Framebuffer fbo_;
+  std::size_t sideEdges_ = 0, caps_ = 0;
+};
+
+}  // namespace penumbra
