@@ -45,3 +45,31 @@ PointSilhouette extractPointSilhouette(const EdgeTopology& topology, const glm::
                                        VolumeRule rule);
 
 }  // namespace penumbra::geo
+
+namespace penumbra::geo {
+
+// The extent of a light for accurate silhouettes (DCS paper 4.4, after Laine et al. 2005): a
+// rectangle (half sizes along tangent and bitangent), a disk (radius, in the tangent plane), a
+// ball (radius) or a point.
+struct LightExtent {
+  enum class Kind { Point, Rect, Disk, Sphere };
+  Kind kind = Kind::Point;
+  glm::dvec3 centre{0.0}, normal{0, -1, 0}, tangent{1, 0, 0}, bitangent{0, 0, 1};
+  double halfWidth = 0.0, halfHeight = 0.0;  // rect
+  double radius = 0.0;                       // disk, sphere
+};
+
+// Where the light lies against the plane through `point` with normal `normal`: +1 entirely on
+// the positive side, -1 entirely on the negative side, 0 touching or straddling it.
+int classifyLight(const LightExtent& light, const glm::dvec3& normal, const glm::dvec3& point);
+
+// Accurate silhouette: the edges whose multiplicity m_e is non-zero for some point of the light.
+// An edge qualifies when the plane of an incident triangle touches or cuts the light (it is a
+// silhouette for part of the light), or when the light lies on fixed sides of all incident
+// planes and m_e (as in extractPointSilhouette, with those sides as facings) is non-zero. The
+// standard silhouette is extractPointSilhouette from the light centre: it misses the first kind
+// and so underestimates penumbrae (DCS paper Fig. 4). Sorted edge indices.
+std::vector<std::uint32_t> extractAccurateSilhouette(const EdgeTopology& topology,
+                                                     const LightExtent& light, VolumeRule rule);
+
+}  // namespace penumbra::geo

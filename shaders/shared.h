@@ -24,11 +24,17 @@
 #define PENUMBRA_UNIT_VISIBILITY 3      // RGBA16F: RGB visibility (eq. 2), a = 1
 #define PENUMBRA_UNIT_SAMPLE_VIS 4      // R16F 2D array: per-sample transmittance, one layer a sample
 #define PENUMBRA_UNIT_MATERIAL_TEX 5
-#define PENUMBRA_UNIT_COUNTER 6         // R32F: shadow-volume count (hard-sv)
+#define PENUMBRA_UNIT_COUNTER 6         // R32F: shadow-volume count (hard-sv, dcs)
+#define PENUMBRA_UNIT_DCS_COUNTERS 7    // RGBA32F 2D array: dcs packed counters, a layer a target
+#define PENUMBRA_UNIT_DCS_CHECKSUM 8    // R32F: dcs sum of the counters of a pass
+#define PENUMBRA_IMAGE_SAMPLE_VIS 0     // image unit of the per-sample visibility array
 
 // ---- shader storage / uniform buffer bindings ----------------------------------------------
 #define PENUMBRA_SSBO_LIGHT_SAMPLES 0   // vec4 position (xyz), per set then sample
 #define PENUMBRA_SSBO_SAMPLE_RADIANCE 1 // vec4 normalised luminance L_i (rgb) of eq. 2
+#define PENUMBRA_SSBO_DCS_EDGES 2       // dcs: edges (endpoints, incidence range, rule)
+#define PENUMBRA_SSBO_DCS_INCIDENCES 3  // dcs: incident triangles (third vertex, plane normal)
+#define PENUMBRA_SSBO_DCS_STATUS 4      // dcs: resolve status (overflowing pixels)
 
 // ---- light shapes (match penumbra::LightShape) ---------------------------------------------
 #define PENUMBRA_LIGHT_POINT 0
@@ -43,6 +49,7 @@
 
 // ---- limits --------------------------------------------------------------------------------
 #define PENUMBRA_MAX_SAMPLES 128
+#define PENUMBRA_DCS_MAX_TARGETS 7      // packed counter targets per pass (+1 checksum = 8 MRT)
 
 // Integer hash (PCG output permutation); identical in C++ and GLSL.
 PENUMBRA_FN uint penumbraHash(uint v) {

@@ -34,6 +34,16 @@ Buffer::Buffer(std::size_t bytes, const void* data) : size_(bytes) {
 
 void Buffer::bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, id()); }
 
+void Buffer::write(const void* data, std::size_t bytes, std::size_t offset) const {
+  PENUMBRA_CHECK(offset + bytes <= size_, "buffer write out of range");
+  glNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), data);
+}
+
+void Buffer::read(void* data, std::size_t bytes, std::size_t offset) const {
+  PENUMBRA_CHECK(offset + bytes <= size_, "buffer read out of range");
+  glGetNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), data);
+}
+
 // ---- Texture ---------------------------------------------------------------------------------
 
 namespace {
@@ -93,6 +103,10 @@ Texture Texture::make2DArray(GLenum internalFormat, int width, int height, int l
 
 void Texture::bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
 
+void Texture::bindImage(GLuint unit, GLenum access) const {
+  glBindImageTexture(unit, id(), 0, layers_ > 0 ? GL_TRUE : GL_FALSE, 0, access, fmt_);
+}
+
 void Texture::clear(const glm::vec4& value) const {
   if (fmt_ == GL_R32UI || fmt_ == GL_RGBA32UI) {
     glm::uvec4 u(value);
@@ -139,24 +153,38 @@ std::size_t Texture::bytes() const {
 
 // ---- Framebuffer -----------------------------------------------------------------------------
 
-Framebuffer::Framebuffer(const std::vector<const Texture*>& colors, const Texture* depth) {
+Framebuffer::Framebuffer(const std::vector<Attachment>& colors, const Texture* depth) {
   GLuint id = 0;
   glCreateFramebuffers(1, &id);
   static_cast<Object&>(*this) = Object(id);
   std::vector<GLenum> bufs;
   for (std::size_t i = 0; i < colors.size(); ++i) {
-    glNamedFramebufferTexture(id, GLenum(GL_COLOR_ATTACHMENT0 + i), colors[i]->id(), 0);
-    bufs.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
-    w_ = colors[i]->width(), h_ = colors[i]->height();
+    const Texture& t = *colors[i].texture;
+    GLenum at = GLenum(GL_COLOR_ATTACHMENT0 + i);
+    if (colors[i].layer >= 0) glNamedFramebufferTextureLayer(id, at, t.id(), 0, colors[i].layer);
+    else glNamedFramebufferTexture(id, at, t.id(), 0);
+    bufs.push_back(at);
+    w_ = t.width(), h_ = t.height();
   }
   glNamedFramebufferDrawBuffers(id, GLsizei(bufs.size()), bufs.data());
   if (depth) {
     glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth->id(), 0);
     w_ = depth->width(), h_ = depth->height();
   }
-  GLenum status = glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER);
-  PENUMBRA_CHECK(status == GL_FRAMEBUFFER_COMPLETE, "framebuffer incomplete");
+  PENUMBRA_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
+                 "framebuffer incomplete");
 }
+
+namespace {
+std::vector<Framebuffer::Attachment> wholeTextures(const std::vector<const Texture*>& colors) {
+  std::vector<Framebuffer::Attachment> a;
+  for (auto* t : colors) a.push_back({t, -1});
+  return a;
+}
+}  // namespace
+
+Framebuffer::Framebuffer(const std::vector<const Texture*>& colors, const Texture* depth)
+    : Framebuffer(wholeTextures(colors), depth) {}
 
 void Framebuffer::bind() const {
   glBindFramebuffer(GL_FRAMEBUFFER, id());

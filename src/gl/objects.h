@@ -55,6 +55,8 @@ class Buffer : public Object<deleteBuffer> {
   explicit Buffer(const std::vector<T>& v) : Buffer(v.size() * sizeof(T), v.empty() ? nullptr : v.data()) {}
   std::size_t size() const { return size_; }
   void bindBase(GLenum target, GLuint index) const;
+  void write(const void* data, std::size_t bytes, std::size_t offset = 0) const;
+  void read(void* data, std::size_t bytes, std::size_t offset = 0) const;
 
  private:
   std::size_t size_ = 0;
@@ -72,6 +74,8 @@ class Texture : public Object<deleteTexture> {
   int layers() const { return layers_; }
   GLenum format() const { return fmt_; }
   void bind(GLuint unit) const;
+  // Binds all layers as an image (load/store) of this texture's format.
+  void bindImage(GLuint unit, GLenum access) const;
   void clear(const glm::vec4& value) const;  // all layers
   // Reads a float texture back as an Image with `channels` (1, 2, 3 or 4) channels. For an
   // array texture, layer -1 reads all layers stacked vertically (height * layers rows).
@@ -87,7 +91,13 @@ class Texture : public Object<deleteTexture> {
 
 class Framebuffer : public Object<deleteFramebuffer> {
  public:
+  // A colour attachment: a texture, or one layer of an array texture.
+  struct Attachment {
+    const Texture* texture;
+    int layer = -1;
+  };
   Framebuffer() = default;
+  Framebuffer(const std::vector<Attachment>& colors, const Texture* depth);
   // Colour attachments in order (draw buffers 0..n-1), optional depth texture.
   Framebuffer(const std::vector<const Texture*>& colors, const Texture* depth);
   void bind() const;  // binds and sets the viewport to the attachment size

@@ -96,7 +96,9 @@ void writeFrame(const std::string& path, const FrameResult& frame, float exposur
 nlohmann::json frameSummary(const FrameResult& frame) {
   nlohmann::json stages = nlohmann::json::object();
   for (auto& s : frame.timer.stages()) stages[s.stage] = s.ms;
-  return {{"stagesMs", stages}, {"totalMs", frame.timer.total()}, {"memoryBytes", frame.memoryBytes},
+  nlohmann::json stats = nlohmann::json::object();
+  for (auto& [k, v] : frame.statistics) stats[k] = v;
+  return {{"stagesMs", stages}, {"statistics", stats}, {"totalMs", frame.timer.total()}, {"memoryBytes", frame.memoryBytes},
           {"width", frame.color.width}, {"height", frame.color.height}};
 }
 

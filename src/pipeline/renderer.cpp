@@ -296,6 +296,7 @@ FrameResult Renderer::render(Technique& technique) {
   for (std::size_t i = 0; i < c4.pixelCount(); ++i)
     for (int c = 0; c < 3; ++c) result.color.data[i * 3 + c] = c4.data[i * 4 + c];
   cpuGBuffer();  // always return the G-buffer: comparisons mask background pixels with it
+  result.statistics = technique.statistics();
   result.memoryBytes = gpu_->memoryBytes() + color_.bytes() + visibility_.bytes() +
                        (perSample_ ? perSample_.bytes() : 0) + technique.memoryBytes();
   gl::Context::checkErrors("frame");

@@ -48,6 +48,7 @@ struct FrameResult {
   CpuGBuffer gbuffer;
   StageTimer timer;
   std::size_t memoryBytes = 0;  // pipeline + technique render targets
+  std::vector<std::pair<std::string, double>> statistics;  // Technique::statistics()
 };
 
 // Geometry uploaded once per scene, the camera, and the G-buffer for one output size.

@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/timer.h"
@@ -50,6 +51,8 @@ class Technique {
   virtual bool providesPerSample() const { return false; }
   // Render-target memory the technique allocated, in bytes (for reports).
   virtual std::size_t memoryBytes() const { return 0; }
+  // Numbers about the last frame worth reporting (edges drawn, counter base, passes, ...).
+  virtual std::vector<std::pair<std::string, double>> statistics() const { return {}; }
 };
 
 struct TechniqueInfo {

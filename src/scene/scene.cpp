@@ -52,6 +52,13 @@ bool Scene::hasSemiOpaque() const {
   return false;
 }
 
+float Scene::surfaceOffset() const {
+  glm::vec3 lo, hi;
+  bounds(lo, hi);
+  const float radius = 0.5f * glm::length(hi - lo);
+  return std::max(1e-4f * (std::isfinite(radius) ? radius : 0.0f), 1e-6f);
+}
+
 void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
   // Only vertices that triangles use: cleaning keeps the vertex arrays, so dropped NaN or
   // stray vertices would otherwise leak into the bounds.

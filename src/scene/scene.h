@@ -95,6 +95,11 @@ struct Scene {
   bool hasSemiOpaque() const;  // any mesh whose material opacity is in (0,1)
   // Axis-aligned bounds of all mesh vertices.
   void bounds(glm::vec3& lo, glm::vec3& hi) const;
+  // How far every technique and the reference move a visible point off its surface, along the
+  // camera-facing normal, before deciding what it sees: 1e-4 of the bounding-sphere radius
+  // (at least 1e-6), enough to leave the surface at any scene scale, small enough to keep
+  // contact shadows.
+  float surfaceOffset() const;
 };
 
 // Loads a scene file: .json (scene description) or a bare geometry file (.gltf, .glb, .obj,

@@ -1,6 +1,7 @@
 // The explicit table of techniques: name -> factory. Add a technique here and nowhere else.
 #include "core/error.h"
 #include "pipeline/technique.h"
+#include "techniques/dcs/dcs.h"
 #include "techniques/hard_sv/hard_sv.h"
 #include "techniques/none/none.h"
 #include "techniques/raytrace/raytrace.h"
@@ -12,6 +13,10 @@ const std::vector<TechniqueInfo>& techniqueTable() {
       {"none", "unshadowed direct lighting", [] { return makeUnshadowed(); }},
       {"hard-sv", "hard shadows from the light centre, z-fail shadow volumes (float counter)",
        [] { return makeHardShadowVolumes(); }},
+      {"dcs", "depth complexity sampling: per-sample occluder counts, accurate silhouettes (exact)",
+       [] { return makeDepthComplexitySampling({SilhouetteMode::Accurate}); }},
+      {"dcs-standard", "depth complexity sampling with standard silhouettes (from the light centre)",
+       [] { return makeDepthComplexitySampling({SilhouetteMode::Standard}); }},
       {"raytrace", "Embree reference with the same light samples as every technique (per sample)",
        [] { return makeRaytraceSameSamples(); }},
       {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility only)",

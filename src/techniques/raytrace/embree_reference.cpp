@@ -282,12 +282,7 @@ EmbreeReference::EmbreeReference(const Scene& scene, int threads)
   rtcCommitScene(m.scene);
   m.throwIfError("building the BVH");
 
-  // 1e-4 of the bounding-sphere radius: large enough to leave the surface at any scene scale,
-  // small enough not to skip contact shadows.
-  glm::vec3 lo, hi;
-  scene.bounds(lo, hi);
-  const float radius = 0.5f * glm::length(hi - lo);
-  m.defaultOffset = std::max(1e-4f * radius, 1e-6f);
+  m.defaultOffset = scene.surfaceOffset();
 }
 
 EmbreeReference::~EmbreeReference() = default;

@@ -8,9 +8,9 @@
 // front-face caps; open, non-manifold or inconsistently wound meshes: one volume per triangle,
 // so boundary edges close the volume and the count does not depend on winding). The geometry
 // shader extrudes them to infinity. A volume fragment counts if it lies behind the visible
-// surface. The visible surface's own near cap coincides with it; volume fragments are pushed
-// back by a polygon offset so coincident caps always count, which gives the winding number on
-// the camera's side of the surface (the lit side whenever the horizon rule passes).
+// surface. The visible surface's own near cap coincides with it; volume faces are pushed back
+// by a small polygon offset so coincident ones count, which gives the winding number on the
+// camera's side of the surface (the lit side whenever the horizon rule passes).
 #pragma once
 
 #include <vector>

@@ -1,0 +1,63 @@
+// Resolve of one pass: decode the packed counters (eq. 7-10), write each sample's visibility
+// (count == 0 and above the horizon: the Heaviside of eq. 5-6) into the per-sample array, and
+// add this pass's share of the visibility buffer (eq. 1-2). A counter that overflowed its digit
+// carries into its neighbour; that changes the digit sum, so comparing it with the checksum
+// (the plain sum of all updates) detects it, and the pixel is reported.
+#include "common_light.glsl"
+
+layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
+layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
+layout(binding = PENUMBRA_UNIT_DCS_COUNTERS) uniform sampler2DArray counters;
+layout(binding = PENUMBRA_UNIT_DCS_CHECKSUM) uniform sampler2D checksum;
+layout(binding = PENUMBRA_IMAGE_SAMPLE_VIS, r32f) uniform writeonly image2DArray sampleVisibility;
+layout(std430, binding = PENUMBRA_SSBO_DCS_STATUS) buffer DcsStatus {
+  uint overflowPixels;   // digit sum != checksum: a counter left its digit (below -bias)
+  uint maxCount;         // largest decoded count (with the bias)
+  uint negativePixels;   // a count ended in [-bias, -1] (dcs_init.frag): treated as 0, reported
+};
+
+uniform uint passFirst;
+uniform uint passCount;
+uniform float counterBase;
+
+out vec4 outVisibility;
+
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec4 p = texelFetch(gPosition, px, 0);
+  if (p.w == 0.0) { outVisibility = vec4(0.0); return; }
+  vec3 n = texelFetch(gNormal, px, 0).xyz;
+  uint base = pixelSampleBase(px);
+  vec3 v = vec3(0.0);
+  float digitTotal = 0.0;
+  bool bad = false;
+  uint channels = (passCount + uint(DIGITS) - 1u) / uint(DIGITS);
+  uint j = 0u;
+  uint maxD = 0u;
+  bool negative = false;
+  for (uint ch = 0u; ch < channels; ++ch) {
+    float value = texelFetch(counters, ivec3(px, int(ch / 4u)), 0)[ch % 4u];
+    bad = bad || value < 0.0;
+    for (int d = 0; d < DIGITS; ++d, ++j) {
+      float q = floor(value / counterBase);
+      float digit = value - q * counterBase;
+      value = q;
+      if (j >= passCount) continue;
+      digitTotal += digit;
+      maxD = max(maxD, uint(digit));
+      negative = negative || digit < float(DCS_BIAS);
+      uint k = passFirst + j;
+      vec3 x = samplePositions[base + k].xyz;
+      float visible = (digit <= float(DCS_BIAS) && aboveHorizon(p.xyz, n, x)) ? 1.0 : 0.0;
+      imageStore(sampleVisibility, ivec3(px, int(k)), vec4(visible));
+      v += sampleLuminance[base + k].rgb * visible;
+    }
+    // Every digit decoded (unused ones of the last channel hold D(c)): nothing may be left.
+    bad = bad || value != 0.0;
+  }
+  float expected = texelFetch(checksum, px, 0).r;
+  if (bad || abs(digitTotal - expected) > 0.5) atomicAdd(overflowPixels, 1u);
+  if (negative) atomicAdd(negativePixels, 1u);
+  atomicMax(maxCount, maxD);
+  outVisibility = vec4(v / float(sampleCount), 1.0);
+}

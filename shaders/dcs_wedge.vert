@@ -1,0 +1,4 @@
+// One point per potential silhouette edge; the geometry shader builds its footprint.
+layout(location = 0) in int inEdge;
+flat out int vEdge;
+void main() { vEdge = inEdge; }

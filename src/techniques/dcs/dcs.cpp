@@ -1,0 +1,338 @@
+// `dcs`: depth complexity sampling (Forest, Barthe, Paulin, EG 2008), sections 4, 5.3, 7.2-7.3.
+//
+// Per light: (1) the z-fail shadow-volume count from the light centre, D(c), the integration
+// constant (techniques/shadow_volume, paper 7.2); (2) the potential silhouette edges, accurate
+// (edges that are silhouettes for some point of the light) or standard (from the centre);
+// (3) a bound pass that adds, per pixel, every positive update an edge can make, so that
+// max(D(c) + bound) chooses a counter base no digit can overflow (adaptive sampling, 5.3);
+// (4) per pass over a subset of the samples: counters initialised to D(c) in every digit, then
+// each edge's footprint rasterised and its exact per-sample update (shaders/common_dcs.glsl)
+// blended into float-packed counters (eq. 7-10), positive updates before negative ones;
+// (5) a resolve that decodes the counters into per-sample visibility (count <= 0) and the
+// visibility buffer, and checks each pixel's digit sum against a checksum of all updates; a
+// mismatch cannot be an overflow (the bound excludes it) and is reported (see below).
+//
+// Divergences from the paper, each for exactness: updates integrate along the path from the
+// light centre to each sample in 3D (no projection onto a light plane, no clipping), the sign
+// of each update comes from the incident triangles at the pixel rather than from outer/inner
+// half-wedges, and edge footprints are screen rectangles (see shaders/dcs_wedge.geom).
+#include "techniques/dcs/dcs.h"
+
+#include <algorithm>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "gl/objects.h"
+#include "pipeline/renderer.h"
+#include "sampling/shared.hpp"
+#include "techniques/dcs/packing.h"
+#include "techniques/shadow_volume/shadow_volume.h"
+
+namespace penumbra {
+namespace {
+
+// std430 layouts of shaders/common_dcs.glsl.
+struct GpuEdge {
+  glm::vec4 v0, v1;
+  glm::ivec4 meta;  // first incidence, incidence count, closed rule, unused
+};
+struct GpuIncidence {
+  glm::vec4 third, normal;
+};
+struct GpuStatus {
+  std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
+};
+
+// Bias of every counter digit (shaders/dcs_init.frag).
+constexpr int kBias = 2;
+
+geo::LightExtent extentOf(const Light& l) {
+  geo::LightExtent e;
+  e.centre = l.position;
+  e.normal = l.normal;
+  e.tangent = l.tangent;
+  e.bitangent = l.bitangent();
+  switch (l.shape) {
+    case LightShape::Point: e.kind = geo::LightExtent::Kind::Point; break;
+    case LightShape::Rect:
+      e.kind = geo::LightExtent::Kind::Rect;
+      e.halfWidth = 0.5 * l.size.x, e.halfHeight = 0.5 * l.size.y;
+      break;
+    case LightShape::Disk: e.kind = geo::LightExtent::Kind::Disk, e.radius = l.size.x; break;
+    case LightShape::Sphere: e.kind = geo::LightExtent::Kind::Sphere, e.radius = l.size.x; break;
+  }
+  return e;
+}
+
+// Corners of a convex polytope around the light (for the wedge footprints) and its bounding
+// radius around the centre.
+std::vector<glm::vec3> lightCorners(const Light& l, float& radius) {
+  glm::vec3 c = l.position, t = l.tangent, b = l.bitangent(), n = l.normal;
+  std::vector<glm::vec3> out;
+  float hx = 0, hy = 0, hz = 0;
+  if (l.shape == LightShape::Rect) hx = 0.5f * l.size.x, hy = 0.5f * l.size.y;
+  if (l.shape == LightShape::Disk) hx = hy = l.size.x;
+  if (l.shape == LightShape::Sphere) hx = hy = hz = l.size.x;
+  radius = l.shape == LightShape::Disk ? l.size.x : std::sqrt(hx * hx + hy * hy + hz * hz);
+  for (float sz : {-1.0f, 1.0f}) {
+    for (float sy : {-1.0f, 1.0f})
+      for (float sx : {-1.0f, 1.0f}) out.push_back(c + sx * hx * t + sy * hy * b + sz * hz * n);
+    if (hz == 0.0f) break;
+  }
+  if (l.shape == LightShape::Point) out.assign(1, c);
+  return out;
+}
+
+class DepthComplexitySampling final : public Technique {
+ public:
+  explicit DepthComplexitySampling(const DcsOptions& o) : options_(o) {
+    options_.maxTargets = std::clamp(options_.maxTargets, 1, PENUMBRA_DCS_MAX_TARGETS);
+  }
+
+  void prepare(const Scene& scene, GpuScene& gpu) override {
+    if (scene.hasSemiOpaque())
+      PLOG_WARN("dcs treats semi-opaque occluders as opaque for now (its error against the reference says how much)");
+    volumes_.prepare(scene, gpu);
+    // All meshes' edges and incident triangles in two static buffers, edge ids global.
+    std::vector<GpuEdge> edges;
+    std::vector<GpuIncidence> incidences;
+    edgeOffset_.clear();
+    for (auto& m : volumes_.meshes()) {
+      edgeOffset_.push_back(std::uint32_t(edges.size()));
+      const auto& topo = m.topology;
+      const auto& P = topo.weldedPositions;
+      for (auto& e : topo.edges) {
+        GpuEdge g{glm::vec4(P[e.v0], 1.0f), glm::vec4(P[e.v1], 1.0f),
+                  glm::ivec4(int(incidences.size()), int(e.incidenceCount),
+                             m.rule == geo::VolumeRule::ClosedFrontFaces ? 1 : 0, 0)};
+        for (std::uint32_t k = 0; k < e.incidenceCount; ++k) {
+          const auto& inc = topo.incidences[e.firstIncidence + k];
+          const glm::uvec3& tri = topo.weldedTriangles[inc.triangle];
+          std::uint32_t third = tri.x + tri.y + tri.z - e.v0 - e.v1;
+          glm::dvec3 a(P[tri.x]), b(P[tri.y]), c(P[tri.z]);
+          glm::dvec3 n = glm::cross(b - a, c - a);
+          incidences.push_back({glm::vec4(P[third], 1.0f), glm::vec4(glm::vec3(n), 0.0f)});
+        }
+        edges.push_back(g);
+      }
+    }
+    edgeBuffer_ = gl::Buffer(edges);
+    incidenceBuffer_ = gl::Buffer(incidences);
+    statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
+    bound_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
+    boundFbo_ = gl::Framebuffer({&bound_}, nullptr);
+    checksum_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
+    boundProgram_ = gl::Program({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, {"BOUND", "DCS_TARGETS 1", "DIGITS 1"});
+    programs_.clear();
+    counters_ = gl::Texture();
+  }
+
+  void renderVisibility(LightPass& pass) override {
+    const Light& light = pass.light;
+    volumes_.count(pass);  // D(c): stages "silhouettes", "shadow volume"
+
+    std::vector<int> edgeIds;
+    pass.timer.time("dcs edges", [&] {
+      geo::LightExtent extent = extentOf(light);
+      const auto& meshes = volumes_.meshes();
+      for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
+        const auto& m = meshes[mi];
+        if (options_.silhouettes == SilhouetteMode::Accurate) {
+          for (auto e : geo::extractAccurateSilhouette(m.topology, extent, m.rule)) edgeIds.push_back(int(edgeOffset_[mi] + e));
+        } else {
+          for (auto& s : geo::extractPointSilhouette(m.topology, glm::dvec3(light.position), m.rule).sides)
+            edgeIds.push_back(int(edgeOffset_[mi] + s.edge));
+        }
+      }
+    });
+    stats_.edges = edgeIds.size();
+    gl::Buffer idBuffer(edgeIds);
+    gl::VertexArray idVao;
+    idVao.vertexBuffer(idBuffer, sizeof(int)).attributeInt(0, 1, 0);
+    float radius = 0.0f;
+    std::vector<glm::vec3> corners = lightCorners(light, radius);
+    edgeBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGES);
+    incidenceBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
+
+    auto drawWedges = [&](const gl::Program& prog, int sign) {
+      prog.use();
+      setLightUniforms(prog, light, pass.samples);
+      prog.set("clipFromWorld", pass.gpu.clipFromWorld());
+      for (std::size_t j = 0; j < corners.size(); ++j)
+        prog.set(fmt::format("lightCorners[{}]", j).c_str(), corners[j]);
+      prog.set("lightCornerCount", int(corners.size()));
+      prog.set("lightRadius", radius);
+      prog.set("passSign", sign);
+      prog.set("surfaceOffset", pass.scene.surfaceOffset());
+      idVao.bind();
+      glDrawArrays(GL_POINTS, 0, GLsizei(edgeIds.size()));
+    };
+    auto additive = [] {
+      glDisable(GL_DEPTH_TEST);
+      glDisable(GL_CULL_FACE);
+      glEnable(GL_BLEND);
+      glBlendEquation(GL_FUNC_ADD);
+      glBlendFunc(GL_ONE, GL_ONE);
+    };
+
+    // Adaptive sampling (5.3): the largest value any counter can reach.
+    int maxCount = pass.timer.time("dcs bound", [&] {
+      boundFbo_.bind();
+      const float zero[4] = {0, 0, 0, 0};
+      glClearNamedFramebufferfv(boundFbo_.id(), GL_COLOR, 0, zero);
+      pass.gpu.bindGBuffer();
+      additive();
+      drawWedges(boundProgram_, +1);
+      glDisable(GL_BLEND);
+      Image dc = volumes_.counter().read(1), bound = bound_.read(1);
+      float m = 0.0f;
+      for (std::size_t i = 0; i < dc.data.size(); ++i) m = std::max(m, std::round(dc.data[i]) + bound.data[i]);
+      return int(m) + kBias;
+    });
+
+    int N = pass.samples.count;
+    dcs::PackingPlan plan = dcs::planPacking(N, maxCount, options_.maxTargets);
+    if (plan.layout > 0 || plan.passes > 1)
+      PLOG_DEBUG("dcs: counts up to {} (bound) need {}", maxCount - kBias, plan.describe());
+    GpuStatus status;
+    statusBuffer_.write(&status, sizeof status);
+    statusBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_STATUS);
+    Programs& progs = programsFor(plan);
+    ensureCounters(plan, pass.gpu);
+    std::vector<float> weights(8, 0.0f);
+    double w = 1.0, sum = 0.0;
+    for (int d = 0; d < plan.counters.digits; ++d, w *= plan.counters.base) weights[std::size_t(d)] = float(w), sum += w;
+    for (int pi = 0; pi < plan.passes; ++pi) {
+      unsigned first = unsigned(pi * plan.samplesPerPass);
+      unsigned count = unsigned(std::min(plan.samplesPerPass, N - int(first)));
+      pass.timer.time("dcs wedges", [&] {
+        counterFbo_.bind();
+        glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        volumes_.counter().bind(PENUMBRA_UNIT_COUNTER);
+        progs.init.use();
+        progs.init.set("digitSum", float(sum));
+        progs.init.set("passCount", count);
+        emptyVao_.bind();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        pass.gpu.bindGBuffer();
+        additive();
+        for (int d = 0; d < 8; ++d) progs.wedge.set(fmt::format("digitWeights[{}]", d).c_str(), weights[std::size_t(d)]);
+        progs.wedge.set("passFirst", first);
+        progs.wedge.set("passCount", count);
+        drawWedges(progs.wedge, +1);  // outer (positive) updates first ...
+        drawWedges(progs.wedge, -1);  // ... then inner ones
+        glDisable(GL_BLEND);
+      });
+      pass.timer.time("resolve", [&] {
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        counters_.bind(PENUMBRA_UNIT_DCS_COUNTERS);
+        checksum_.bind(PENUMBRA_UNIT_DCS_CHECKSUM);
+        pass.perSample->bindImage(PENUMBRA_IMAGE_SAMPLE_VIS, GL_WRITE_ONLY);
+        progs.resolve.set("passFirst", first);
+        progs.resolve.set("passCount", count);
+        progs.resolve.set("counterBase", float(plan.counters.base));
+        // Each pass adds its samples' share of eq. 1-2 into the visibility buffer.
+        gl::Framebuffer fbo({&pass.visibility}, nullptr);
+        fbo.bind();
+        additive();
+        pass.gpu.bindGBuffer();
+        progs.resolve.use();
+        setLightUniforms(progs.resolve, light, pass.samples);
+        emptyVao_.bind();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDisable(GL_BLEND);
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+      });
+    }
+    statusBuffer_.read(&status, sizeof status);
+    stats_.plan = plan;
+    stats_.boundMaxCount = std::uint32_t(maxCount - kBias);
+    stats_.maxCount = status.maxCount >= std::uint32_t(kBias) ? status.maxCount - kBias : 0;
+    stats_.negativePixels = status.negativePixels;
+    stats_.inconsistentPixels = status.overflowPixels;
+    // The bound makes an overflow impossible: every count stays below D(c) + bound <= B - 1 - bias
+    // during and after the update. A digit-sum mismatch therefore means a count below -bias: the
+    // shadow-volume count and the wedges disagree about a point within a pixel of a shadow-volume
+    // side (they decide "inside" at slightly different points). Such pixels are reported.
+    std::size_t pixels = std::size_t(pass.gpu.width()) * std::size_t(pass.gpu.height());
+    if (status.overflowPixels > pixels / 1000)
+      PLOG_WARN("dcs: {} pixels with inconsistent counts (shadow-volume count vs wedges at a volume side)",
+                status.overflowPixels);
+    PLOG_DEBUG("dcs: {} edges, bound {}, {}, {} inconsistent pixels", stats_.edges, maxCount - kBias,
+               plan.describe(), status.overflowPixels);
+  }
+
+  bool providesPerSample() const override { return true; }
+
+  std::size_t memoryBytes() const override {
+    return volumes_.counter().bytes() + bound_.bytes() + checksum_.bytes() + (counters_ ? counters_.bytes() : 0) +
+           edgeBuffer_.size() + incidenceBuffer_.size();
+  }
+
+  std::vector<std::pair<std::string, double>> statistics() const override {
+    return {{"edges", double(stats_.edges)},
+            {"counterBase", double(stats_.plan.counters.base)},
+            {"countersPerChannel", double(stats_.plan.counters.digits)},
+            {"targets", double(stats_.plan.targets)},
+            {"passes", double(stats_.plan.passes)},
+            {"boundMaxCount", double(stats_.boundMaxCount)},
+            {"maxCount", double(stats_.maxCount)},
+            {"negativeCountPixels", double(stats_.negativePixels)},
+            {"inconsistentPixels", double(stats_.inconsistentPixels)}};
+  }
+
+ private:
+  struct Programs {
+    gl::Program init, wedge, resolve;
+  };
+  struct Stats {
+    std::size_t edges = 0;
+    dcs::PackingPlan plan;
+    std::uint32_t maxCount = 0, boundMaxCount = 0, negativePixels = 0, inconsistentPixels = 0;
+  };
+
+  Programs& programsFor(const dcs::PackingPlan& plan) {
+    int key = plan.layout * 16 + plan.targets;
+    auto it = programs_.find(key);
+    if (it != programs_.end()) return it->second;
+    std::vector<std::string> defs = {"DCS_BIAS " + std::to_string(kBias), "DCS_TARGETS " + std::to_string(plan.targets),
+                                     "DIGITS " + std::to_string(plan.counters.digits)};
+    Programs p{gl::Program({"fullscreen.vert", "dcs_init.frag"}, defs),
+               gl::Program({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, defs),
+               gl::Program({"fullscreen.vert", "dcs_resolve.frag"}, defs)};
+    return programs_.emplace(key, std::move(p)).first->second;
+  }
+
+  // Counter targets (layers of one array texture) plus the checksum, as one MRT framebuffer.
+  void ensureCounters(const dcs::PackingPlan& plan, const GpuScene& gpu) {
+    if (counters_ && counters_.layers() == plan.targets) return;
+    counters_ = gl::Texture::make2DArray(GL_RGBA32F, gpu.width(), gpu.height(), plan.targets);
+    std::vector<gl::Framebuffer::Attachment> att;
+    for (int t = 0; t < plan.targets; ++t) att.push_back({&counters_, t});
+    att.push_back({&checksum_, -1});
+    counterFbo_ = gl::Framebuffer(att, nullptr);
+  }
+
+  DcsOptions options_;
+  ShadowVolumeCounter volumes_;
+  std::vector<std::uint32_t> edgeOffset_;
+  gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_;
+  gl::Texture bound_, checksum_, counters_;
+  gl::Framebuffer boundFbo_, counterFbo_;
+  gl::Program boundProgram_;
+  std::map<int, Programs> programs_;
+  gl::VertexArray emptyVao_;
+  Stats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<Technique> makeDepthComplexitySampling(const DcsOptions& options) {
+  return std::make_unique<DepthComplexitySampling>(options);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,20 @@
+// `dcs`: depth complexity sampling (Forest, Barthe, Paulin, EG 2008): per light sample, the number
+// of occluders between the visible point and the sample, exact against ray tracing.
+#pragma once
+
+#include <memory>
+
+#include "pipeline/technique.h"
+
+namespace penumbra {
+
+enum class SilhouetteMode { Standard, Accurate };
+
+struct DcsOptions {
+  SilhouetteMode silhouettes = SilhouetteMode::Accurate;
+  int maxTargets = 4;  // packed RGBA32F counter targets per pass (paper: 4; up to 7 here)
+};
+
+std::unique_ptr<Technique> makeDepthComplexitySampling(const DcsOptions& options = {});
+
+}  // namespace penumbra
