@@ -1,6 +1,8 @@
 // Depth complexity sampling (Forest, Barthe, Paulin, EG 2008), the per-fragment part shared by
 // the wedge passes. Notation: p the visible point, c the light centre, s a light sample,
-// e = (v0, v1) an edge, n_e = cross(v0 - p, v1 - p) the normal of the plane through p and e.
+// e = (v0, v1) an edge, n_e = cross(v0 - p, v1 - v0) the normal of the plane through p and e
+// (written with the short edge vector so that it stays accurate for edges seen end-on from p:
+// the silhouette edges that matter most).
 //
 // D(s) = D(c) + sum over edges of dD_e(s): the depth complexity of sample s is the integration
 // constant D(c) (the shadow-volume count, section 4.1) plus the changes met on the straight path
@@ -44,12 +46,19 @@ int dcsEdgeWeight(DcsEdge e, vec3 p, vec3 ne) {
   return m;
 }
 
-// Is sample s separated from c by e as seen from p? dc = n_e . (c - p), cSide its sign (+1 when
-// c lies on the plane). Exact per-sample test (the edge LUT of section 7.3 comes later).
-bool dcsCovered(vec3 p, vec3 a, vec3 b, vec3 ne, float dc, float cSide, vec3 c, vec3 s) {
-  float ds = dot(ne, s - p);
-  if (ds * cSide >= 0.0) return false;  // same side of plane(p, e) as c
-  vec3 y = c + (dc / (dc - ds)) * (s - c);
-  return dot(cross(a - p, y - p), ne) >= 0.0 && dot(cross(y - p, b - p), ne) >= 0.0 &&
-         dot(cross(b - a, y - a), ne) < 0.0;
+// Is sample s separated from c by e as seen from p? Exactly when the segment e = (a, b) passes
+// through the triangle (p, c, s) (exact per-sample test; the edge LUT of section 7.3 comes
+// later). The test is written so that edges sharing a vertex decide identically about it: a
+// vertex's side of the triangle's plane, det(v - p, c - p, s - p), depends on the vertex alone,
+// so a path passing near the projection of a shared vertex is counted by exactly one of the
+// edges that fold there, never by both or neither.
+bool dcsCovered(vec3 p, vec3 a, vec3 b, vec3 c, vec3 s) {
+  // cross(c - p, s - c) == cross(c - p, s - p), but does not cancel when the light is far.
+  vec3 nt = cross(c - p, s - c);
+  float da = dot(a - p, nt);
+  float db = dot(b - p, nt);
+  if (!((da > 0.0 && db <= 0.0) || (da <= 0.0 && db > 0.0))) return false;
+  vec3 q = a + (da / (da - db)) * (b - a);
+  return dot(cross(c - p, q - c), nt) >= 0.0 && dot(cross(s - c, q - c), nt) >= 0.0 &&
+         dot(cross(p - s, q - s), nt) >= 0.0;
 }

@@ -55,7 +55,7 @@ void main() {
   vec3 p = gp.xyz + texelFetch(gNormal, px, 0).xyz * surfaceOffset;
   DcsEdge e = dcsEdges[gEdge];
   vec3 a = e.v0.xyz, b = e.v1.xyz;
-  vec3 ne = cross(a - p, b - p);
+  vec3 ne = cross(a - p, b - a);  // == cross(a - p, b - p), see common_dcs.glsl
   float len = length(ne);
   if (len == 0.0) discard;
   float dc = dot(ne, lightPosition - p);
@@ -67,7 +67,7 @@ void main() {
 #ifdef BOUND
   uint first = pixelSampleBase(px);
   for (uint k = 0u; k < sampleCount; ++k) {
-    if (dcsCovered(p, a, b, ne, dc, cSide, lightPosition, samplePositions[first + k].xyz)) {
+    if (dcsCovered(p, a, b, lightPosition, samplePositions[first + k].xyz)) {
       outBound = vec4(float(delta), 0.0, 0.0, 0.0);
       return;
     }
@@ -79,7 +79,7 @@ void main() {
   uint base = pixelSampleBase(px) + passFirst;
   int covered = 0;
   for (uint j = 0u; j < passCount; ++j) {
-    if (!dcsCovered(p, a, b, ne, dc, cSide, lightPosition, samplePositions[base + j].xyz)) continue;
+    if (!dcsCovered(p, a, b, lightPosition, samplePositions[base + j].xyz)) continue;
     uint digit = j % uint(DIGITS);
     uint channel = (j / uint(DIGITS)) % 4u;
     uint target = j / uint(4 * DIGITS);

@@ -194,9 +194,13 @@ class DepthComplexitySampling final : public Technique {
     });
 
     int N = pass.samples.count;
-    dcs::PackingPlan plan = dcs::planPacking(N, maxCount, options_.maxTargets);
-    if (plan.layout > 0 || plan.passes > 1)
-      PLOG_DEBUG("dcs: counts up to {} (bound) need {}", maxCount - kBias, plan.describe());
+    int minLayout = 0;
+    while (minLayout + 1 < dcs::kLayoutCount && dcs::kLayouts[minLayout].base < options_.minBase) ++minLayout;
+    dcs::PackingPlan plan = dcs::planPacking(N, maxCount, options_.maxTargets, minLayout);
+    // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes.
+    if (plan.layout > minLayout || plan.passes > 1)
+      PLOG_INFO("dcs: light '{}': counts up to {} (bound, + bias {}) need {}", light.name, maxCount - kBias, kBias,
+                plan.describe());
     GpuStatus status;
     statusBuffer_.write(&status, sizeof status);
     statusBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_STATUS);

@@ -2,6 +2,7 @@
 // of occluders between the visible point and the sample, exact against ray tracing.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include "pipeline/technique.h"
@@ -13,6 +14,7 @@ enum class SilhouetteMode { Standard, Accurate };
 struct DcsOptions {
   SilhouetteMode silhouettes = SilhouetteMode::Accurate;
   int maxTargets = 4;  // packed RGBA32F counter targets per pass (paper: 4; up to 7 here)
+  std::uint32_t minBase = 8;  // narrowest counter base allowed (8, 16, 64, 256, 4096, 2^24)
 };
 
 std::unique_ptr<Technique> makeDepthComplexitySampling(const DcsOptions& options = {});
