@@ -1,0 +1,125 @@
+// Benchmark (not a test): per-stage times of techniques and of `raytrace` (same samples) on a
+// scene, measured in one run on one machine, with the ratio of each technique's total to the
+// reference's. Warm-up frames first, then the median and the spread (min..max) of each stage
+// over the timed frames. Stages are timed with glFinish and a steady clock (GL timer queries
+// are not meaningful on llvmpipe). Also prints each technique's statistics and render-target
+// memory.
+//
+//   penumbra_bench [SCENE] [-W 512] [-H 512] [--samples 1,16,64] [--techniques hard-sv,dcs]
+//                  [--frames 5] [--warmup 1] [--backend egl] [--json FILE]
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "gl/context.h"
+#include "pipeline/renderer.h"
+#include "scene/scene.h"
+
+using namespace penumbra;
+
+namespace {
+
+struct Spread {
+  double median, min, max;
+};
+
+Spread spread(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  std::size_t n = v.size();
+  double med = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  return {med, v.front(), v.back()};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  setLogLevel("warn");
+  CLI::App app{"per-stage timing of techniques against raytrace"};
+  std::string scenePath = "scenes/engine.json", backend = "egl", jsonOut;
+  int width = 512, height = 512, frames = 5, warmup = 1;
+  std::vector<int> sampleCounts = {1};
+  std::vector<std::string> techniques = {"hard-sv"};
+  app.add_option("scene", scenePath);
+  app.add_option("-W", width);
+  app.add_option("-H", height);
+  app.add_option("--samples", sampleCounts)->delimiter(',');
+  app.add_option("--techniques", techniques)->delimiter(',');
+  app.add_option("--frames", frames);
+  app.add_option("--warmup", warmup);
+  app.add_option("--backend", backend);
+  app.add_option("--json", jsonOut);
+  CLI11_PARSE(app, argc, argv);
+  try {
+    Scene scene = loadScene(scenePath);
+    auto ctx = gl::Context::create(gl::parseBackend(backend));
+    std::printf("scene %s: %zu triangles, %dx%d, renderer %s\n", scenePath.c_str(), scene.triangleCount(), width,
+                height, ctx->renderer().c_str());
+    nlohmann::json out;
+    out["scene"] = scenePath;
+    out["triangles"] = scene.triangleCount();
+    out["renderer"] = ctx->renderer();
+    out["width"] = width;
+    out["height"] = height;
+    for (int samples : sampleCounts) {
+      RenderSettings s;
+      s.width = width, s.height = height, s.sampling.count = samples;
+      std::vector<std::string> names = techniques;
+      names.push_back("raytrace");
+      std::map<std::string, double> totals;
+      for (const std::string& name : names) {
+        Renderer renderer(*ctx, scene, s);
+        auto tech = findTechnique(name).create();
+        std::map<std::string, std::vector<double>> stages;
+        std::vector<double> total;
+        FrameResult last;
+        for (int f = 0; f < warmup + frames; ++f) {
+          last = renderer.render(*tech);
+          if (f < warmup) continue;
+          double t = 0;
+          for (auto& st : last.timer.stages()) {
+            if (st.stage == "prepare") continue;  // once per scene, done in the warm-up
+            stages[st.stage].push_back(st.ms);
+            t += st.ms;
+          }
+          total.push_back(t);
+        }
+        std::string key = name + "@" + std::to_string(samples);
+        std::printf("\n%s, %d sample(s) (%d frames after %d warm-up)\n  %-18s %10s %10s %10s\n", name.c_str(),
+                    samples, frames, warmup, "stage", "median ms", "min", "max");
+        for (auto& [stage, v] : stages) {
+          Spread sp = spread(v);
+          std::printf("  %-18s %10.2f %10.2f %10.2f\n", stage.c_str(), sp.median, sp.min, sp.max);
+          out[key]["stagesMs"][stage] = {{"median", sp.median}, {"min", sp.min}, {"max", sp.max}};
+        }
+        Spread sp = spread(total);
+        std::printf("  %-18s %10.2f %10.2f %10.2f\n", "total", sp.median, sp.min, sp.max);
+        out[key]["totalMs"] = {{"median", sp.median}, {"min", sp.min}, {"max", sp.max}};
+        out[key]["memoryBytes"] = last.memoryBytes;
+        std::printf("  render targets + buffers: %.1f MiB\n", double(last.memoryBytes) / (1024.0 * 1024.0));
+        for (auto& [k, v] : last.statistics) {
+          std::printf("  %s = %g\n", k.c_str(), v);
+          out[key]["statistics"][k] = v;
+        }
+        totals[name] = sp.median;
+      }
+      std::printf("\n%d sample(s): total time relative to raytrace:", samples);
+      for (auto& [name, t] : totals) {
+        std::printf("  %s %.2fx", name.c_str(), totals["raytrace"] / t);
+        out["speedupOverRaytrace@" + std::to_string(samples)][name] = totals["raytrace"] / t;
+      }
+      std::printf("  (> 1: faster than raytrace)\n");
+    }
+    if (!jsonOut.empty()) std::ofstream(jsonOut) << out.dump(2) << "\n";
+  } catch (const Error& e) {
+    std::fprintf(stderr, "penumbra_bench: %s\n", e.what());
+    return int(e.exitCode());
+  }
+  return 0;
+}
