@@ -89,23 +89,7 @@ void putBigEndian(unsigned char* p, std::uint32_t v) {
 }
 
 
-class PngTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("penumbra_core_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
-
-  fs::path dir_;
-};
+using PngTest = test::TempDirTest;
 
 TEST_F(PngTest, RoundTripIsWithinOneStepAfterSrgb) {
   Image img(17, 9, 3);
