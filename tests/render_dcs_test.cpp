@@ -171,3 +171,40 @@ INSTANTIATE_TEST_SUITE_P(Bases, DcsOverflow,
 
 }  // namespace
 }  // namespace penumbra::test
+
+namespace penumbra::test {
+namespace {
+
+class DcsSilhouettePaths : public ::testing::TestWithParam<const char*> {};
+
+// Issue 3: the CPU and GPU (compute shader) accurate-silhouette paths give the same edge set.
+TEST_P(DcsSilhouettePaths, CpuAndGpuGiveTheSameEdges) {
+  Scene scene = loadScene(scenePath(GetParam()));
+  RenderSettings s = settings(32, 1);
+  auto cpu = makeDepthComplexitySampling({SilhouetteMode::Accurate, 4, 8, false});
+  auto gpu = makeDepthComplexitySampling({SilhouetteMode::Accurate, 4, 8, true});
+  FrameResult a = Renderer(context(), scene, s).render(*cpu);
+  FrameResult b = Renderer(context(), scene, s).render(*gpu);
+  EXPECT_EQ(gl::Context::takeErrorCount(), 0);
+  EXPECT_GT(statistic(a, "edges"), 0.0);
+  EXPECT_EQ(statistic(a, "edges"), statistic(b, "edges"));
+  EXPECT_EQ(statistic(a, "edgeChecksum"), statistic(b, "edgeChecksum"));
+  EXPECT_EQ(compareImages(a.lights[0].visibility, b.lights[0].visibility).maxAbs, 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, DcsSilhouettePaths,
+                         ::testing::Values("scenes/stained-glass.json", "scenes/dcs-silhouettes.json",
+                                           "scenes/hard/05-open-cylinder.json", "scenes/hard/06-book.json",
+                                           "scenes/hard/07-flipped-triangle.json",
+                                           "scenes/hard/09-light-in-face-plane.json",
+                                           "scenes/hard/15-two-plates.json", "scenes/hard/23-analytic-disk.json"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           n = n.substr(n.rfind('/') + 1);
+                           n = n.substr(0, n.find('.'));
+                           for (auto& ch : n) if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return n;
+                         });
+
+}  // namespace
+}  // namespace penumbra::test

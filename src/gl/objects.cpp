@@ -193,10 +193,12 @@ void Framebuffer::bind() const {
 
 // ---- VertexArray -----------------------------------------------------------------------------
 
-VertexArray::VertexArray() {
+VertexArray VertexArray::create() {
   GLuint id = 0;
   glCreateVertexArrays(1, &id);
-  static_cast<Object&>(*this) = Object(id);
+  VertexArray v;
+  static_cast<Object&>(v) = Object(id);
+  return v;
 }
 
 VertexArray& VertexArray::attribute(GLuint index, int components, std::size_t offset, GLuint binding) {

@@ -108,7 +108,8 @@ class Framebuffer : public Object<deleteFramebuffer> {
 
 class VertexArray : public Object<deleteVertexArray> {
  public:
-  VertexArray();
+  VertexArray() = default;  // no GL object: members may be declared before a context exists
+  static VertexArray create();  // needs the current context
   // Float attribute `index` of `components` floats at `offset` in vertex buffer binding `binding`.
   VertexArray& attribute(GLuint index, int components, std::size_t offset, GLuint binding = 0);
   VertexArray& attributeInt(GLuint index, int components, std::size_t offset, GLuint binding = 0);

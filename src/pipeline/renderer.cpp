@@ -61,7 +61,7 @@ void resolveVisibility(LightPass& pass, const gl::Program& program) {
   pass.gpu.bindGBuffer();
   program.use();
   setLightUniforms(program, pass.light, pass.samples);
-  gl::VertexArray vao;
+  gl::VertexArray vao = gl::VertexArray::create();
   vao.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
@@ -102,6 +102,7 @@ GpuScene::GpuScene(const Scene& scene, int width, int height)
     if (d.count > 0) draws_.push_back(d);
   }
   vertices_ = gl::Buffer(verts);
+  vao_ = gl::VertexArray::create();
   vao_.vertexBuffer(vertices_, sizeof(GVertex))
       .attribute(0, 3, offsetof(GVertex, position))
       .attribute(1, 3, offsetof(GVertex, normal))
@@ -202,6 +203,7 @@ Renderer::Renderer(gl::Context& context, const Scene& scene, const RenderSetting
   color_ = gl::Texture::make2D(GL_RGBA32F, settings.width, settings.height);
   visibility_ = gl::Texture::make2D(GL_RGBA32F, settings.width, settings.height);
   colorFbo_ = gl::Framebuffer({&color_}, nullptr);
+  emptyVao_ = gl::VertexArray::create();
   shadeModulate_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"MODULATE"});
   shadePerSample_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"PER_SAMPLE"});
 }

@@ -44,6 +44,8 @@ class Technique {
  public:
   virtual ~Technique() = default;
   // Per scene: build what the technique keeps across lights and frames (edge topology, BVH).
+  // Create GL objects here or later, never in a constructor: a technique may be constructed
+  // before the renderer's context is current.
   virtual void prepare(const Scene& scene, GpuScene& gpu) {}
   // Per light: fill pass.visibility (and pass.perSample if providesPerSample()).
   virtual void renderVisibility(LightPass& pass) = 0;

@@ -40,7 +40,8 @@ struct GpuEdge {
   glm::ivec4 meta;  // first incidence, incidence count, closed rule, unused
 };
 struct GpuIncidence {
-  glm::vec4 third, normal;
+  glm::vec4 third;  // xyz third vertex, w the triangle's orientation along the edge (+-1)
+  glm::vec4 normal;
 };
 struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
@@ -114,7 +115,7 @@ class DepthComplexitySampling final : public Technique {
           std::uint32_t third = tri.x + tri.y + tri.z - e.v0 - e.v1;
           glm::dvec3 a(P[tri.x]), b(P[tri.y]), c(P[tri.z]);
           glm::dvec3 n = glm::cross(b - a, c - a);
-          incidences.push_back({glm::vec4(P[third], 1.0f), glm::vec4(glm::vec3(n), 0.0f)});
+          incidences.push_back({glm::vec4(P[third], float(inc.orientation)), glm::vec4(glm::vec3(n), 0.0f)});
         }
         edges.push_back(g);
       }
@@ -128,6 +129,7 @@ class DepthComplexitySampling final : public Technique {
     boundProgram_ = gl::Program({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, {"BOUND", "DCS_TARGETS 1", "DIGITS 1"});
     programs_.clear();
     counters_ = gl::Texture();
+    emptyVao_ = gl::VertexArray::create();
   }
 
   void renderVisibility(LightPass& pass) override {
@@ -137,6 +139,10 @@ class DepthComplexitySampling final : public Technique {
     std::vector<int> edgeIds;
     pass.timer.time("dcs edges", [&] {
       geo::LightExtent extent = extentOf(light);
+      if (options_.gpuSilhouettes && options_.silhouettes == SilhouetteMode::Accurate) {
+        edgeIds = gpuAccurateSilhouette(extent);
+        return;
+      }
       const auto& meshes = volumes_.meshes();
       for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
         const auto& m = meshes[mi];
@@ -149,8 +155,10 @@ class DepthComplexitySampling final : public Technique {
       }
     });
     stats_.edges = edgeIds.size();
+    stats_.edgeChecksum = 0;
+    for (int id : edgeIds) stats_.edgeChecksum += std::uint64_t(id) * 2654435761u % 1000003u;
     gl::Buffer idBuffer(edgeIds);
-    gl::VertexArray idVao;
+    gl::VertexArray idVao = gl::VertexArray::create();
     idVao.vertexBuffer(idBuffer, sizeof(int)).attributeInt(0, 1, 0);
     float radius = 0.0f;
     std::vector<glm::vec3> corners = lightCorners(light, radius);
@@ -279,6 +287,7 @@ class DepthComplexitySampling final : public Technique {
 
   std::vector<std::pair<std::string, double>> statistics() const override {
     return {{"edges", double(stats_.edges)},
+            {"edgeChecksum", double(stats_.edgeChecksum)},
             {"counterBase", double(stats_.plan.counters.base)},
             {"countersPerChannel", double(stats_.plan.counters.digits)},
             {"targets", double(stats_.plan.targets)},
@@ -293,8 +302,40 @@ class DepthComplexitySampling final : public Technique {
   struct Programs {
     gl::Program init, wedge, resolve;
   };
+
+  // The accurate silhouette on the GPU (shaders/dcs_silhouette.comp), sorted to compare with the
+  // CPU path; the order does not matter to the rendering.
+  std::vector<int> gpuAccurateSilhouette(const geo::LightExtent& l) {
+    if (!silhouetteProgram_) silhouetteProgram_ = gl::Program({"dcs_silhouette.comp"});
+    std::uint32_t total = std::uint32_t(edgeBuffer_.size() / sizeof(GpuEdge));
+    gl::Buffer out(sizeof(std::uint32_t) * (1 + std::size_t(total)), nullptr);
+    std::uint32_t zero = 0;
+    out.write(&zero, sizeof zero);
+    edgeBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGES);
+    incidenceBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
+    out.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_STATUS);
+    const gl::Program& p = silhouetteProgram_;
+    p.use();
+    p.set("totalEdges", total);
+    p.set("lightKind", int(l.kind));
+    p.set("lightCentre", glm::vec3(l.centre));
+    p.set("lightNormal", glm::vec3(l.normal));
+    p.set("lightTangent", glm::vec3(l.tangent));
+    p.set("lightBitangent", glm::vec3(l.bitangent));
+    p.set("lightHalfSize", glm::vec2(float(l.halfWidth), float(l.halfHeight)));
+    p.set("lightRadius", float(l.radius));
+    glDispatchCompute((total + 63) / 64, 1, 1);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    std::uint32_t count = 0;
+    out.read(&count, sizeof count);
+    std::vector<std::uint32_t> ids(count);
+    if (count) out.read(ids.data(), sizeof(std::uint32_t) * count, sizeof(std::uint32_t));
+    std::sort(ids.begin(), ids.end());
+    return std::vector<int>(ids.begin(), ids.end());
+  }
   struct Stats {
     std::size_t edges = 0;
+    std::uint64_t edgeChecksum = 0;  // order-free digest of the edge set (CPU/GPU path test)
     dcs::PackingPlan plan;
     std::uint32_t maxCount = 0, boundMaxCount = 0, negativePixels = 0, inconsistentPixels = 0;
   };
@@ -327,7 +368,7 @@ class DepthComplexitySampling final : public Technique {
   gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_;
   gl::Texture bound_, checksum_, counters_;
   gl::Framebuffer boundFbo_, counterFbo_;
-  gl::Program boundProgram_;
+  gl::Program boundProgram_, silhouetteProgram_;
   std::map<int, Programs> programs_;
   gl::VertexArray emptyVao_;
   Stats stats_;

@@ -15,6 +15,7 @@ struct DcsOptions {
   SilhouetteMode silhouettes = SilhouetteMode::Accurate;
   int maxTargets = 4;  // packed RGBA32F counter targets per pass (paper: 4; up to 7 here)
   std::uint32_t minBase = 8;  // narrowest counter base allowed (8, 16, 64, 256, 4096, 2^24)
+  bool gpuSilhouettes = false;  // accurate silhouettes by a compute shader instead of the CPU
 };
 
 std::unique_ptr<Technique> makeDepthComplexitySampling(const DcsOptions& options = {});

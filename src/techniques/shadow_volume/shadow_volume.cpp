@@ -8,7 +8,7 @@ namespace {
 
 void drawPoints(const gl::Program& prog, const gl::Buffer& buf, std::size_t count, GLenum mode) {
   if (count == 0) return;
-  gl::VertexArray vao;
+  gl::VertexArray vao = gl::VertexArray::create();
   vao.vertexBuffer(buf, sizeof(glm::vec4)).attribute(0, 4, 0);
   vao.bind();
   prog.use();
