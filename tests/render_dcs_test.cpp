@@ -19,11 +19,7 @@ struct Case {
 };
 
 std::string caseName(const ::testing::TestParamInfo<Case>& info) {
-  std::string n = info.param.scene;
-  n = n.substr(n.rfind('/') + 1);
-  n = n.substr(0, n.find('.'));
-  for (auto& ch : n) if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  return n + "_N" + std::to_string(info.param.samples);
+  return sceneTestName(info.param.scene) + "_N" + std::to_string(info.param.samples);
 }
 
 double statistic(const FrameResult& f, const std::string& key) {
@@ -198,13 +194,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DcsSilhouettePaths,
                                            "scenes/hard/07-flipped-triangle.json",
                                            "scenes/hard/09-light-in-face-plane.json",
                                            "scenes/hard/15-two-plates.json", "scenes/hard/23-analytic-disk.json"),
-                         [](const auto& info) {
-                           std::string n = info.param;
-                           n = n.substr(n.rfind('/') + 1);
-                           n = n.substr(0, n.find('.'));
-                           for (auto& ch : n) if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return n;
-                         });
+                         [](const auto& info) { return sceneTestName(info.param); });
 
 }  // namespace
 }  // namespace penumbra::test

@@ -49,11 +49,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/hard/20-light-behind-camera.json", 160},
                       Case{"scenes/engine.json", 192}),
     [](const auto& info) {
-      std::string n = std::string(info.param.scene).empty() ? "default" : info.param.scene;
-      n = n.substr(n.rfind('/') + 1);
-      n = n.substr(0, n.find('.'));
-      for (auto& ch : n) if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
-      return n;
+      return std::string(info.param.scene).empty() ? std::string("default") : sceneTestName(info.param.scene);
     });
 
 }  // namespace

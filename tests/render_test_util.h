@@ -11,6 +11,7 @@
 #include "pipeline/compare.h"
 #include "pipeline/renderer.h"
 #include "scene/scene.h"
+#include "test_util.h"
 
 namespace penumbra::test {
 

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <filesystem>
 #include <string>
 
@@ -25,6 +26,15 @@ void expectError(F&& f, const std::string& file, const std::string& fragment = "
     EXPECT_NE(what.find(fragment), std::string::npos) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << "multi-line: " << what;
   }
+}
+
+// A gtest parameter name from a scene path: "scenes/hard/01-cube.json" -> "01_cube".
+inline std::string sceneTestName(const std::string& path) {
+  std::string n = path.substr(path.rfind('/') + 1);
+  n = n.substr(0, n.find('.'));
+  for (auto& ch : n)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return n;
 }
 
 // A fresh folder per test under the system temp folder, removed afterwards (also when the test

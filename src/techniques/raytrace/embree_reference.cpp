@@ -217,6 +217,34 @@ struct EmbreeReference::Impl {
     }
     return glm::vec3(sum / double(count));
   }
+
+  // Traces every surface pixel of `gbuf` (multithreaded by rows) with the `n` samples that
+  // `samplesFor(x, y, pixel, scratchSet)` gives it (positions and luminances; it may fill and
+  // point into `scratchSet`). Per-sample results are kept when `perSample` is set.
+  template <class SamplesFor>
+  VisibilityResult traceImage(const CpuGBuffer& gbuf, int n, float offset, bool perSample,
+                              SamplesFor&& samplesFor) {
+    VisibilityResult out;
+    out.samples = n;
+    out.visibility = Image(gbuf.width, gbuf.height, 3, 0.0f);
+    if (perSample) out.perSample.assign(std::size_t(gbuf.width) * gbuf.height * n, 0.0f);
+    rays += forEachRow(gbuf.height, threads, [&](int y, std::uint64_t& rayCount) {
+      Scratch scratch;
+      std::vector<int> sampleOf;
+      std::vector<float> tr;
+      LightSampleSet scratchSet;
+      for (int x = 0; x < gbuf.width; ++x) {
+        const std::size_t i = std::size_t(y) * gbuf.width + x;
+        if (!gbuf.valid[i]) continue;  // no surface: visibility 0
+        const auto [pos, lum] = samplesFor(x, y, i, scratchSet);
+        const glm::vec3 v = shadePixel(gbuf.position[i], gbuf.normal[i], pos, lum, n, offset,
+                                       perSample ? &out.perSample[i * n] : nullptr, scratch,
+                                       sampleOf, tr, rayCount);
+        for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
+      }
+    });
+    return out;
+  }
 };
 
 EmbreeReference::EmbreeReference(const Scene& scene, int threads)
@@ -296,25 +324,10 @@ VisibilityResult EmbreeReference::sameSamples(const CpuGBuffer& gbuf, const Ligh
                      samples.luminance.size() == total,
                  "LightSampleSet arrays do not match count x setCount");
   const float offset = originOffset >= 0.0f ? originOffset : impl_->defaultOffset;
-  VisibilityResult out;
-  out.samples = n;
-  out.visibility = Image(gbuf.width, gbuf.height, 3, 0.0f);
-  out.perSample.assign(std::size_t(gbuf.width) * gbuf.height * n, 0.0f);
-  impl_->rays += forEachRow(gbuf.height, impl_->threads, [&](int y, std::uint64_t& rays) {
-    Scratch scratch;
-    std::vector<int> sampleOf;
-    std::vector<float> tr;
-    for (int x = 0; x < gbuf.width; ++x) {
-      const std::size_t i = std::size_t(y) * gbuf.width + x;
-      if (!gbuf.valid[i]) continue;  // no surface: visibility 0
-      const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
-      const glm::vec3 v = impl_->shadePixel(
-          gbuf.position[i], gbuf.normal[i], &samples.positions[first], &samples.luminance[first], n,
-          offset, &out.perSample[i * n], scratch, sampleOf, tr, rays);
-      for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
-    }
+  return impl_->traceImage(gbuf, n, offset, true, [&](int x, int y, std::size_t, LightSampleSet&) {
+    const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
+    return std::pair(&samples.positions[first], &samples.luminance[first]);
   });
-  return out;
 }
 
 VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light& light,
@@ -324,28 +337,12 @@ VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light&
   // Validates count and light up front, so errors are thrown here rather than in a worker.
   const int n = makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, 1, time).count;
   const float offset = originOffset >= 0.0f ? originOffset : impl_->defaultOffset;
-  VisibilityResult out;
-  out.samples = n;
-  out.visibility = Image(gbuf.width, gbuf.height, 3, 0.0f);
-  impl_->rays += forEachRow(gbuf.height, impl_->threads, [&](int y, std::uint64_t& rays) {
-    Scratch scratch;
-    std::vector<int> sampleOf;
-    std::vector<float> tr;
-    for (int x = 0; x < gbuf.width; ++x) {
-      const std::size_t i = std::size_t(y) * gbuf.width + x;
-      if (!gbuf.valid[i]) continue;
-      // A fresh stratified set per pixel, seeded by the pixel index (makeLightSampleSet hashes
-      // the seed): decorrelated (section 5.1) and independent of the thread that computes it.
-      const std::uint32_t seed = std::uint32_t(i);
-      const LightSampleSet s =
-          makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, seed, time);
-      const glm::vec3 v =
-          impl_->shadePixel(gbuf.position[i], gbuf.normal[i], s.positions.data(),
-                            s.luminance.data(), n, offset, nullptr, scratch, sampleOf, tr, rays);
-      for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
-    }
+  return impl_->traceImage(gbuf, n, offset, false, [&](int, int, std::size_t i, LightSampleSet& set) {
+    // A fresh stratified set per pixel, seeded by the pixel index (makeLightSampleSet hashes
+    // the seed): decorrelated (section 5.1) and independent of the thread that computes it.
+    set = makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, std::uint32_t(i), time);
+    return std::pair(set.positions.data(), set.luminance.data());
   });
-  return out;
 }
 
 float EmbreeReference::transmittance(const glm::vec3& from, const glm::vec3& to) const {
