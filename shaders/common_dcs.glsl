@@ -32,6 +32,21 @@ layout(std430, binding = PENUMBRA_SSBO_DCS_INCIDENCES) readonly buffer DcsIncide
   DcsIncidence dcsIncidences[];
 };
 
+#ifdef DCS_PROFILE
+// Where the wedge pass spends its fragments (dcs.cpp reads them into the statistics).
+layout(std430, binding = PENUMBRA_SSBO_DCS_PROFILE) buffer DcsProfile {
+  uint profRectangleEdges;  // edges drawn as their screen rectangle (dcs_wedge.geom fallback)
+  uint profWedgeEdges;      // edges drawn as their wedge polyhedron
+  uint profFragments;       // wedge fragments that passed the depth test on a surface
+  uint profInPlane;         // ... whose plane(p, e) crosses the light
+  uint profWeighted;        // ... with m_e(p) != 0
+  uint profUpdating;        // ... that change at least one counter
+};
+#define PROFILE_COUNT(x) atomicAdd(x, 1u)
+#else
+#define PROFILE_COUNT(x)
+#endif
+
 int signOf(float x) { return x > 0.0 ? 1 : (x < 0.0 ? -1 : 0); }
 
 // m_e(p) above.
@@ -48,17 +63,43 @@ int dcsEdgeWeight(DcsEdge e, vec3 p, vec3 ne) {
 
 // Is sample s separated from c by e as seen from p? Exactly when the segment e = (a, b) passes
 // through the triangle (p, c, s) (exact per-sample test; the edge LUT of section 7.3 comes
-// later). The test is written so that edges sharing a vertex decide identically about it: a
-// vertex's side of the triangle's plane, det(v - p, c - p, s - p), depends on the vertex alone,
-// so a path passing near the projection of a shared vertex is counted by exactly one of the
-// edges that fold there, never by both or neither.
-bool dcsCovered(vec3 p, vec3 a, vec3 b, vec3 c, vec3 s) {
-  // cross(c - p, s - c) == cross(c - p, s - p), but does not cancel when the light is far.
-  vec3 nt = cross(c - p, s - c);
-  float da = dot(a - p, nt);
-  float db = dot(b - p, nt);
-  if (!((da > 0.0 && db <= 0.0) || (da <= 0.0 && db > 0.0))) return false;
-  vec3 q = a + (da / (da - db)) * (b - a);
-  return dot(cross(c - p, q - c), nt) >= 0.0 && dot(cross(s - c, q - c), nt) >= 0.0 &&
-         dot(cross(p - s, q - s), nt) >= 0.0;
+// later): a and b lie on opposite sides of the triangle's plane, and the line a -> b passes the
+// triangle's three sides on the same hand. All four signed volumes are affine in the sample's
+// offset sigma = s - c, so a fragment computes their coefficients once (dcsCoverageSetup) and
+// each sample costs four dot products (dcsCovered):
+//   det(a - p, c - p, s - p) = A . sigma,       A = cross(a - p, c - p)
+//   det(b - p, c - p, s - p) = B . sigma,       B = cross(b - p, c - p)
+//   orient(a, b, p, c)       = -k,              k = K . (c - a), K = cross(p - a, b - a)
+//   orient(a, b, c, s)       = K2 . sigma,      K2 = cross(b - a, c - a)
+//   orient(a, b, s, p)       = K . sigma + k
+// Written with sigma (small) rather than s (possibly far from the origin), nothing cancels when
+// the light is far. A vertex's side of the triangle's plane depends on that vertex alone, so
+// edges sharing a vertex decide identically about it: a path passing near the projection of a
+// shared vertex is counted by exactly one of the edges that fold there, never by both or
+// neither.
+struct DcsCoverage {
+  vec3 A, B, K, K2;
+  float k;
+};
+
+DcsCoverage dcsCoverageSetup(vec3 p, vec3 a, vec3 b, vec3 c) {
+  DcsCoverage v;
+  v.A = cross(a - p, c - p);
+  v.B = cross(b - p, c - p);
+  v.K = cross(p - a, b - a);
+  v.K2 = cross(b - a, c - a);
+  v.k = dot(v.K, c - a);
+  if (v.k > 0.0) {  // orient(a, b, p, c) < 0: flip so that the three side tests read ">= 0"
+    v.K = -v.K;
+    v.K2 = -v.K2;
+    v.k = -v.k;
+  }
+  return v;
+}
+
+bool dcsCovered(DcsCoverage v, vec3 sigma) {
+  float da = dot(v.A, sigma);
+  float db = dot(v.B, sigma);
+  if ((da > 0.0) == (db > 0.0)) return false;
+  return dot(v.K2, sigma) >= 0.0 && dot(v.K, sigma) + v.k >= 0.0;
 }

@@ -1,5 +1,6 @@
 // Initialises the packed counters of a pass with the integration constant D(c) in every digit
-// (DCS section 7.3: "MUL r0.w, r0.w, 266305" for base 64) and the checksum with passCount * D(c).
+// (DCS section 7.3: "MUL r0.w, r0.w, 266305" for base 64), the checksum with passCount * D(c)
+// and the pixel's bound with D(c).
 // Every digit carries a bias (DCS_BIAS), so that a count that ends slightly negative (the
 // shadow-volume count and the wedges disagree about a point on a volume's side: the edge band)
 // is still decoded instead of borrowing from its neighbour.
@@ -50,5 +51,5 @@ void main() {
 #if DCS_TARGETS > 6
   outCounter6 = v;
 #endif
-  outChecksum = vec4(dc * float(passCount), 0.0, 0.0, 0.0);
+  outChecksum = vec4(dc * float(passCount), dc, 0.0, 0.0);  // (digit sum, bound), dcs_wedge.frag
 }

@@ -9,11 +9,14 @@ layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 layout(binding = PENUMBRA_UNIT_DCS_COUNTERS) uniform sampler2DArray counters;
 layout(binding = PENUMBRA_UNIT_DCS_CHECKSUM) uniform sampler2D checksum;
+#ifdef PER_SAMPLE_OUT
 layout(binding = PENUMBRA_IMAGE_SAMPLE_VIS, r32f) uniform writeonly image2DArray sampleVisibility;
+#endif
 layout(std430, binding = PENUMBRA_SSBO_DCS_STATUS) buffer DcsStatus {
   uint overflowPixels;   // digit sum != checksum: a counter left its digit (below -bias)
   uint maxCount;         // largest decoded count (with the bias)
   uint negativePixels;   // a count ended in [-bias, -1] (dcs_init.frag): treated as 0, reported
+  uint boundMax;         // largest D(c) + bias + positive updates (dcs_wedge.frag)
 };
 
 uniform uint passFirst;
@@ -49,13 +52,17 @@ void main() {
       uint k = passFirst + j;
       vec3 x = samplePositions[base + k].xyz;
       float visible = (digit <= float(DCS_BIAS) && aboveHorizon(p.xyz, n, x)) ? 1.0 : 0.0;
+#ifdef PER_SAMPLE_OUT
       imageStore(sampleVisibility, ivec3(px, int(k)), vec4(visible));
+#endif
       v += sampleLuminance[base + k].rgb * visible;
     }
     // Every digit decoded (unused ones of the last channel hold D(c)): nothing may be left.
     bad = bad || value != 0.0;
   }
-  float expected = texelFetch(checksum, px, 0).r;
+  vec2 sums = texelFetch(checksum, px, 0).rg;
+  float expected = sums.r;
+  atomicMax(boundMax, uint(sums.g));
   if (bad || abs(digitTotal - expected) > 0.5) atomicAdd(overflowPixels, 1u);
   if (negative) atomicAdd(negativePixels, 1u);
   atomicMax(maxCount, maxD);

@@ -1,12 +1,16 @@
 // Depth-complexity update of one edge at one pixel (DCS Algorithm 1), for the samples of this
 // pass, into float-base packed counters (eq. 7-10): sample j of the pass is digit j % DIGITS of
-// channel (j / DIGITS) % 4 of target j / (4 * DIGITS); adding delta * base^digit updates it.
-// Each fragment's contribution has one sign for all its samples; passSign selects the positive
-// (outer) or negative (inner) contributions, so outer edges are added before inner ones and no
-// digit is ever below its final value during the update.
-// BOUND: instead, add m for every positive contribution that covers any sample of the pixel
-// into one R32F target: an upper bound of how far any counter of the pixel rises above D(c)
-// (adaptive sampling, section 5.3).
+// channel (j / DIGITS) % 4 of target j / (4 * DIGITS); adding delta * DCS_BASE^digit updates it.
+// Each fragment's contribution has one sign for all its samples. Positive (outer) and negative
+// (inner) updates are blended in one pass, in any order: the packed value is an integer below
+// 2^24 in magnitude at every step (the bound keeps every partial digit sum inside (-B, B)), so
+// float addition is exact and a digit that is negative for a while borrows and repays exactly.
+// The paper's outer-before-inner batching (section 4.3) is needed for unsigned integers only.
+// The checksum target gets (the sum of all updates, the positive updates): its second channel,
+// started at D(c) + bias, bounds every counter of the pixel at every step (adaptive sampling,
+// section 5.3; dcs.cpp checks it after the pass).
+// BOUND: instead, add the positive updates that cover any of the pixel's samples into one R32F
+// target, before any counter exists (the first frame of a light).
 #include "common_light.glsl"
 #include "common_dcs.glsl"
 
@@ -14,10 +18,11 @@ layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 uniform float surfaceOffset;  // Scene::surfaceOffset(), as the reference's ray origins
 uniform float lightRadius;  // bounding radius of the light around its centre
-uniform int passSign;       // +1 or -1
 uniform uint passFirst;     // first sample of this pass
 uniform uint passCount;     // samples in this pass
-uniform float digitWeights[8];  // B^0 .. B^7 (exact powers of two)
+#ifndef BOUND
+const int MASK_WORDS = (DCS_TARGETS * 4 * DIGITS + 31) / 32;
+#endif
 
 flat in int gEdge;
 
@@ -50,6 +55,7 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 gp = texelFetch(gPosition, px, 0);
   if (gp.w == 0.0) discard;
+  PROFILE_COUNT(profFragments);
   // The point is moved off its surface to the camera side, as the reference's ray origin is:
   // its own triangle then lies clearly on one side of every plane(p, e).
   vec3 p = gp.xyz + texelFetch(gNormal, px, 0).xyz * surfaceOffset;
@@ -60,33 +66,55 @@ void main() {
   if (len == 0.0) discard;
   float dc = dot(ne, lightPosition - p);
   if (abs(dc) > lightRadius * len) discard;  // the whole light on one side of plane(p, e)
+  PROFILE_COUNT(profInPlane);
   float cSide = dc >= 0.0 ? 1.0 : -1.0;
   int m = dcsEdgeWeight(e, p, ne);
   int delta = -int(cSide) * m;  // sign(n_e . (s - p)) = -cSide for every covered sample
-  if (delta == 0 || (delta > 0) != (passSign > 0)) discard;
+#ifdef BOUND
+  if (delta <= 0) discard;
+#else
+  if (delta == 0) discard;
+#endif
+  PROFILE_COUNT(profWeighted);
+  DcsCoverage cov = dcsCoverageSetup(p, a, b, lightPosition);
 #ifdef BOUND
   uint first = pixelSampleBase(px);
   for (uint k = 0u; k < sampleCount; ++k) {
-    if (dcsCovered(p, a, b, lightPosition, samplePositions[first + k].xyz)) {
+    if (dcsCovered(cov, samplePositions[first + k].xyz - lightPosition)) {
       outBound = vec4(float(delta), 0.0, 0.0, 0.0);
       return;
     }
   }
   discard;
 #else
-  vec4 acc[DCS_TARGETS];
-  for (int t = 0; t < DCS_TARGETS; ++t) acc[t] = vec4(0.0);
+  // The covered samples of the pass as a bit mask, then the packed values from it with
+  // compile-time indices only (dynamic indexing of the outputs is slow on CPU drivers).
   uint base = pixelSampleBase(px) + passFirst;
+  uint mask[MASK_WORDS];
   int covered = 0;
-  for (uint j = 0u; j < passCount; ++j) {
-    if (!dcsCovered(p, a, b, lightPosition, samplePositions[base + j].xyz)) continue;
-    uint digit = j % uint(DIGITS);
-    uint channel = (j / uint(DIGITS)) % 4u;
-    uint target = j / uint(4 * DIGITS);
-    acc[target][channel] += float(delta) * digitWeights[digit];
-    ++covered;
+  for (int w = 0; w < MASK_WORDS; ++w) {
+    uint bits = 0u;
+    for (uint k = 0u; k < 32u; ++k) {
+      uint j = uint(w) * 32u + k;
+      if (j >= passCount) break;
+      if (dcsCovered(cov, samplePositions[base + j].xyz - lightPosition)) bits |= 1u << k;
+    }
+    mask[w] = bits;
+    covered += bitCount(bits);
   }
   if (covered == 0) discard;
+  PROFILE_COUNT(profUpdating);
+  vec4 acc[DCS_TARGETS];
+  for (int t = 0; t < DCS_TARGETS; ++t) {
+    for (int ch = 0; ch < 4; ++ch) {
+      float value = 0.0, weight = float(delta);
+      for (int d = 0; d < DIGITS; ++d, weight *= float(DCS_BASE)) {
+        int j = (t * 4 + ch) * DIGITS + d;
+        value += float((mask[j / 32] >> (j % 32)) & 1u) * weight;
+      }
+      acc[t][ch] = value;
+    }
+  }
   outCounter0 = acc[0];
 #if DCS_TARGETS > 1
   outCounter1 = acc[1];
@@ -106,6 +134,6 @@ void main() {
 #if DCS_TARGETS > 6
   outCounter6 = acc[6];
 #endif
-  outChecksum = vec4(float(delta * covered), 0.0, 0.0, 0.0);
+  outChecksum = vec4(float(delta * covered), float(max(delta, 0)), 0.0, 0.0);
 #endif
 }

@@ -35,6 +35,7 @@
 #define PENUMBRA_SSBO_DCS_EDGES 2       // dcs: edges (endpoints, incidence range, rule)
 #define PENUMBRA_SSBO_DCS_INCIDENCES 3  // dcs: incident triangles (third vertex, plane normal)
 #define PENUMBRA_SSBO_DCS_STATUS 4      // dcs: resolve status (overflowing pixels)
+#define PENUMBRA_SSBO_DCS_PROFILE 5     // dcs: wedge counters (PENUMBRA_DCS_PROFILE=1)
 
 // ---- light shapes (match penumbra::LightShape) ---------------------------------------------
 #define PENUMBRA_LIGHT_POINT 0

@@ -247,7 +247,7 @@ FrameResult Renderer::render(Technique& technique) {
     posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
     lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
 
-    bool wantSamples = technique.providesPerSample();
+    bool wantSamples = technique.providesPerSample() && (settings_.perSampleResults || perSample);
     if (wantSamples && (perSample_.width() != settings_.width || perSample_.layers() != samples.count))
       perSample_ = gl::Texture::make2DArray(GL_R32F, settings_.width, settings_.height, samples.count);
     visibility_.clear(glm::vec4(0.0f));
@@ -282,7 +282,7 @@ FrameResult Renderer::render(Technique& technique) {
       lr.visibility = Image(v4.width, v4.height, 3);
       for (std::size_t i = 0; i < v4.pixelCount(); ++i)
         for (int c = 0; c < 3; ++c) lr.visibility.data[i * 3 + c] = v4.data[i * 4 + c];
-      if (wantSamples && lr.perSample.empty()) {
+      if (wantSamples && settings_.perSampleResults && lr.perSample.empty()) {
         // GPU per-sample results: gather the layers into [pixel * N + k].
         std::size_t n = lr.visibility.pixelCount();
         lr.perSample.resize(n * std::size_t(samples.count));

@@ -34,6 +34,9 @@ struct RenderSettings {
   SamplingParams sampling;
   float time = 0.0f;
   ShadingMode shading = ShadingMode::Modulate;
+  // Per-sample visibility of techniques that have it, read back into LightResult::perSample for
+  // comparisons. Off (benchmarks), it is produced only when per-sample shading needs it.
+  bool perSampleResults = true;
 };
 
 struct LightResult {

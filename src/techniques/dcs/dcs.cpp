@@ -3,19 +3,23 @@
 // Per light: (1) the z-fail shadow-volume count from the light centre, D(c), the integration
 // constant (techniques/shadow_volume, paper 7.2); (2) the potential silhouette edges, accurate
 // (edges that are silhouettes for some point of the light) or standard (from the centre);
-// (3) a bound pass that adds, per pixel, every positive update an edge can make, so that
-// max(D(c) + bound) chooses a counter base no digit can overflow (adaptive sampling, 5.3);
-// (4) per pass over a subset of the samples: counters initialised to D(c) in every digit, then
-// each edge's footprint rasterised and its exact per-sample update (shaders/common_dcs.glsl)
-// blended into float-packed counters (eq. 7-10), positive updates before negative ones;
-// (5) a resolve that decodes the counters into per-sample visibility (count <= 0) and the
-// visibility buffer, and checks each pixel's digit sum against a checksum of all updates; a
-// mismatch cannot be an overflow (the bound excludes it) and is reported (see below).
+// (3) the counter packing (adaptive sampling, 5.3), from a bound on D(c) + the positive updates
+// of a pixel: on a light's first frame a bound pass computes it, later frames reuse the bound
+// the previous frame measured, and every frame checks its own bound after the pass and renders
+// again with a wider base if a digit could have overflowed; (4) per pass over a subset of the
+// samples: counters initialised to D(c) in every digit, then each edge's wedge rasterised
+// (shaders/dcs_wedge.geom) and its exact per-sample update (shaders/common_dcs.glsl) blended
+// into float-packed counters (eq. 7-10), positive and negative updates in one pass (exact in
+// float, see shaders/dcs_wedge.frag); (5) a resolve that decodes the counters into per-sample
+// visibility (count <= 0) and the visibility buffer, and checks each pixel's digit sum against a
+// checksum of all updates; a mismatch cannot be an overflow (the bound excludes it) and is
+// reported (see below).
 //
 // Divergences from the paper, each for exactness: updates integrate along the path from the
 // light centre to each sample in 3D (no projection onto a light plane, no clipping), the sign
 // of each update comes from the incident triangles at the pixel rather than from outer/inner
-// half-wedges, and edge footprints are screen rectangles (see shaders/dcs_wedge.geom).
+// half-wedges, and each edge has one convex wedge solid instead of two half-wedges (see
+// shaders/dcs_wedge.geom).
 #include "techniques/dcs/dcs.h"
 
 #include <algorithm>
@@ -45,6 +49,7 @@ struct GpuIncidence {
 };
 struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
+  std::uint32_t boundMax = 0;  // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
 };
 
 // Bias of every counter digit (shaders/dcs_init.frag).
@@ -68,7 +73,7 @@ geo::LightExtent extentOf(const Light& l) {
   return e;
 }
 
-// Corners of a convex polytope around the light (for the wedge footprints) and its bounding
+// Corners of a convex polytope around the light (for the wedges) and its bounding
 // radius around the centre.
 std::vector<glm::vec3> lightCorners(const Light& l, float& radius) {
   glm::vec3 c = l.position, t = l.tangent, b = l.bitangent(), n = l.normal;
@@ -77,10 +82,13 @@ std::vector<glm::vec3> lightCorners(const Light& l, float& radius) {
   if (l.shape == LightShape::Rect) hx = 0.5f * l.size.x, hy = 0.5f * l.size.y;
   if (l.shape == LightShape::Disk) hx = hy = l.size.x;
   if (l.shape == LightShape::Sphere) hx = hy = hz = l.size.x;
+  // Grown by 0.1%: samples on the light's border stay strictly inside the wedges.
+  hx *= 1.001f, hy *= 1.001f, hz *= 1.001f;
   radius = l.shape == LightShape::Disk ? l.size.x : std::sqrt(hx * hx + hy * hy + hz * hz);
+  // In cyclic order around the light (dcs_wedge.geom clips the polygon).
   for (float sz : {-1.0f, 1.0f}) {
-    for (float sy : {-1.0f, 1.0f})
-      for (float sx : {-1.0f, 1.0f}) out.push_back(c + sx * hx * t + sy * hy * b + sz * hz * n);
+    for (glm::vec2 s : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
+      out.push_back(c + s.x * hx * t + s.y * hy * b + sz * hz * n);
     if (hz == 0.0f) break;
   }
   if (l.shape == LightShape::Point) out.assign(1, c);
@@ -91,6 +99,7 @@ class DepthComplexitySampling final : public Technique {
  public:
   explicit DepthComplexitySampling(const DcsOptions& o) : options_(o) {
     options_.maxTargets = std::clamp(options_.maxTargets, 1, PENUMBRA_DCS_MAX_TARGETS);
+    if (const char* env = std::getenv("PENUMBRA_DCS_PROFILE")) options_.profile = options_.profile || std::string(env) == "1";
   }
 
   void prepare(const Scene& scene, GpuScene& gpu) override {
@@ -123,11 +132,13 @@ class DepthComplexitySampling final : public Technique {
     edgeBuffer_ = gl::Buffer(edges);
     incidenceBuffer_ = gl::Buffer(incidences);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
+    profileBuffer_ = gl::Buffer(sizeof(Profile), nullptr);
     bound_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
-    boundFbo_ = gl::Framebuffer({&bound_}, nullptr);
-    checksum_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
+    boundFbo_ = gl::Framebuffer({&bound_}, &gpu.depth());
+    checksum_ = gl::Texture::make2D(GL_RG32F, gpu.width(), gpu.height());
     boundProgram_ = gl::Program({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, {"BOUND", "DCS_TARGETS 1", "DIGITS 1"});
     programs_.clear();
+    boundCache_.clear();
     counters_ = gl::Texture();
     emptyVao_ = gl::VertexArray::create();
   }
@@ -155,6 +166,7 @@ class DepthComplexitySampling final : public Technique {
       }
     });
     stats_.edges = edgeIds.size();
+    stats_.reruns = 0;
     stats_.edgeChecksum = 0;
     for (int id : edgeIds) stats_.edgeChecksum += std::uint64_t(id) * 2654435761u % 1000003u;
     gl::Buffer idBuffer(edgeIds);
@@ -165,18 +177,43 @@ class DepthComplexitySampling final : public Technique {
     edgeBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGES);
     incidenceBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
 
-    auto drawWedges = [&](const gl::Program& prog, int sign) {
+    // The eye's largest distance to the near-plane window (shaders/dcs_wedge.geom), with room.
+    const Camera& cam = pass.scene.camera;
+    float tanY = std::tan(glm::radians(0.5f * cam.fovY)), aspect = float(pass.gpu.width()) / float(pass.gpu.height());
+    float nearRadius = 2.0f * cam.zNear * std::sqrt(1.0f + tanY * tanY * (1.0f + aspect * aspect));
+    auto drawWedges = [&](const gl::Program& prog) {
+      if (light.shape == LightShape::Point) return;  // every sample is the centre: D(s) = D(c)
       prog.use();
       setLightUniforms(prog, light, pass.samples);
       prog.set("clipFromWorld", pass.gpu.clipFromWorld());
       for (std::size_t j = 0; j < corners.size(); ++j)
         prog.set(fmt::format("lightCorners[{}]", j).c_str(), corners[j]);
       prog.set("lightCornerCount", int(corners.size()));
+      prog.set("eyePosition", pass.gpu.cameraPosition());
+      prog.set("nearRadius", nearRadius);
+      prog.set("margin", 2.0f * pass.scene.surfaceOffset());
       prog.set("lightRadius", radius);
-      prog.set("passSign", sign);
       prog.set("surfaceOffset", pass.scene.surfaceOffset());
       idVao.bind();
       glDrawArrays(GL_POINTS, 0, GLsizei(edgeIds.size()));
+    };
+    // Wedge faces are depth-tested against the visible surface: a fragment survives where the
+    // surface is behind the face (reversed Z: smaller depth).
+    auto wedgeState = [] {
+      glEnable(GL_DEPTH_TEST);
+      glDepthMask(GL_FALSE);
+      glDepthFunc(GL_GEQUAL);
+      glEnable(GL_DEPTH_CLAMP);
+      glDisable(GL_CULL_FACE);
+      glEnable(GL_BLEND);
+      glBlendEquation(GL_FUNC_ADD);
+      glBlendFunc(GL_ONE, GL_ONE);
+    };
+    auto endWedgeState = [] {
+      glDisable(GL_BLEND);
+      glDisable(GL_DEPTH_CLAMP);
+      glDisable(GL_DEPTH_TEST);
+      glDepthMask(GL_TRUE);
     };
     auto additive = [] {
       glDisable(GL_DEPTH_TEST);
@@ -186,83 +223,118 @@ class DepthComplexitySampling final : public Technique {
       glBlendFunc(GL_ONE, GL_ONE);
     };
 
-    // Adaptive sampling (5.3): the largest value any counter can reach.
-    int maxCount = pass.timer.time("dcs bound", [&] {
-      boundFbo_.bind();
-      const float zero[4] = {0, 0, 0, 0};
-      glClearNamedFramebufferfv(boundFbo_.id(), GL_COLOR, 0, zero);
-      pass.gpu.bindGBuffer();
-      additive();
-      drawWedges(boundProgram_, +1);
-      glDisable(GL_BLEND);
-      Image dc = volumes_.counter().read(1), bound = bound_.read(1);
-      float m = 0.0f;
-      for (std::size_t i = 0; i < dc.data.size(); ++i) m = std::max(m, std::round(dc.data[i]) + bound.data[i]);
-      return int(m) + kBias;
-    });
-
-    int N = pass.samples.count;
-    int minLayout = 0;
-    while (minLayout + 1 < dcs::kLayoutCount && dcs::kLayouts[minLayout].base < options_.minBase) ++minLayout;
-    dcs::PackingPlan plan = dcs::planPacking(N, maxCount, options_.maxTargets, minLayout);
-    // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes.
-    if (plan.layout > minLayout || plan.passes > 1)
-      PLOG_INFO("dcs: light '{}': counts up to {} (bound, + bias {}) need {}", light.name, maxCount - kBias, kBias,
-                plan.describe());
-    GpuStatus status;
-    statusBuffer_.write(&status, sizeof status);
-    statusBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_STATUS);
-    Programs& progs = programsFor(plan);
-    ensureCounters(plan, pass.gpu);
-    std::vector<float> weights(8, 0.0f);
-    double w = 1.0, sum = 0.0;
-    for (int d = 0; d < plan.counters.digits; ++d, w *= plan.counters.base) weights[std::size_t(d)] = float(w), sum += w;
-    for (int pi = 0; pi < plan.passes; ++pi) {
-      unsigned first = unsigned(pi * plan.samplesPerPass);
-      unsigned count = unsigned(std::min(plan.samplesPerPass, N - int(first)));
-      pass.timer.time("dcs wedges", [&] {
-        counterFbo_.bind();
-        glDisable(GL_BLEND);
-        glDisable(GL_DEPTH_TEST);
-        volumes_.counter().bind(PENUMBRA_UNIT_COUNTER);
-        progs.init.use();
-        progs.init.set("digitSum", float(sum));
-        progs.init.set("passCount", count);
-        emptyVao_.bind();
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+    // Adaptive sampling (5.3): the counter base must hold the largest value any counter reaches,
+    // D(c) + bias + the positive updates that cover one of its samples. Every counter pass
+    // measures exactly that per pixel (the checksum target's second channel), so a frame can
+    // choose its packing from the previous frame's maximum for this light and check it: if a
+    // counter could have overflowed, the passes run again with the packing the measured bound
+    // needs (never a silently wrong count). The first frame of a light has no previous maximum
+    // and runs the bound pass, which computes the bound before any counter exists.
+    int maxCount = 0;
+    auto cached = boundCache_.find(pass.lightIndex);
+    if (cached != boundCache_.end()) {
+      maxCount = cached->second;
+    } else if (options_.firstFrameBound >= 0) {
+      maxCount = options_.firstFrameBound + kBias;
+    } else {
+      maxCount = pass.timer.time("dcs bound", [&] {
+        boundFbo_.bind();
+        const float zero[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(boundFbo_.id(), GL_COLOR, 0, zero);
         pass.gpu.bindGBuffer();
-        additive();
-        for (int d = 0; d < 8; ++d) progs.wedge.set(fmt::format("digitWeights[{}]", d).c_str(), weights[std::size_t(d)]);
-        progs.wedge.set("passFirst", first);
-        progs.wedge.set("passCount", count);
-        drawWedges(progs.wedge, +1);  // outer (positive) updates first ...
-        drawWedges(progs.wedge, -1);  // ... then inner ones
-        glDisable(GL_BLEND);
-      });
-      pass.timer.time("resolve", [&] {
-        glMemoryBarrier(GL_ALL_BARRIER_BITS);
-        counters_.bind(PENUMBRA_UNIT_DCS_COUNTERS);
-        checksum_.bind(PENUMBRA_UNIT_DCS_CHECKSUM);
-        pass.perSample->bindImage(PENUMBRA_IMAGE_SAMPLE_VIS, GL_WRITE_ONLY);
-        progs.resolve.set("passFirst", first);
-        progs.resolve.set("passCount", count);
-        progs.resolve.set("counterBase", float(plan.counters.base));
-        // Each pass adds its samples' share of eq. 1-2 into the visibility buffer.
-        gl::Framebuffer fbo({&pass.visibility}, nullptr);
-        fbo.bind();
-        additive();
-        pass.gpu.bindGBuffer();
-        progs.resolve.use();
-        setLightUniforms(progs.resolve, light, pass.samples);
-        emptyVao_.bind();
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glDisable(GL_BLEND);
-        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        wedgeState();
+        drawWedges(boundProgram_);
+        endWedgeState();
+        Image dc = volumes_.counter().read(1), bound = bound_.read(1);
+        float m = 0.0f;
+        for (std::size_t i = 0; i < dc.data.size(); ++i) m = std::max(m, std::round(dc.data[i]) + bound.data[i]);
+        return int(m) + kBias;
       });
     }
-    statusBuffer_.read(&status, sizeof status);
+
+    int N = pass.samples.count;
+    // Counters initialised to D(c), all edges' updates, resolve; per pass over a subset of the
+    // samples (each pass adds its samples' share of eq. 1-2 into the visibility buffer).
+    auto runCounterPasses = [&](const dcs::PackingPlan& plan) {
+      GpuStatus status;
+      statusBuffer_.write(&status, sizeof status);
+      statusBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_STATUS);
+      Profile profile;
+      profileBuffer_.write(&profile, sizeof profile);
+      profileBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PROFILE);
+      Programs& progs = programsFor(plan);
+      ensureCounters(plan, pass.gpu);
+      const gl::Program& resolve = pass.perSample ? progs.resolvePerSample : progs.resolve;
+      double w = 1.0, sum = 0.0;  // sum of B^d over a channel's digits
+      for (int d = 0; d < plan.counters.digits; ++d, w *= plan.counters.base) sum += w;
+      for (int pi = 0; pi < plan.passes; ++pi) {
+        unsigned first = unsigned(pi * plan.samplesPerPass);
+        unsigned count = unsigned(std::min(plan.samplesPerPass, N - int(first)));
+        pass.timer.time("dcs wedges", [&] {
+          counterFbo_.bind();
+          glDisable(GL_BLEND);
+          glDisable(GL_DEPTH_TEST);
+          volumes_.counter().bind(PENUMBRA_UNIT_COUNTER);
+          progs.init.use();
+          progs.init.set("digitSum", float(sum));
+          progs.init.set("passCount", count);
+          emptyVao_.bind();
+          glDrawArrays(GL_TRIANGLES, 0, 3);
+          pass.gpu.bindGBuffer();
+          wedgeState();
+          progs.wedge.set("passFirst", first);
+          progs.wedge.set("passCount", count);
+          drawWedges(progs.wedge);  // outer and inner updates together (shaders/dcs_wedge.frag)
+          endWedgeState();
+        });
+        pass.timer.time("resolve", [&] {
+          glMemoryBarrier(GL_ALL_BARRIER_BITS);
+          counters_.bind(PENUMBRA_UNIT_DCS_COUNTERS);
+          checksum_.bind(PENUMBRA_UNIT_DCS_CHECKSUM);
+          if (pass.perSample) pass.perSample->bindImage(PENUMBRA_IMAGE_SAMPLE_VIS, GL_WRITE_ONLY);
+          resolve.set("passFirst", first);
+          resolve.set("passCount", count);
+          resolve.set("counterBase", float(plan.counters.base));
+          gl::Framebuffer fbo({&pass.visibility}, nullptr);
+          fbo.bind();
+          additive();
+          pass.gpu.bindGBuffer();
+          resolve.use();
+          setLightUniforms(resolve, light, pass.samples);
+          emptyVao_.bind();
+          glDrawArrays(GL_TRIANGLES, 0, 3);
+          glDisable(GL_BLEND);
+          glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        });
+      }
+      statusBuffer_.read(&status, sizeof status);
+      if (options_.profile) profileBuffer_.read(&stats_.profile, sizeof stats_.profile);
+      return status;
+    };
+
+    int minLayout = 0;
+    while (minLayout + 1 < dcs::kLayoutCount && dcs::kLayouts[minLayout].base < options_.minBase) ++minLayout;
+    dcs::PackingPlan plan;
+    GpuStatus status;
+    for (int attempt = 0;; ++attempt) {
+      plan = dcs::planPacking(N, maxCount, options_.maxTargets, minLayout);
+      // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes.
+      if (plan.layout > minLayout || plan.passes > 1)
+        PLOG_DEBUG("dcs: light '{}': counts up to {} (bound, + bias {}) need {}", light.name, maxCount - kBias, kBias,
+                   plan.describe());
+      status = runCounterPasses(plan);
+      int measured = int(status.boundMax);
+      boundCache_[pass.lightIndex] = measured;
+      if (std::int64_t(plan.counters.base) - 1 >= measured) break;
+      PENUMBRA_CHECK(plan.layout + 1 < dcs::kLayoutCount && attempt < dcs::kLayoutCount, "dcs: no counter base fits");
+      PLOG_INFO("dcs: light '{}': counts up to {} overflow base {}; rendering again", light.name, measured - kBias,
+                plan.counters.base);
+      maxCount = measured;
+      pass.visibility.clear(glm::vec4(0.0f));
+      ++stats_.reruns;
+    }
     stats_.plan = plan;
-    stats_.boundMaxCount = std::uint32_t(maxCount - kBias);
+    stats_.boundMaxCount = status.boundMax >= std::uint32_t(kBias) ? status.boundMax - kBias : 0;
     stats_.maxCount = status.maxCount >= std::uint32_t(kBias) ? status.maxCount - kBias : 0;
     stats_.negativePixels = status.negativePixels;
     stats_.inconsistentPixels = status.overflowPixels;
@@ -286,21 +358,30 @@ class DepthComplexitySampling final : public Technique {
   }
 
   std::vector<std::pair<std::string, double>> statistics() const override {
-    return {{"edges", double(stats_.edges)},
+    std::vector<std::pair<std::string, double>> out = {{"edges", double(stats_.edges)},
             {"edgeChecksum", double(stats_.edgeChecksum)},
             {"counterBase", double(stats_.plan.counters.base)},
             {"countersPerChannel", double(stats_.plan.counters.digits)},
             {"targets", double(stats_.plan.targets)},
             {"passes", double(stats_.plan.passes)},
             {"boundMaxCount", double(stats_.boundMaxCount)},
+            {"reruns", double(stats_.reruns)},
             {"maxCount", double(stats_.maxCount)},
             {"negativeCountPixels", double(stats_.negativePixels)},
             {"inconsistentPixels", double(stats_.inconsistentPixels)}};
+    if (options_.profile) {
+      const Profile& p = stats_.profile;
+      for (auto [name, value] : {std::pair{"profileRectangleEdges", p.rectangleEdges}, {"profileWedgeEdges", p.wedgeEdges},
+                                 {"profileFragments", p.fragments}, {"profileInPlane", p.inPlane},
+                                 {"profileWeighted", p.weighted}, {"profileUpdating", p.updating}})
+        out.emplace_back(name, double(value));
+    }
+    return out;
   }
 
  private:
   struct Programs {
-    gl::Program init, wedge, resolve;
+    gl::Program init, wedge, resolve, resolvePerSample;
   };
 
   // The accurate silhouette on the GPU (shaders/dcs_silhouette.comp), sorted to compare with the
@@ -333,11 +414,17 @@ class DepthComplexitySampling final : public Technique {
     std::sort(ids.begin(), ids.end());
     return std::vector<int>(ids.begin(), ids.end());
   }
+  // shaders/common_dcs.glsl, DcsProfile.
+  struct Profile {
+    std::uint32_t rectangleEdges = 0, wedgeEdges = 0, fragments = 0, inPlane = 0, weighted = 0, updating = 0;
+  };
   struct Stats {
+    Profile profile;
     std::size_t edges = 0;
     std::uint64_t edgeChecksum = 0;  // order-free digest of the edge set (CPU/GPU path test)
     dcs::PackingPlan plan;
     std::uint32_t maxCount = 0, boundMaxCount = 0, negativePixels = 0, inconsistentPixels = 0;
+    std::uint32_t reruns = 0;  // counter passes run again because the previous frame's bound failed
   };
 
   Programs& programsFor(const dcs::PackingPlan& plan) {
@@ -345,10 +432,14 @@ class DepthComplexitySampling final : public Technique {
     auto it = programs_.find(key);
     if (it != programs_.end()) return it->second;
     std::vector<std::string> defs = {"DCS_BIAS " + std::to_string(kBias), "DCS_TARGETS " + std::to_string(plan.targets),
-                                     "DIGITS " + std::to_string(plan.counters.digits)};
+                                     "DIGITS " + std::to_string(plan.counters.digits),
+                                     "DCS_BASE " + std::to_string(plan.counters.base)};
+    if (options_.profile) defs.push_back("DCS_PROFILE");
     Programs p{gl::Program({"fullscreen.vert", "dcs_init.frag"}, defs),
                gl::Program({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, defs),
-               gl::Program({"fullscreen.vert", "dcs_resolve.frag"}, defs)};
+               gl::Program({"fullscreen.vert", "dcs_resolve.frag"}, defs), gl::Program()};
+    defs.push_back("PER_SAMPLE_OUT");
+    p.resolvePerSample = gl::Program({"fullscreen.vert", "dcs_resolve.frag"}, defs);
     return programs_.emplace(key, std::move(p)).first->second;
   }
 
@@ -359,17 +450,18 @@ class DepthComplexitySampling final : public Technique {
     std::vector<gl::Framebuffer::Attachment> att;
     for (int t = 0; t < plan.targets; ++t) att.push_back({&counters_, t});
     att.push_back({&checksum_, -1});
-    counterFbo_ = gl::Framebuffer(att, nullptr);
+    counterFbo_ = gl::Framebuffer(att, &gpu.depth());
   }
 
   DcsOptions options_;
   ShadowVolumeCounter volumes_;
   std::vector<std::uint32_t> edgeOffset_;
-  gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_;
+  gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_, profileBuffer_;
   gl::Texture bound_, checksum_, counters_;
   gl::Framebuffer boundFbo_, counterFbo_;
   gl::Program boundProgram_, silhouetteProgram_;
   std::map<int, Programs> programs_;
+  std::map<int, int> boundCache_;  // light index -> the last frame's measured bound (+ bias)
   gl::VertexArray emptyVao_;
   Stats stats_;
 };

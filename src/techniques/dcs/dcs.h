@@ -16,6 +16,12 @@ struct DcsOptions {
   int maxTargets = 4;  // packed RGBA32F counter targets per pass (paper: 4; up to 7 here)
   std::uint32_t minBase = 8;  // narrowest counter base allowed (8, 16, 64, 256, 4096, 2^24)
   bool gpuSilhouettes = false;  // accurate silhouettes by a compute shader instead of the CPU
+  // Count where the wedge pass's fragments go (statistics "profile*"); atomics slow it down.
+  // Also switched on by the environment variable PENUMBRA_DCS_PROFILE=1.
+  bool profile = false;
+  // >= 0: the first frame of a light plans its counters from this bound instead of running the
+  // bound pass (the after-pass check and re-render still apply; tests use it to force them).
+  int firstFrameBound = -1;
 };
 
 std::unique_ptr<Technique> makeDepthComplexitySampling(const DcsOptions& options = {});
