@@ -61,6 +61,34 @@ int dcsEdgeWeight(DcsEdge e, vec3 p, vec3 ne) {
   return m;
 }
 
+// Can e separate any two points of a planar light (corners x_0..x_3, grown a little, in cyclic
+// order) seen from p? Only if e meets the pyramid conv(p, light), which holds every triangle
+// (p, c, s): the segment is clipped against the pyramid's faces (Cyrus-Beck). A cheap,
+// conservative rejection before the per-sample loop; true when p is (nearly) in the light's
+// plane.
+bool dcsEdgeMeetsLightPyramid(vec3 p, vec3 a, vec3 b, vec3 c, vec3 corners[4]) {
+  vec3 lightN = normalize(cross(corners[1] - corners[0], corners[3] - corners[0]));
+  float side = dot(lightN, p - c);
+  if (abs(side) <= 1e-6 * length(p - c)) return true;
+  float lo = 0.0, hi = 1.0;
+  for (int j = 0; j < 5; ++j) {
+    vec3 n, q;
+    if (j < 4) {
+      n = cross(corners[j] - p, corners[(j + 1) % 4] - p);
+      if (dot(n, c - p) < 0.0) n = -n;
+      q = p;
+    } else {
+      n = side > 0.0 ? lightN : -lightN;
+      q = c;
+    }
+    float fa = dot(n, a - q), fb = dot(n, b - q);
+    if (fa < 0.0 && fb < 0.0) return false;
+    if (fa < 0.0) lo = max(lo, fa / (fa - fb));
+    if (fb < 0.0) hi = min(hi, fa / (fa - fb));
+  }
+  return lo <= hi + 1e-4;
+}
+
 // Is sample s separated from c by e as seen from p? Exactly when the segment e = (a, b) passes
 // through the triangle (p, c, s) (exact per-sample test; the edge LUT of section 7.3 comes
 // later): a and b lie on opposite sides of the triangle's plane, and the line a -> b passes the

@@ -18,6 +18,8 @@ layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 uniform float surfaceOffset;  // Scene::surfaceOffset(), as the reference's ray origins
 uniform float lightRadius;  // bounding radius of the light around its centre
+uniform vec3 lightCorners[8];  // dcs.cpp lightCorners(): a planar light's 4 in cyclic order
+uniform int lightCornerCount;
 uniform uint passFirst;     // first sample of this pass
 uniform uint passCount;     // samples in this pass
 #ifndef BOUND
@@ -75,6 +77,10 @@ void main() {
 #else
   if (delta == 0) discard;
 #endif
+  if (lightCornerCount == 4) {
+    vec3 corners[4] = vec3[4](lightCorners[0], lightCorners[1], lightCorners[2], lightCorners[3]);
+    if (!dcsEdgeMeetsLightPyramid(p, a, b, lightPosition, corners)) discard;
+  }
   PROFILE_COUNT(profWeighted);
   DcsCoverage cov = dcsCoverageSetup(p, a, b, lightPosition);
 #ifdef BOUND

@@ -3,11 +3,14 @@
 // e between p and y: p is in W = e + cone(e - L_e) (p = x + t (x - y), x on e, y in L_e,
 // t >= 0; DCS section 4.2, Algorithm 1 line 2; the penumbra wedge of [AAM03]). L_e is the part
 // of the light from which e can count at all:
-//   closed-mesh edges (two incident triangles, shadow_volume.h): m_e(p) != 0 only where e is a
-//     silhouette seen from p, i.e. p, and so y on the other side of e, is in front of exactly
-//     one incident triangle; L_e = L clipped to that region (two convex pieces; we take both
-//     pieces' corners). On a finely tessellated curved surface the two planes are close and
-//     L_e is a thin strip of the light, so the wedge is thin: this is the main saving.
+//   edges with two incident triangles: m_e(p) != 0 only where e is a silhouette seen from p
+//     (common_dcs.glsl: for the closed-mesh rule m = [p behind t1] - [p behind t2]; for the
+//     per-triangle rule m = sigma_1 + sigma_2, non-zero when both triangles lie on one side of
+//     plane(p, e)), i.e. p, and so y on the other side of e, is in front of exactly one of them
+//     (of both or neither, for two triangles running the edge the same way); L_e = L clipped to
+//     that region (two convex pieces; we take both pieces' corners). On a finely tessellated
+//     curved surface the two planes are close and L_e is a thin strip of the light, so the wedge
+//     is thin: this is the main saving.
 //   other edges: L_e = a convex polytope around the light (the rect, a disk's square, a
 //     sphere's cube).
 // W is bounded by a convex polyhedron, in order of preference:
@@ -49,6 +52,12 @@ uniform float margin;      // world-space growth of the wedge
 flat in int vEdge[];
 flat out int gEdge;
 
+void emitVertex(int id, vec4 position) {
+  gEdge = id;
+  gl_Position = position;
+  EmitVertex();
+}
+
 const int MAX_CORNERS = 12;
 vec3 corner[MAX_CORNERS];
 int cornerCount = 0;
@@ -77,18 +86,18 @@ void emitRectangle(int id, vec3 a, vec3 b) {
   lo = max(lo, vec2(-1.0));
   hi = min(hi, vec2(1.0));
   if (lo.x >= hi.x || lo.y >= hi.y) return;
-  gEdge = id; gl_Position = vec4(lo.x, lo.y, 1.0, 1.0); EmitVertex();
-  gEdge = id; gl_Position = vec4(hi.x, lo.y, 1.0, 1.0); EmitVertex();
-  gEdge = id; gl_Position = vec4(lo.x, hi.y, 1.0, 1.0); EmitVertex();
-  gEdge = id; gl_Position = vec4(hi.x, hi.y, 1.0, 1.0); EmitVertex();
+  emitVertex(id, vec4(lo.x, lo.y, 1.0, 1.0));
+  emitVertex(id, vec4(hi.x, lo.y, 1.0, 1.0));
+  emitVertex(id, vec4(lo.x, hi.y, 1.0, 1.0));
+  emitVertex(id, vec4(hi.x, hi.y, 1.0, 1.0));
   EndPrimitive();
 }
 
 void emitQuad(int id, vec4 p0, vec4 p1, vec4 p2, vec4 p3) {  // strip order
-  gEdge = id; gl_Position = p0; EmitVertex();
-  gEdge = id; gl_Position = p1; EmitVertex();
-  gEdge = id; gl_Position = p2; EmitVertex();
-  gEdge = id; gl_Position = p3; EmitVertex();
+  emitVertex(id, p0);
+  emitVertex(id, p1);
+  emitVertex(id, p2);
+  emitVertex(id, p3);
   EndPrimitive();
 }
 
@@ -117,8 +126,11 @@ void clipPiece(vec3 v0, vec3 nFront, vec3 nBack, float size) {
 
 void lightPart(DcsEdge e) {
   cornerCount = 0;
-  if (lightCornerCount == 4 && e.meta.z != 0 && e.meta.y == 2) {
-    vec3 n1 = dcsIncidences[e.meta.x].normal.xyz, n2 = dcsIncidences[e.meta.x + 1].normal.xyz;
+  if (lightCornerCount == 4 && e.meta.y == 2) {
+    DcsIncidence t1 = dcsIncidences[e.meta.x], t2 = dcsIncidences[e.meta.x + 1];
+    // Triangles running the edge the same way (an inconsistently wound open mesh) count where
+    // the point faces both the same way: flip the second plane.
+    vec3 n1 = t1.normal.xyz, n2 = t1.third.w == t2.third.w ? -t2.normal.xyz : t2.normal.xyz;
     float size = 0.0;
     for (int j = 1; j < 4; ++j) size = max(size, length(lightCorners[j] - lightCorners[0]));
     vec3 v0 = e.v0.xyz;
