@@ -65,6 +65,6 @@ void main() {
   atomicMax(boundMax, uint(sums.g));
   if (bad || abs(digitTotal - expected) > 0.5) atomicAdd(overflowPixels, 1u);
   if (negative) atomicAdd(negativePixels, 1u);
-  atomicMax(maxCount, maxD);
+  if (!bad) atomicMax(maxCount, maxD);  // a wrapped digit is reported, not a count
   outVisibility = vec4(v / float(sampleCount), 1.0);
 }
