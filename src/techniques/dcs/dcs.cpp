@@ -197,30 +197,27 @@ class DepthComplexitySampling final : public Technique {
       idVao.bind();
       glDrawArrays(GL_POINTS, 0, GLsizei(edgeIds.size()));
     };
-    // Wedge faces are depth-tested against the visible surface: a fragment survives where the
-    // surface is behind the face (reversed Z: smaller depth).
-    auto wedgeState = [] {
-      glEnable(GL_DEPTH_TEST);
-      glDepthMask(GL_FALSE);
-      glDepthFunc(GL_GEQUAL);
-      glEnable(GL_DEPTH_CLAMP);
-      glDisable(GL_CULL_FACE);
-      glEnable(GL_BLEND);
-      glBlendEquation(GL_FUNC_ADD);
-      glBlendFunc(GL_ONE, GL_ONE);
-    };
-    auto endWedgeState = [] {
-      glDisable(GL_BLEND);
-      glDisable(GL_DEPTH_CLAMP);
-      glDisable(GL_DEPTH_TEST);
-      glDepthMask(GL_TRUE);
-    };
     auto additive = [] {
       glDisable(GL_DEPTH_TEST);
       glDisable(GL_CULL_FACE);
       glEnable(GL_BLEND);
       glBlendEquation(GL_FUNC_ADD);
       glBlendFunc(GL_ONE, GL_ONE);
+    };
+    // Wedge faces are depth-tested against the visible surface: a fragment survives where the
+    // surface is behind the face (reversed Z: smaller depth).
+    auto wedgeState = [&] {
+      additive();
+      glEnable(GL_DEPTH_TEST);
+      glDepthMask(GL_FALSE);
+      glDepthFunc(GL_GEQUAL);
+      glEnable(GL_DEPTH_CLAMP);
+    };
+    auto endWedgeState = [] {
+      glDisable(GL_BLEND);
+      glDisable(GL_DEPTH_CLAMP);
+      glDisable(GL_DEPTH_TEST);
+      glDepthMask(GL_TRUE);
     };
 
     // Adaptive sampling (5.3): the counter base must hold the largest value any counter reaches,
@@ -318,9 +315,10 @@ class DepthComplexitySampling final : public Technique {
     GpuStatus status;
     for (int attempt = 0;; ++attempt) {
       plan = dcs::planPacking(N, maxCount, options_.maxTargets, minLayout);
-      // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes.
-      if (plan.layout > minLayout || plan.passes > 1)
-        PLOG_DEBUG("dcs: light '{}': counts up to {} (bound, + bias {}) need {}", light.name, maxCount - kBias, kBias,
+      // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes
+      // (once per light, not on every frame that reuses the bound).
+      if ((plan.layout > minLayout || plan.passes > 1) && (cached == boundCache_.end() || attempt > 0))
+        PLOG_INFO("dcs: light '{}': counts up to {} (bound, + bias {}) need {}", light.name, maxCount - kBias, kBias,
                    plan.describe());
       status = runCounterPasses(plan);
       int measured = int(status.boundMax);
