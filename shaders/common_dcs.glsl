@@ -18,14 +18,16 @@
 // open and non-manifold edges need no special case. Divergence from the paper: we integrate in
 // 3D (segment p -> y through e) instead of projecting e onto a light plane, so sphere lights
 // need nothing special and no edge is clipped against the light border.
+#include "common_volume.glsl"
+
 struct DcsEdge {
   vec4 v0;     // xyz
   vec4 v1;     // xyz
   ivec4 meta;  // x first incidence, y incidence count, z 1 for the closed-mesh rule
 };
 struct DcsIncidence {
-  vec4 third;   // xyz: the triangle's vertex opposite the edge
-  vec4 normal;  // xyz: the triangle's (unnormalised) plane normal in its own winding
+  vec4 third;   // xyz: the triangle's vertex opposite the edge, w: +1 if it runs v0 -> v1, else -1
+  vec4 normal;  // the triangle's plane n . x + d = 0: n (unnormalised) in its own winding, w = d
 };
 layout(std430, binding = PENUMBRA_SSBO_DCS_EDGES) readonly buffer DcsEdges { DcsEdge dcsEdges[]; };
 layout(std430, binding = PENUMBRA_SSBO_DCS_INCIDENCES) readonly buffer DcsIncidences {
@@ -49,13 +51,20 @@ layout(std430, binding = PENUMBRA_SSBO_DCS_PROFILE) buffer DcsProfile {
 
 int signOf(float x) { return x > 0.0 ? 1 : (x < 0.0 ? -1 : 0); }
 
-// m_e(p) above.
-int dcsEdgeWeight(DcsEdge e, vec3 p, vec3 ne) {
+// m_e(p) above. Both sigma_t and w_t depend only on the side of t's plane that p is on:
+// n_e . (x_t - p) = det(v0 - p, v1 - v0, x_t - v0) = -o_t n_t . (p - v0), with x_t the third
+// vertex, n_t the plane normal in t's winding and o_t = +1 when t runs v0 -> v1. That side is
+// evaluated once per triangle, by one expression with the plane stored with t (n_t, d_t), so
+// t's three edges agree on it when p lies (nearly) in t's plane: computed per edge, sigma_t
+// and w_t disagreed between the edges of a triangle seen edge-on (dcs-silhouettes, a floor
+// point 1e-6 off a sphere triangle's plane: a count of -1).
+int dcsEdgeWeight(DcsEdge e, vec3 p) {
   int m = 0;
   for (int k = 0; k < e.meta.y; ++k) {
     DcsIncidence t = dcsIncidences[e.meta.x + k];
-    int sigma = signOf(dot(ne, t.third.xyz - p));
-    int w = e.meta.z != 0 ? int(dot(t.normal.xyz, p - e.v0.xyz) < 0.0) : 1;
+    precise float f = dot(t.normal.xyz, p) + t.normal.w;
+    int sigma = -int(t.third.w) * signOf(f);
+    int w = e.meta.z != 0 ? int(f < 0.0) : 1;
     m += w * sigma;
   }
   return m;
@@ -110,18 +119,18 @@ struct DcsCoverage {
   float k;
 };
 
-DcsCoverage dcsCoverageSetup(vec3 p, vec3 a, vec3 b, vec3 c) {
+// ne and dc are n_e and n_e . (c - p) from edgePlaneDistance: K = -n_e and k = -dc (equal
+// mathematically, det(a - p, b - a, c - a) = det(a - p, b - a, c - p)); taking them from there
+// makes the flip below the same decision as the update's sign and the shadow-volume count.
+DcsCoverage dcsCoverageSetup(vec3 p, vec3 a, vec3 b, vec3 c, vec3 ne, float dc) {
   DcsCoverage v;
   v.A = cross(a - p, c - p);
   v.B = cross(b - p, c - p);
-  v.K = cross(p - a, b - a);
-  v.K2 = cross(b - a, c - a);
-  v.k = dot(v.K, c - a);
-  if (v.k > 0.0) {  // orient(a, b, p, c) < 0: flip so that the three side tests read ">= 0"
-    v.K = -v.K;
-    v.K2 = -v.K2;
-    v.k = -v.k;
-  }
+  // orient(a, b, p, c) < 0 (dc < 0): flip so that the three side tests read ">= 0".
+  float flip = dc >= 0.0 ? -1.0 : 1.0;
+  v.K = flip * ne;
+  v.K2 = -flip * cross(b - a, c - a);
+  v.k = flip * dc;
   return v;
 }
 

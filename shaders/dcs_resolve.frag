@@ -15,7 +15,8 @@ layout(binding = PENUMBRA_IMAGE_SAMPLE_VIS, r32f) uniform writeonly image2DArray
 layout(std430, binding = PENUMBRA_SSBO_DCS_STATUS) buffer DcsStatus {
   uint overflowPixels;   // digit sum != checksum: a counter left its digit (below -bias)
   uint maxCount;         // largest decoded count (with the bias)
-  uint negativePixels;   // a count ended in [-bias, -1] (dcs_init.frag): treated as 0, reported
+  uint negativePixels;   // a count above the horizon ended in [-bias, -1] (dcs_init.frag): treated
+                         // as 0, reported
   uint boundMax;         // largest D(c) + bias + positive updates (dcs_wedge.frag)
 };
 
@@ -48,10 +49,11 @@ void main() {
       if (j >= passCount) continue;
       digitTotal += digit;
       maxD = max(maxD, uint(digit));
-      negative = negative || digit < float(DCS_BIAS);
       uint k = passFirst + j;
       vec3 x = samplePositions[base + k].xyz;
-      float visible = (digit <= float(DCS_BIAS) && aboveHorizon(p.xyz, n, x)) ? 1.0 : 0.0;
+      bool above = aboveHorizon(p.xyz, n, x);
+      negative = negative || (digit < float(DCS_BIAS) && above);
+      float visible = (digit <= float(DCS_BIAS) && above) ? 1.0 : 0.0;
 #ifdef PER_SAMPLE_OUT
       imageStore(sampleVisibility, ivec3(px, int(k)), vec4(visible));
 #endif

@@ -17,6 +17,7 @@
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 uniform float surfaceOffset;  // Scene::surfaceOffset(), as the reference's ray origins
+uniform vec3 eyePosition;
 uniform float lightRadius;  // bounding radius of the light around its centre
 uniform vec3 lightCorners[8];  // dcs.cpp lightCorners(): a planar light's 4 in cyclic order
 uniform int lightCornerCount;
@@ -58,19 +59,21 @@ void main() {
   vec4 gp = texelFetch(gPosition, px, 0);
   if (gp.w == 0.0) discard;
   PROFILE_COUNT(profFragments);
-  // The point is moved off its surface to the camera side, as the reference's ray origin is:
-  // its own triangle then lies clearly on one side of every plane(p, e).
-  vec3 p = gp.xyz + texelFetch(gNormal, px, 0).xyz * surfaceOffset;
+  // The point is moved off its surface towards the camera, where the reference's rays start
+  // (shared.h): its own triangle then lies clearly on one side of every plane(p, e).
+  vec3 p = penumbraShadowOrigin(gp.xyz, texelFetch(gNormal, px, 0).xyz, eyePosition, surfaceOffset);
   DcsEdge e = dcsEdges[gEdge];
   vec3 a = e.v0.xyz, b = e.v1.xyz;
-  vec3 ne = cross(a - p, b - a);  // == cross(a - p, b - p), see common_dcs.glsl
+  // n_e and the light centre's side of plane(p, e), bit for bit as the shadow-volume count
+  // decides the point's side of the volume side through e (common_volume.glsl).
+  vec3 ne;
+  float dc = edgePlaneDistance(a, b, lightPosition, p, ne);
   float len = length(ne);
   if (len == 0.0) discard;
-  float dc = dot(ne, lightPosition - p);
   if (abs(dc) > lightRadius * len) discard;  // the whole light on one side of plane(p, e)
   PROFILE_COUNT(profInPlane);
   float cSide = dc >= 0.0 ? 1.0 : -1.0;
-  int m = dcsEdgeWeight(e, p, ne);
+  int m = dcsEdgeWeight(e, p);
   int delta = -int(cSide) * m;  // sign(n_e . (s - p)) = -cSide for every covered sample
 #ifdef BOUND
   if (delta <= 0) discard;
@@ -82,7 +85,7 @@ void main() {
     if (!dcsEdgeMeetsLightPyramid(p, a, b, lightPosition, corners)) discard;
   }
   PROFILE_COUNT(profWeighted);
-  DcsCoverage cov = dcsCoverageSetup(p, a, b, lightPosition);
+  DcsCoverage cov = dcsCoverageSetup(p, a, b, lightPosition, ne, dc);
 #ifdef BOUND
   uint first = pixelSampleBase(px);
   for (uint k = 0u; k < sampleCount; ++k) {

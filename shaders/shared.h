@@ -6,10 +6,14 @@
 #define PENUMBRA_SHARED_H
 
 // Functions here are `inline` in C++ (the header is included by several translation units).
+// PENUMBRA_PRECISE: GLSL `precise` (no fused multiply-adds the compiler may choose differently
+// in two shaders), nothing in C++.
 #ifdef __cplusplus
 #define PENUMBRA_FN inline
+#define PENUMBRA_PRECISE
 #else
 #define PENUMBRA_FN
+#define PENUMBRA_PRECISE precise
 #endif
 
 // ---- G-buffer layout (pipeline) ------------------------------------------------------------
@@ -67,6 +71,22 @@ PENUMBRA_FN uint penumbraSetForPixel(uint x, uint y, uint pattern, uint sets, ui
     return penumbraHash(x ^ penumbraHash(y ^ penumbraHash(seed))) % sets;
   if (pattern == uint(PENUMBRA_PATTERN_INTERLEAVED)) return (y % k) * k + (x % k);
   return 0u;
+}
+
+// Where visibility is evaluated for a visible point p (unit normal n facing the camera, camera
+// at `eye`): p moved towards the camera along the view ray until it is `offset` off its surface,
+// at most PENUMBRA_ORIGIN_MAX_STRETCH offsets along the ray (grazing views). The reference
+// starts its shadow rays there, and the shadow-volume count and the dcs wedges evaluate their
+// plane tests there: on the view ray, so that what the rasteriser found along that ray (which
+// volume face the ray meets, near a face's border too) holds for the point (an origin moved
+// along the normal instead left a pixel of hard case 19 off by one, where the ray passes within
+// 1e-5 of the box's bottom edge). Without a camera (CPU-only G-buffers), eye = p + n.
+#define PENUMBRA_ORIGIN_MAX_STRETCH 16.0f
+PENUMBRA_FN vec3 penumbraShadowOrigin(vec3 p, vec3 n, vec3 eye, float offset) {
+  PENUMBRA_PRECISE vec3 v = normalize(eye - p);
+  PENUMBRA_PRECISE float along = offset / max(dot(n, v), 1.0f / PENUMBRA_ORIGIN_MAX_STRETCH);
+  PENUMBRA_PRECISE vec3 o = p + v * along;
+  return o;
 }
 
 #endif

@@ -175,6 +175,7 @@ CpuGBuffer GpuScene::readGBuffer() const {
   Image pos = position_.read(4), nrm = normal_.read(4);
   CpuGBuffer g;
   g.width = width_, g.height = height_;
+  g.camera = cameraPos_;
   std::size_t n = pos.pixelCount();
   g.position.resize(n), g.normal.resize(n), g.valid.resize(n);
   for (std::size_t i = 0; i < n; ++i) {

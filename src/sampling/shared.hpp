@@ -1,8 +1,15 @@
-// C++ side of shaders/shared.h: gives the GLSL-style `uint` and includes the shared header.
+// C++ side of shaders/shared.h: gives the GLSL-style `uint`, `vec3` and the functions the header
+// uses, and includes it.
 #pragma once
 #include <cstdint>
 
+#include <glm/glm.hpp>
+
 namespace penumbra::shared {
 using uint = std::uint32_t;
+using vec3 = glm::vec3;
+using glm::dot;
+using glm::max;
+using glm::normalize;
 #include "shared.h"  // NOLINT: shared with GLSL, see shaders/shared.h
 }  // namespace penumbra::shared

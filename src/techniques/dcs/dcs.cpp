@@ -45,7 +45,7 @@ struct GpuEdge {
 };
 struct GpuIncidence {
   glm::vec4 third;  // xyz third vertex, w the triangle's orientation along the edge (+-1)
-  glm::vec4 normal;
+  glm::vec4 normal;  // the triangle's plane: n (its winding), w = d with n . x + d = 0
 };
 struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
@@ -124,7 +124,7 @@ class DepthComplexitySampling final : public Technique {
           std::uint32_t third = tri.x + tri.y + tri.z - e.v0 - e.v1;
           glm::dvec3 a(P[tri.x]), b(P[tri.y]), c(P[tri.z]);
           glm::dvec3 n = glm::cross(b - a, c - a);
-          incidences.push_back({glm::vec4(P[third], float(inc.orientation)), glm::vec4(glm::vec3(n), 0.0f)});
+          incidences.push_back({glm::vec4(P[third], float(inc.orientation)), glm::vec4(glm::vec3(n), float(-glm::dot(n, a)))});
         }
         edges.push_back(g);
       }

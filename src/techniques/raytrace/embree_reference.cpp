@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "sampling/shared.hpp"
 
 namespace penumbra {
 namespace {
@@ -191,13 +192,13 @@ struct EmbreeReference::Impl {
   }
 
   // Visibility of one pixel against `count` samples (positions/luminance arrays of that set),
-  // with the conventions of the header: horizon rule, origin offset along the normal. All rays
+  // with the conventions of the header: horizon rule, ray origin off the surface. All rays
   // of the pixel go to Embree as one stream.
-  glm::vec3 shadePixel(const glm::vec3& p, const glm::vec3& n, const glm::vec3* pos,
+  glm::vec3 shadePixel(const glm::vec3& p, const glm::vec3& n, const glm::vec3& eye, const glm::vec3* pos,
                        const glm::vec3* lum, int count, float offset, float* perSample, Scratch& s,
                        std::vector<int>& sampleOf, std::vector<float>& tr,
                        std::uint64_t& rayCount) const {
-    const glm::vec3 o = p + n * offset;
+    const glm::vec3 o = shared::penumbraShadowOrigin(p, n, eye, offset);
     s.reset(std::size_t(count));
     sampleOf.clear();
     for (int k = 0; k < count; ++k) {
@@ -237,7 +238,8 @@ struct EmbreeReference::Impl {
         const std::size_t i = std::size_t(y) * gbuf.width + x;
         if (!gbuf.valid[i]) continue;  // no surface: visibility 0
         const auto [pos, lum] = samplesFor(x, y, i, scratchSet);
-        const glm::vec3 v = shadePixel(gbuf.position[i], gbuf.normal[i], pos, lum, n, offset,
+        const glm::vec3 p = gbuf.position[i], nrm = gbuf.normal[i];
+        const glm::vec3 v = shadePixel(p, nrm, gbuf.camera.value_or(p + nrm), pos, lum, n, offset,
                                        perSample ? &out.perSample[i * n] : nullptr, scratch,
                                        sampleOf, tr, rayCount);
         for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];

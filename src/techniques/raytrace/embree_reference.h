@@ -9,11 +9,14 @@
 //  * a pixel is shaded only if the G-buffer has a surface there (valid);
 //  * a sample below the surface's horizon, dot(n, x_k - p) <= 0 with n the camera-facing
 //    normal, has visibility 0;
-//  * the ray starts at p + n * originOffset and stops at the sample (t < 1 - 1e-5 relative).
+//  * the ray starts at penumbraShadowOrigin(p, n, camera, originOffset) (shaders/shared.h: p
+//    moved towards the camera along the view ray until originOffset off its surface; along n
+//    when the G-buffer has no camera) and stops at the sample (t < 1 - 1e-5 relative).
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -30,6 +33,7 @@ struct CpuGBuffer {
   std::vector<glm::vec3> position;  // world
   std::vector<glm::vec3> normal;    // world, unit, facing the camera
   std::vector<std::uint8_t> valid;  // 1 where a surface was hit
+  std::optional<glm::vec3> camera;  // the view the G-buffer was rendered from, if any
 };
 
 // Per-light visibility: the RGB visibility buffer of eq. 2 (textured lights weight each sample by

@@ -40,13 +40,11 @@ void ShadowVolumeCounter::count(LightPass& pass) {
       const auto& P = m.topology.weldedPositions;
       for (auto& s : sil.sides) {
         const auto& e = m.topology.edges[s.edge];
-        // m > 0: the effective near cap runs v0 -> v1, so the outward side quad runs v1 -> v0
-        // (the shader emits b, a, a_inf, b_inf for input (a, b)).
-        glm::vec3 a = P[e.v0], b = P[e.v1];
-        if (s.multiplicity < 0) std::swap(a, b);
-        float w = float(std::abs(s.multiplicity));
-        sideVerts.emplace_back(a, w);
-        sideVerts.emplace_back(b, w);
+        // The edge in its own order, m_e signed (the shader orients the quad): the plane test
+        // of the fragment shader must see the same (v0, v1) as dcs's edge buffer.
+        float m = float(s.multiplicity);
+        sideVerts.emplace_back(P[e.v0], m);
+        sideVerts.emplace_back(P[e.v1], m);
       }
       for (std::size_t t = 0; t < sil.capSign.size(); ++t) {
         if (sil.capSign[t] == 0) continue;
@@ -67,17 +65,11 @@ void ShadowVolumeCounter::count(LightPass& pass) {
     fbo_.bind();
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
-    glEnable(GL_DEPTH_TEST);
-    glDepthMask(GL_FALSE);
-    glDepthFunc(GL_LESS);  // reversed Z: smaller depth = farther = behind the surface
+    // No depth test: the fragment shader decides "behind the visible point" by a plane test
+    // (hardsv_volume.frag). Depth clamp keeps the parts of the volume in front of the near
+    // plane (camera inside a volume).
+    glDisable(GL_DEPTH_TEST);
     glEnable(GL_DEPTH_CLAMP);
-    // Volume faces are pushed back a little, so that caps and sides coincident with a visible
-    // surface (its own near cap; a side in the plane of a face edge-on to the light, hard case
-    // 9) count: the count is the winding number just on the camera's side of the surface. The
-    // slope term is small: a side seen at a grazing angle must not move behind points it passes
-    // in front of. Measured on the hard-case scenes: (-0.1, -8) leaves no pixel outside the edge
-    // band inconsistent with the wedges of dcs; (-1, -4) left 20 on hard case 5.
-    glPolygonOffset(-0.1f, -8.0f);
     glDisable(GL_CULL_FACE);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
@@ -86,15 +78,13 @@ void ShadowVolumeCounter::count(LightPass& pass) {
       prog->use();
       prog->set("clipFromWorld", pass.gpu.clipFromWorld());
       prog->set("lightPosition", pass.light.position);
+      prog->set("eyePosition", pass.gpu.cameraPosition());
+      prog->set("surfaceOffset", pass.scene.surfaceOffset());
     }
-    glEnable(GL_POLYGON_OFFSET_FILL);
     drawPoints(sidesProgram_, sideBuf, sideVerts.size(), GL_LINES);
     drawPoints(capsProgram_, capBuf, capVerts.size(), GL_TRIANGLES);
     glDisable(GL_BLEND);
-    glDisable(GL_POLYGON_OFFSET_FILL);
     glDisable(GL_DEPTH_CLAMP);
-    glDisable(GL_DEPTH_TEST);
-    glDepthMask(GL_TRUE);
   });
 }
 

@@ -7,10 +7,12 @@
 // edges with multiplicity m_e and the cap sign of each triangle (closed meshes: classic
 // front-face caps; open, non-manifold or inconsistently wound meshes: one volume per triangle,
 // so boundary edges close the volume and the count does not depend on winding). The geometry
-// shader extrudes them to infinity. A volume fragment counts if it lies behind the visible
-// surface. The visible surface's own near cap coincides with it; volume faces are pushed back
-// by a small polygon offset so coincident ones count, which gives the winding number on the
-// camera's side of the surface (the lit side whenever the horizon rule passes).
+// shader extrudes them to infinity. A volume fragment counts if the view ray meets the face
+// behind the evaluation point (shared.h penumbraShadowOrigin: the visible point moved towards
+// the camera, off its surface), decided by a plane test in the fragment shader rather than the
+// depth buffer (shaders/hardsv_volume.frag): the visible surface's own near cap counts, which
+// gives the winding number on the camera's side of the surface (the lit side whenever the
+// horizon rule passes), and dcs's wedges decide side planes with the same test.
 #pragma once
 
 #include <vector>
