@@ -23,7 +23,8 @@
 struct DcsEdge {
   vec4 v0;     // xyz
   vec4 v1;     // xyz
-  ivec4 meta;  // x first incidence, y incidence count, z 1 for the closed-mesh rule
+  ivec4 meta;  // x first incidence, y incidence count, z 1 for the closed-mesh rule, w units
+               // of the mesh (dcs/opacity.h: what one crossing of it adds to a count)
 };
 struct DcsIncidence {
   vec4 third;   // xyz: the triangle's vertex opposite the edge, w: +1 if it runs v0 -> v1, else -1

@@ -1,6 +1,7 @@
 // Resolve of one pass: decode the packed counters (eq. 7-10), write each sample's visibility
-// (count == 0 and above the horizon: the Heaviside of eq. 5-6) into the per-sample array, and
-// add this pass's share of the visibility buffer (eq. 1-2). A counter that overflowed its digit
+// (above the horizon and count == 0: the Heaviside of eq. 5-6; with semi-opaque occluders the
+// transmittance the count's units decode to, DCS_OPACITY and shared.h penumbraDcsTransmittance)
+// into the per-sample array, and add this pass's share of the visibility buffer (eq. 1-2). A counter that overflowed its digit
 // carries into its neighbour; that changes the digit sum, so comparing it with the checksum
 // (the plain sum of all updates) detects it, and the pixel is reported.
 #include "common_light.glsl"
@@ -23,6 +24,8 @@ layout(std430, binding = PENUMBRA_SSBO_DCS_STATUS) buffer DcsStatus {
 uniform uint passFirst;
 uniform uint passCount;
 uniform float counterBase;
+uniform float opaqueUnits;  // dcs/opacity.h: units of an opaque surface (Q or U)
+uniform float unitLog;      // product coding: -ln T of one unit
 
 out vec4 outVisibility;
 
@@ -53,7 +56,7 @@ void main() {
       vec3 x = samplePositions[base + k].xyz;
       bool above = aboveHorizon(p.xyz, n, x);
       negative = negative || (digit < float(DCS_BIAS) && above);
-      float visible = (digit <= float(DCS_BIAS) && above) ? 1.0 : 0.0;
+      float visible = above ? penumbraDcsTransmittance(digit - float(DCS_BIAS), DCS_OPACITY, opaqueUnits, unitLog) : 0.0;
 #ifdef PER_SAMPLE_OUT
       imageStore(sampleVisibility, ivec3(px, int(k)), vec4(visible));
 #endif

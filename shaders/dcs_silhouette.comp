@@ -39,6 +39,7 @@ void main() {
   uint id = gl_GlobalInvocationID.x;
   if (id >= totalEdges) return;
   DcsEdge e = dcsEdges[id];
+  if (e.meta.w == 0) return;  // a mesh that never occludes (opacity 0)
   bool cut = false;
   int m = 0;
   for (int k = 0; k < e.meta.y; ++k) {

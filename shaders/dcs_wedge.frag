@@ -74,7 +74,9 @@ void main() {
   PROFILE_COUNT(profInPlane);
   float cSide = dc >= 0.0 ? 1.0 : -1.0;
   int m = dcsEdgeWeight(e, p);
-  int delta = -int(cSide) * m;  // sign(n_e . (s - p)) = -cSide for every covered sample
+  // sign(n_e . (s - p)) = -cSide for every covered sample; m_e(p) crossings of the mesh's
+  // surface, each worth the mesh's units (1 unless semi-opaque occluders are coded, opacity.h).
+  int delta = -int(cSide) * m * e.meta.w;
 #ifdef BOUND
   if (delta <= 0) discard;
 #else

@@ -73,6 +73,20 @@ PENUMBRA_FN uint penumbraSetForPixel(uint x, uint y, uint pattern, uint sets, ui
   return 0u;
 }
 
+// ---- dcs semi-opaque occluders (src/techniques/dcs/opacity.h) ------------------------------
+#define PENUMBRA_DCS_OPACITY_OPAQUE 0   // one unit per occluder: visible iff the count is 0
+#define PENUMBRA_DCS_OPACITY_SUM 1      // the paper's sum of opacities: T = 1 - Sat(count / Q)
+#define PENUMBRA_DCS_OPACITY_PRODUCT 2  // units of -ln T: T = exp(-count * delta), 0 from U on
+
+// Transmittance of a counter holding `count` units (negative counts read as 0); opaqueUnits is
+// Q (sum) or U (product), unitLog is delta (product).
+PENUMBRA_FN float penumbraDcsTransmittance(float count, int mode, float opaqueUnits, float unitLog) {
+  float c = max(count, 0.0f);
+  if (mode == PENUMBRA_DCS_OPACITY_SUM) return max(1.0f - c / opaqueUnits, 0.0f);
+  if (mode == PENUMBRA_DCS_OPACITY_PRODUCT) return c >= opaqueUnits ? 0.0f : exp(-c * unitLog);
+  return c > 0.0f ? 0.0f : 1.0f;
+}
+
 // Where visibility is evaluated for a visible point p (unit normal n facing the camera, camera
 // at `eye`): p moved towards the camera along the view ray until it is `offset` off its surface,
 // at most PENUMBRA_ORIGIN_MAX_STRETCH offsets along the ray (grazing views). The reference

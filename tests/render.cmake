@@ -16,3 +16,6 @@ set_tests_properties(cli_exit_codes PROPERTIES SKIP_RETURN_CODE 77)
 
 # DCS counter packing: no GL needed.
 penumbra_add_test(test_dcs_packing ${CMAKE_CURRENT_SOURCE_DIR}/dcs_packing_test.cpp LIBS penumbra_render)
+
+# DCS semi-opaque unit coding: no GL needed.
+penumbra_add_test(test_dcs_opacity ${CMAKE_CURRENT_SOURCE_DIR}/dcs_opacity_test.cpp LIBS penumbra_render)

@@ -9,6 +9,7 @@ namespace penumbra::shared {
 using uint = std::uint32_t;
 using vec3 = glm::vec3;
 using glm::dot;
+using glm::exp;
 using glm::max;
 using glm::normalize;
 #include "shared.h"  // NOLINT: shared with GLSL, see shaders/shared.h

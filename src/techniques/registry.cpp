@@ -13,10 +13,16 @@ const std::vector<TechniqueInfo>& techniqueTable() {
       {"none", "unshadowed direct lighting", [] { return makeUnshadowed(); }},
       {"hard-sv", "hard shadows from the light centre, z-fail shadow volumes (float counter)",
        [] { return makeHardShadowVolumes(); }},
-      {"dcs", "depth complexity sampling: per-sample occluder counts, accurate silhouettes (exact)",
+      {"dcs", "depth complexity sampling: per-sample occluder counts, accurate silhouettes (exact; semi-opaque layers multiply)",
        [] { return makeDepthComplexitySampling({SilhouetteMode::Accurate}); }},
       {"dcs-standard", "depth complexity sampling with standard silhouettes (from the light centre)",
        [] { return makeDepthComplexitySampling({SilhouetteMode::Standard}); }},
+      {"dcs-sum", "depth complexity sampling, semi-opaque occluders as the paper's sum of opacities",
+       [] {
+         DcsOptions o;
+         o.opacity = dcs::OpacityMode::Sum;
+         return makeDepthComplexitySampling(o);
+       }},
       {"raytrace", "Embree reference with the same light samples as every technique (per sample)",
        [] { return makeRaytraceSameSamples(); }},
       {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility only)",

@@ -41,7 +41,7 @@ namespace {
 // std430 layouts of shaders/common_dcs.glsl.
 struct GpuEdge {
   glm::vec4 v0, v1;
-  glm::ivec4 meta;  // first incidence, incidence count, closed rule, unused
+  glm::ivec4 meta;  // first incidence, incidence count, closed rule, units of the mesh
 };
 struct GpuIncidence {
   glm::vec4 third;  // xyz third vertex, w the triangle's orientation along the edge (+-1)
@@ -103,21 +103,24 @@ class DepthComplexitySampling final : public Technique {
   }
 
   void prepare(const Scene& scene, GpuScene& gpu) override {
-    if (scene.hasSemiOpaque())
-      PLOG_WARN("dcs treats semi-opaque occluders as opaque for now (its error against the reference says how much)");
-    volumes_.prepare(scene, gpu);
+    std::vector<float> opacities;
+    for (auto& m : scene.meshes) opacities.push_back(std::clamp(scene.materials[std::size_t(m.material)].opacity, 0.0f, 1.0f));
+    coding_ = dcs::planOpacity(opacities, options_.opacity, options_.opacityTolerance);
+    if (coding_.mode != PENUMBRA_DCS_OPACITY_OPAQUE) PLOG_INFO("dcs: semi-opaque occluders, {}", coding_.describe());
+    volumes_.prepare(scene, gpu, coding_.units, coding_.opaqueUnits);
     // All meshes' edges and incident triangles in two static buffers, edge ids global.
     std::vector<GpuEdge> edges;
     std::vector<GpuIncidence> incidences;
     edgeOffset_.clear();
     for (auto& m : volumes_.meshes()) {
       edgeOffset_.push_back(std::uint32_t(edges.size()));
+      // The units of the mesh ride with each edge: an update is m_e(p) times them.
       const auto& topo = m.topology;
       const auto& P = topo.weldedPositions;
       for (auto& e : topo.edges) {
         GpuEdge g{glm::vec4(P[e.v0], 1.0f), glm::vec4(P[e.v1], 1.0f),
                   glm::ivec4(int(incidences.size()), int(e.incidenceCount),
-                             m.rule == geo::VolumeRule::ClosedFrontFaces ? 1 : 0, 0)};
+                             m.rule == geo::VolumeRule::ClosedFrontFaces ? 1 : 0, m.units)};
         for (std::uint32_t k = 0; k < e.incidenceCount; ++k) {
           const auto& inc = topo.incidences[e.firstIncidence + k];
           const glm::uvec3& tri = topo.weldedTriangles[inc.triangle];
@@ -157,6 +160,7 @@ class DepthComplexitySampling final : public Technique {
       const auto& meshes = volumes_.meshes();
       for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
         const auto& m = meshes[mi];
+        if (m.units == 0) continue;  // never occludes
         if (options_.silhouettes == SilhouetteMode::Accurate) {
           for (auto e : geo::extractAccurateSilhouette(m.topology, extent, m.rule)) edgeIds.push_back(int(edgeOffset_[mi] + e));
         } else {
@@ -292,6 +296,8 @@ class DepthComplexitySampling final : public Technique {
           resolve.set("passFirst", first);
           resolve.set("passCount", count);
           resolve.set("counterBase", float(plan.counters.base));
+          resolve.set("opaqueUnits", float(coding_.opaqueUnits));
+          resolve.set("unitLog", coding_.unitLog);
           gl::Framebuffer fbo({&pass.visibility}, nullptr);
           fbo.bind();
           additive();
@@ -366,7 +372,10 @@ class DepthComplexitySampling final : public Technique {
             {"reruns", double(stats_.reruns)},
             {"maxCount", double(stats_.maxCount)},
             {"negativeCountPixels", double(stats_.negativePixels)},
-            {"inconsistentPixels", double(stats_.inconsistentPixels)}};
+            {"inconsistentPixels", double(stats_.inconsistentPixels)},
+            {"opacityCoding", double(coding_.mode)},
+            {"opaqueUnits", double(coding_.opaqueUnits)},
+            {"opacityLayerError", coding_.maxLayerError}};
     if (options_.profile) {
       const Profile& p = stats_.profile;
       for (auto [name, value] : {std::pair{"profileRectangleEdges", p.rectangleEdges}, {"profileWedgeEdges", p.wedgeEdges},
@@ -431,7 +440,8 @@ class DepthComplexitySampling final : public Technique {
     if (it != programs_.end()) return it->second;
     std::vector<std::string> defs = {"DCS_BIAS " + std::to_string(kBias), "DCS_TARGETS " + std::to_string(plan.targets),
                                      "DIGITS " + std::to_string(plan.counters.digits),
-                                     "DCS_BASE " + std::to_string(plan.counters.base)};
+                                     "DCS_BASE " + std::to_string(plan.counters.base),
+                                     "DCS_OPACITY " + std::to_string(coding_.mode)};
     if (options_.profile) defs.push_back("DCS_PROFILE");
     Programs p{gl::Program({"fullscreen.vert", "dcs_init.frag"}, defs),
                gl::Program({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, defs),
@@ -452,6 +462,7 @@ class DepthComplexitySampling final : public Technique {
   }
 
   DcsOptions options_;
+  dcs::OpacityCoding coding_;
   ShadowVolumeCounter volumes_;
   std::vector<std::uint32_t> edgeOffset_;
   gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_, profileBuffer_;

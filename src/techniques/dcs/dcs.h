@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "pipeline/technique.h"
+#include "techniques/dcs/opacity.h"
 
 namespace penumbra {
 
@@ -22,6 +23,10 @@ struct DcsOptions {
   // >= 0: the first frame of a light plans its counters from this bound instead of running the
   // bound pass (the after-pass check and re-render still apply; tests use it to force them).
   int firstFrameBound = -1;
+  // Semi-opaque occluders (dcs/opacity.h): the paper's sum of opacities or the product of
+  // transmittances, and the largest single-layer transmittance error the unit coding may make.
+  dcs::OpacityMode opacity = dcs::OpacityMode::Product;
+  double opacityTolerance = 1.0 / 1024.0;
 };
 
 std::unique_ptr<Technique> makeDepthComplexitySampling(const DcsOptions& options = {});

@@ -1,5 +1,6 @@
 #include "techniques/shadow_volume/shadow_volume.h"
 
+#include "core/error.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
 
@@ -17,12 +18,14 @@ void drawPoints(const gl::Program& prog, const gl::Buffer& buf, std::size_t coun
 
 }  // namespace
 
-void ShadowVolumeCounter::prepare(const Scene& scene, GpuScene& gpu) {
+void ShadowVolumeCounter::prepare(const Scene& scene, GpuScene& gpu, const std::vector<int>& units, int opaqueUnits) {
+  PENUMBRA_CHECK(units.empty() || units.size() == scene.meshes.size(), "ShadowVolumeCounter: one unit count per mesh");
   meshes_.clear();
-  for (auto& m : scene.meshes) {
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     MeshVolumes v;
-    v.topology = geo::buildEdgeTopology(m.mesh);
-    v.rule = geo::volumeRuleFor(v.topology);
+    v.topology = geo::buildEdgeTopology(scene.meshes[i].mesh);
+    v.units = units.empty() ? 1 : units[i];
+    v.rule = v.units < opaqueUnits ? geo::VolumeRule::PerTriangle : geo::volumeRuleFor(v.topology);
     meshes_.push_back(std::move(v));
   }
   sidesProgram_ = gl::Program({"hardsv_volume.vert", "hardsv_volume.geom", "hardsv_volume.frag"}, {"SIDES"});
@@ -36,24 +39,25 @@ void ShadowVolumeCounter::count(LightPass& pass) {
   std::vector<glm::vec4> sideVerts, capVerts;
   pass.timer.time("silhouettes", [&] {
     for (auto& m : meshes_) {
+      if (m.units == 0) continue;
       auto sil = geo::extractPointSilhouette(m.topology, light, m.rule);
       const auto& P = m.topology.weldedPositions;
       for (auto& s : sil.sides) {
         const auto& e = m.topology.edges[s.edge];
         // The edge in its own order, m_e signed (the shader orients the quad): the plane test
         // of the fragment shader must see the same (v0, v1) as dcs's edge buffer.
-        float m = float(s.multiplicity);
-        sideVerts.emplace_back(P[e.v0], m);
-        sideVerts.emplace_back(P[e.v1], m);
+        float weight = float(s.multiplicity * m.units);
+        sideVerts.emplace_back(P[e.v0], weight);
+        sideVerts.emplace_back(P[e.v1], weight);
       }
       for (std::size_t t = 0; t < sil.capSign.size(); ++t) {
         if (sil.capSign[t] == 0) continue;
         const auto& tri = m.topology.weldedTriangles[t];
         // c_t = -1 (back-facing triangle of an open mesh): reverse it so the cap faces the light.
         glm::uvec3 o = sil.capSign[t] > 0 ? tri : glm::uvec3(tri.x, tri.z, tri.y);
-        capVerts.emplace_back(P[o.x], 1.0f);
-        capVerts.emplace_back(P[o.y], 1.0f);
-        capVerts.emplace_back(P[o.z], 1.0f);
+        capVerts.emplace_back(P[o.x], float(m.units));
+        capVerts.emplace_back(P[o.y], float(m.units));
+        capVerts.emplace_back(P[o.z], float(m.units));
       }
     }
   });

@@ -28,10 +28,15 @@ class ShadowVolumeCounter {
   struct MeshVolumes {
     geo::EdgeTopology topology;
     geo::VolumeRule rule;
+    int units = 1;  // what one volume of the mesh adds to the count (0: the mesh never occludes)
   };
 
-  // Builds the edge topology of every mesh and the GL resources for `gpu`'s size.
-  void prepare(const Scene& scene, GpuScene& gpu);
+  // Builds the edge topology of every mesh and the GL resources for `gpu`'s size. `units`
+  // (empty: 1 for every mesh) weights each mesh's volumes, e.g. by opacity (dcs/opacity.h); a
+  // mesh with 0 units is left out, and one with fewer than `opaqueUnits` (semi-opaque) gets
+  // one volume per triangle whatever its topology, so the count is the number of surface
+  // crossings between the point and the light, as the reference attenuates once per crossing.
+  void prepare(const Scene& scene, GpuScene& gpu, const std::vector<int>& units = {}, int opaqueUnits = 1);
   // Fills counter() with the number of volumes (from pass.light.position) containing each
   // visible point: the count of closed objects plus open surfaces between it and the light.
   // Times the stages "silhouettes" and "shadow volume".
