@@ -141,3 +141,4 @@ bool dcsCovered(DcsCoverage v, vec3 sigma) {
   if ((da > 0.0) == (db > 0.0)) return false;
   return dot(v.K2, sigma) >= 0.0 && dot(v.K, sigma) + v.k >= 0.0;
 }
+

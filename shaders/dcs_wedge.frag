@@ -13,6 +13,7 @@
 // target, before any counter exists (the first frame of a light).
 #include "common_light.glsl"
 #include "common_dcs.glsl"
+#include "common_dcs_lut.glsl"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
@@ -87,32 +88,60 @@ void main() {
     if (!dcsEdgeMeetsLightPyramid(p, a, b, lightPosition, corners)) discard;
   }
   PROFILE_COUNT(profWeighted);
-  DcsCoverage cov = dcsCoverageSetup(p, a, b, lightPosition, ne, dc);
-#ifdef BOUND
-  uint first = pixelSampleBase(px);
-  for (uint k = 0u; k < sampleCount; ++k) {
-    if (dcsCovered(cov, samplePositions[first + k].xyz - lightPosition)) {
-      outBound = vec4(float(delta), 0.0, 0.0, 0.0);
-      return;
-    }
+  // The covered samples: the paper's 2D modes where the edge projects onto a planar light
+  // (DCS_COVERAGE naive / lut, common_dcs.glsl), else the exact 3D test.
+  bool exact = true;
+#if DCS_COVERAGE != PENUMBRA_DCS_COVERAGE_EXACT
+  vec2 q0, q1;
+  int projected = dcsProjectEdge(p, a, b, lightPosition, q0, q1);
+  if (projected == 0) discard;
+  uvec4 field = uvec4(0u);
+  if (projected > 0) {
+    exact = false;
+    field = dcsCoveredField(q0, q1, pixelSampleBase(px) / sampleCount, sampleCount);
   }
-  discard;
+#endif
+#ifdef BOUND
+  bool hit = false;
+#if DCS_COVERAGE != PENUMBRA_DCS_COVERAGE_EXACT
+  hit = !exact && field != uvec4(0u);
+#endif
+  if (exact) {
+    DcsCoverage cov = dcsCoverageSetup(p, a, b, lightPosition, ne, dc);
+    uint first = pixelSampleBase(px);
+    for (uint k = 0u; k < sampleCount && !hit; ++k) hit = dcsCovered(cov, samplePositions[first + k].xyz - lightPosition);
+  }
+  if (!hit) discard;
+  outBound = vec4(float(delta), 0.0, 0.0, 0.0);
 #else
   // The covered samples of the pass as a bit mask, then the packed values from it with
   // compile-time indices only (dynamic indexing of the outputs is slow on CPU drivers).
   uint base = pixelSampleBase(px) + passFirst;
   uint mask[MASK_WORDS];
   int covered = 0;
-  for (int w = 0; w < MASK_WORDS; ++w) {
-    uint bits = 0u;
-    for (uint k = 0u; k < 32u; ++k) {
-      uint j = uint(w) * 32u + k;
-      if (j >= passCount) break;
-      if (dcsCovered(cov, samplePositions[base + j].xyz - lightPosition)) bits |= 1u << k;
+  if (exact) {
+    DcsCoverage cov = dcsCoverageSetup(p, a, b, lightPosition, ne, dc);
+    for (int w = 0; w < MASK_WORDS; ++w) {
+      uint bits = 0u;
+      for (uint k = 0u; k < 32u; ++k) {
+        uint j = uint(w) * 32u + k;
+        if (j >= passCount) break;
+        if (dcsCovered(cov, samplePositions[base + j].xyz - lightPosition)) bits |= 1u << k;
+      }
+      mask[w] = bits;
     }
-    mask[w] = bits;
-    covered += bitCount(bits);
   }
+#if DCS_COVERAGE != PENUMBRA_DCS_COVERAGE_EXACT
+  else {
+    for (int w = 0; w < MASK_WORDS; ++w) {
+      uint j0 = uint(w) * 32u;
+      uint left = passCount - min(passCount, j0);  // samples of the pass from j0 on
+      uint bits = left > 0u ? dcsBitsFrom(field, passFirst + j0) : 0u;
+      mask[w] = left < 32u ? bits & ((1u << left) - 1u) : bits;
+    }
+  }
+#endif
+  for (int w = 0; w < MASK_WORDS; ++w) covered += bitCount(mask[w]);
   if (covered == 0) discard;
   PROFILE_COUNT(profUpdating);
   vec4 acc[DCS_TARGETS];

@@ -31,6 +31,8 @@
 #define PENUMBRA_UNIT_COUNTER 6         // R32F: shadow-volume count (hard-sv, dcs)
 #define PENUMBRA_UNIT_DCS_COUNTERS 7    // RGBA32F 2D array: dcs packed counters, a layer a target
 #define PENUMBRA_UNIT_DCS_CHECKSUM 8    // R32F: dcs sum of the counters of a pass
+#define PENUMBRA_UNIT_DCS_SECTOR_LUT 9  // RGBA32UI cube-map array: dcs edge LUT, sectors (a cube a set)
+#define PENUMBRA_UNIT_DCS_LINE_LUT 10   // RGBA32UI 2D array: dcs edge LUT, lines (a layer a set)
 #define PENUMBRA_IMAGE_SAMPLE_VIS 0     // image unit of the per-sample visibility array
 
 // ---- shader storage / uniform buffer bindings ----------------------------------------------
@@ -40,6 +42,7 @@
 #define PENUMBRA_SSBO_DCS_INCIDENCES 3  // dcs: incident triangles (third vertex, plane normal)
 #define PENUMBRA_SSBO_DCS_STATUS 4      // dcs: resolve status (overflowing pixels)
 #define PENUMBRA_SSBO_DCS_PROFILE 5     // dcs: wedge counters (PENUMBRA_DCS_PROFILE=1)
+#define PENUMBRA_SSBO_DCS_PACKED 6      // dcs: packed sample positions (edge_lut.h), naive mode
 
 // ---- light shapes (match penumbra::LightShape) ---------------------------------------------
 #define PENUMBRA_LIGHT_POINT 0
@@ -72,6 +75,11 @@ PENUMBRA_FN uint penumbraSetForPixel(uint x, uint y, uint pattern, uint sets, ui
   if (pattern == uint(PENUMBRA_PATTERN_INTERLEAVED)) return (y % k) * k + (x % k);
   return 0u;
 }
+
+// ---- dcs covered-sample modes (src/techniques/dcs/edge_lut.h) -------------------------------
+#define PENUMBRA_DCS_COVERAGE_EXACT 0   // per-sample 3D test (common_dcs.glsl dcsCovered)
+#define PENUMBRA_DCS_COVERAGE_NAIVE 1   // per-sample 2D test on 8-bit packed positions (paper 7.1)
+#define PENUMBRA_DCS_COVERAGE_LUT 2     // sector & line bit fields from the edge LUT (paper 7.3)
 
 // ---- dcs semi-opaque occluders (src/techniques/dcs/opacity.h) ------------------------------
 #define PENUMBRA_DCS_OPACITY_OPAQUE 0   // one unit per occluder: visible iff the count is 0

@@ -101,6 +101,26 @@ Texture Texture::make2DArray(GLenum internalFormat, int width, int height, int l
   return t;
 }
 
+Texture Texture::makeCubeArray(GLenum internalFormat, int size, int cubes) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &id);
+  glTextureStorage3D(id, 1, internalFormat, size, size, 6 * cubes);
+  setSampling(id);
+  Texture t;
+  static_cast<Object&>(t) = Object(id);
+  t.w_ = t.h_ = size, t.layers_ = 6 * cubes, t.fmt_ = internalFormat;
+  return t;
+}
+
+void Texture::uploadUint4(const std::uint32_t* texels) const {
+  PENUMBRA_CHECK(fmt_ == GL_RGBA32UI, "uploadUint4 needs an RGBA32UI texture");
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  if (layers_ > 0)
+    glTextureSubImage3D(id(), 0, 0, 0, 0, w_, h_, layers_, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels);
+  else
+    glTextureSubImage2D(id(), 0, 0, 0, w_, h_, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels);
+}
+
 void Texture::bind(GLuint unit) const { glBindTextureUnit(unit, id()); }
 
 void Texture::bindImage(GLuint unit, GLenum access) const {

@@ -69,6 +69,8 @@ class Texture : public Object<deleteTexture> {
   static Texture make2D(GLenum internalFormat, int width, int height);
   // 2D array texture with `layers` layers.
   static Texture make2DArray(GLenum internalFormat, int width, int height, int layers);
+  // Cube-map array of `cubes` cubes of size x size faces (layers() = 6 * cubes layer-faces).
+  static Texture makeCubeArray(GLenum internalFormat, int size, int cubes);
   int width() const { return w_; }
   int height() const { return h_; }
   int layers() const { return layers_; }
@@ -82,6 +84,8 @@ class Texture : public Object<deleteTexture> {
   Image read(int channels, int layer = -1) const;
   // Uploads float data (channels 1..4) to the whole texture (or one layer of an array).
   void upload(const float* data, int channels, int layer = -1) const;
+  // Uploads RGBA unsigned-integer texels to every layer (layer-face) of an RGBA32UI texture.
+  void uploadUint4(const std::uint32_t* texels) const;
   std::size_t bytes() const;  // GPU memory estimate for reports
 
  private:

@@ -399,6 +399,7 @@ LightSampleSet makeLightSamples(const Scene& scene, const Light& light,
   LightSampleSet out;
   out.shape = light.shape;
   out.seed = params.seed;
+  out.strategy = params.strategy;
   // A point light, or one sample (hard shadows), has a single position: every set would be the
   // centre, so the pattern collapses to one correlated set.
   const bool single = light.shape == LightShape::Point || params.count == 1;
@@ -454,6 +455,7 @@ LightSampleSet makeLightSampleSet(const Scene& scene, const Light& light, Sample
   LightSampleSet out;
   out.shape = light.shape;
   out.seed = seed;
+  out.strategy = strategy;
   out.count = light.shape == LightShape::Point ? 1 : count;
   out.positions.reserve(out.count);
   out.uv.reserve(out.count);

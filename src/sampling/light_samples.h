@@ -46,6 +46,7 @@ struct LightSampleSet {
   PixelPattern pattern = PixelPattern::Correlated;
   int interleaveK = 1;
   std::uint32_t seed = 1;
+  SampleStrategy strategy = SampleStrategy::Stratified;
   LightShape shape = LightShape::Rect;
   std::vector<glm::vec3> positions;  // world, [set * count + k]
   std::vector<glm::vec2> uv;         // light parametric coords in [0,1]^2, same indexing

@@ -23,6 +23,18 @@ const std::vector<TechniqueInfo>& techniqueTable() {
          o.opacity = dcs::OpacityMode::Sum;
          return makeDepthComplexitySampling(o);
        }},
+      {"dcs-naive", "dcs with the paper's covered-sample loop over 8-bit packed positions (approximate)",
+       [] {
+         DcsOptions o;
+         o.coverage = PENUMBRA_DCS_COVERAGE_NAIVE;
+         return makeDepthComplexitySampling(o);
+       }},
+      {"dcs-lut", "dcs with the paper's edge LUT (cube-map sectors & line table, approximate)",
+       [] {
+         DcsOptions o;
+         o.coverage = PENUMBRA_DCS_COVERAGE_LUT;
+         return makeDepthComplexitySampling(o);
+       }},
       {"raytrace", "Embree reference with the same light samples as every technique (per sample)",
        [] { return makeRaytraceSameSamples(); }},
       {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility only)",

@@ -23,6 +23,8 @@
 #include "techniques/dcs/dcs.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
 
 #include <fmt/format.h>
@@ -139,8 +141,9 @@ class DepthComplexitySampling final : public Technique {
     bound_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
     boundFbo_ = gl::Framebuffer({&bound_}, &gpu.depth());
     checksum_ = gl::Texture::make2D(GL_RG32F, gpu.width(), gpu.height());
-    boundProgram_ = gl::Program({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, {"BOUND", "DCS_TARGETS 1", "DIGITS 1"});
+    boundPrograms_.clear();
     programs_.clear();
+    luts_.clear();
     boundCache_.clear();
     counters_ = gl::Texture();
     emptyVao_ = gl::VertexArray::create();
@@ -148,6 +151,10 @@ class DepthComplexitySampling final : public Technique {
 
   void renderVisibility(LightPass& pass) override {
     const Light& light = pass.light;
+    // The paper's 2D covered-sample modes need a planar light; others use the exact test.
+    const int coverage = dcs::edgeLutSupports(light) ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;
+    stats_.coverage = coverage;
+    const GpuLut* lut = coverage != PENUMBRA_DCS_COVERAGE_EXACT ? &lutFor(pass) : nullptr;
     volumes_.count(pass);  // D(c): stages "silhouettes", "shadow volume"
 
     std::vector<int> edgeIds;
@@ -198,6 +205,15 @@ class DepthComplexitySampling final : public Technique {
       prog.set("margin", 2.0f * pass.scene.surfaceOffset());
       prog.set("lightRadius", radius);
       prog.set("surfaceOffset", pass.scene.surfaceOffset());
+      if (lut) {
+        glm::vec2 half = light.shape == LightShape::Rect ? 0.5f * light.size : glm::vec2(light.size.x);
+        prog.set("lightAxisU", light.tangent / half.x);
+        prog.set("lightAxisV", light.bitangent() / half.y);
+        prog.set("lutExtent", lut->extent);
+        lut->sector.bind(PENUMBRA_UNIT_DCS_SECTOR_LUT);
+        lut->line.bind(PENUMBRA_UNIT_DCS_LINE_LUT);
+        lut->packed.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PACKED);
+      }
       idVao.bind();
       glDrawArrays(GL_POINTS, 0, GLsizei(edgeIds.size()));
     };
@@ -244,7 +260,7 @@ class DepthComplexitySampling final : public Technique {
         glClearNamedFramebufferfv(boundFbo_.id(), GL_COLOR, 0, zero);
         pass.gpu.bindGBuffer();
         wedgeState();
-        drawWedges(boundProgram_);
+        drawWedges(boundProgramFor(coverage));
         endWedgeState();
         Image dc = volumes_.counter().read(1), bound = bound_.read(1);
         float m = 0.0f;
@@ -263,7 +279,7 @@ class DepthComplexitySampling final : public Technique {
       Profile profile;
       profileBuffer_.write(&profile, sizeof profile);
       profileBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PROFILE);
-      Programs& progs = programsFor(plan);
+      Programs& progs = programsFor(plan, coverage);
       ensureCounters(plan, pass.gpu);
       const gl::Program& resolve = pass.perSample ? progs.resolvePerSample : progs.resolve;
       double w = 1.0, sum = 0.0;  // sum of B^d over a channel's digits
@@ -357,8 +373,10 @@ class DepthComplexitySampling final : public Technique {
   bool providesPerSample() const override { return true; }
 
   std::size_t memoryBytes() const override {
+    std::size_t lutBytes = 0;
+    for (auto& [hash, l] : luts_) lutBytes += l.sector.bytes() + l.line.bytes() + l.packed.size();
     return volumes_.counter().bytes() + bound_.bytes() + checksum_.bytes() + (counters_ ? counters_.bytes() : 0) +
-           edgeBuffer_.size() + incidenceBuffer_.size();
+           edgeBuffer_.size() + incidenceBuffer_.size() + lutBytes;
   }
 
   std::vector<std::pair<std::string, double>> statistics() const override {
@@ -374,6 +392,7 @@ class DepthComplexitySampling final : public Technique {
             {"negativeCountPixels", double(stats_.negativePixels)},
             {"inconsistentPixels", double(stats_.inconsistentPixels)},
             {"opacityCoding", double(coding_.mode)},
+            {"coverageMode", double(stats_.coverage)},
             {"opaqueUnits", double(coding_.opaqueUnits)},
             {"opacityLayerError", coding_.maxLayerError}};
     if (options_.profile) {
@@ -432,16 +451,18 @@ class DepthComplexitySampling final : public Technique {
     dcs::PackingPlan plan;
     std::uint32_t maxCount = 0, boundMaxCount = 0, negativePixels = 0, inconsistentPixels = 0;
     std::uint32_t reruns = 0;  // counter passes run again because the previous frame's bound failed
+    int coverage = PENUMBRA_DCS_COVERAGE_EXACT;  // the covered-sample mode of the last light
   };
 
-  Programs& programsFor(const dcs::PackingPlan& plan) {
-    int key = plan.layout * 16 + plan.targets;
+  Programs& programsFor(const dcs::PackingPlan& plan, int coverage) {
+    int key = (plan.layout * 16 + plan.targets) * 4 + coverage;
     auto it = programs_.find(key);
     if (it != programs_.end()) return it->second;
     std::vector<std::string> defs = {"DCS_BIAS " + std::to_string(kBias), "DCS_TARGETS " + std::to_string(plan.targets),
                                      "DIGITS " + std::to_string(plan.counters.digits),
                                      "DCS_BASE " + std::to_string(plan.counters.base),
-                                     "DCS_OPACITY " + std::to_string(coding_.mode)};
+                                     "DCS_OPACITY " + std::to_string(coding_.mode),
+                                     "DCS_COVERAGE " + std::to_string(coverage)};
     if (options_.profile) defs.push_back("DCS_PROFILE");
     Programs p{gl::Program({"fullscreen.vert", "dcs_init.frag"}, defs),
                gl::Program({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, defs),
@@ -449,6 +470,68 @@ class DepthComplexitySampling final : public Technique {
     defs.push_back("PER_SAMPLE_OUT");
     p.resolvePerSample = gl::Program({"fullscreen.vert", "dcs_resolve.frag"}, defs);
     return programs_.emplace(key, std::move(p)).first->second;
+  }
+
+  const gl::Program& boundProgramFor(int coverage) {
+    auto it = boundPrograms_.find(coverage);
+    if (it == boundPrograms_.end())
+      it = boundPrograms_
+               .emplace(coverage, gl::Program({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"},
+                                              {"BOUND", "DCS_TARGETS 1", "DIGITS 1",
+                                               "DCS_COVERAGE " + std::to_string(coverage)}))
+               .first;
+    return it->second;
+  }
+
+  // The edge LUT of the light's sample pattern on the GPU (edge_lut.h), loaded or built once
+  // per pattern.
+  struct GpuLut {
+    gl::Texture sector, line;
+    gl::Buffer packed;
+    float extent = 0.0f;
+  };
+  const GpuLut& lutFor(const LightPass& pass) {
+    const LightSampleSet& s = pass.samples;
+    std::vector<glm::vec2> normalised = dcs::normalisedSamples(s, pass.light);
+    std::uint64_t hash = dcs::patternHash(normalised, s.count, s.setCount);
+    auto it = luts_.find(hash);
+    if (it != luts_.end()) return it->second;
+    std::string path = options_.lutFile;
+    if (path.empty()) {
+      std::string dir = options_.lutDirectory;
+      if (dir.empty()) {
+        const char* env = std::getenv("PENUMBRA_LUT_DIR");
+        dir = env ? env : PENUMBRA_DEFAULT_LUT_DIR;
+      }
+      std::string candidate = dir + "/" + dcs::edgeLutFileName(s);
+      if (std::filesystem::exists(candidate)) path = candidate;
+    }
+    dcs::EdgeLut table;
+    pass.timer.time("dcs lut", [&] {
+      if (!path.empty()) {
+        table = dcs::readEdgeLut(path);
+        dcs::checkEdgeLutMatches(table, path, normalised, s.count, s.setCount);
+        PLOG_INFO("dcs: edge LUT {}", path);
+      } else {
+        table = dcs::buildEdgeLut(normalised, s.count, s.setCount, options_.lutSize);
+        PLOG_INFO("dcs: edge LUT for {} built in memory (`penumbra lut` writes it to luts/)", dcs::edgeLutFileName(s));
+      }
+    });
+    // Bit fields widened to RGBA32UI texels (words beyond `words` are 0).
+    auto widen = [&](const std::vector<std::uint32_t>& words) {
+      std::vector<std::uint32_t> out(words.size() / std::size_t(table.words) * 4, 0u);
+      for (std::size_t t = 0; t < words.size() / std::size_t(table.words); ++t)
+        for (int w = 0; w < table.words; ++w) out[t * 4 + std::size_t(w)] = words[t * std::size_t(table.words) + std::size_t(w)];
+      return out;
+    };
+    GpuLut g;
+    g.sector = gl::Texture::makeCubeArray(GL_RGBA32UI, table.size.cube, table.sets);
+    g.sector.uploadUint4(widen(table.sector).data());
+    g.line = gl::Texture::make2DArray(GL_RGBA32UI, table.size.line, table.size.line, table.sets);
+    g.line.uploadUint4(widen(table.line).data());
+    g.packed = gl::Buffer(table.packed);
+    g.extent = table.extent;
+    return luts_.emplace(hash, std::move(g)).first->second;
   }
 
   // Counter targets (layers of one array texture) plus the checksum, as one MRT framebuffer.
@@ -468,8 +551,10 @@ class DepthComplexitySampling final : public Technique {
   gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_, profileBuffer_;
   gl::Texture bound_, checksum_, counters_;
   gl::Framebuffer boundFbo_, counterFbo_;
-  gl::Program boundProgram_, silhouetteProgram_;
+  gl::Program silhouetteProgram_;
+  std::map<int, gl::Program> boundPrograms_;  // by covered-sample mode
   std::map<int, Programs> programs_;
+  std::map<std::uint64_t, GpuLut> luts_;  // by sample-pattern hash
   std::map<int, int> boundCache_;  // light index -> the last frame's measured bound (+ bias)
   gl::VertexArray emptyVao_;
   Stats stats_;

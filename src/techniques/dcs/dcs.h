@@ -6,6 +6,8 @@
 #include <memory>
 
 #include "pipeline/technique.h"
+#include "sampling/shared.hpp"
+#include "techniques/dcs/edge_lut.h"
 #include "techniques/dcs/opacity.h"
 
 namespace penumbra {
@@ -27,6 +29,15 @@ struct DcsOptions {
   // transmittances, and the largest single-layer transmittance error the unit coding may make.
   dcs::OpacityMode opacity = dcs::OpacityMode::Product;
   double opacityTolerance = 1.0 / 1024.0;
+  // Covered-sample test (PENUMBRA_DCS_COVERAGE_*): exact (3D, per sample), naive (the paper's
+  // loop over 8-bit packed positions) or lut (the paper's edge LUT, section 7.3). The 2D modes
+  // serve rect and disk lights; other lights use exact.
+  int coverage = PENUMBRA_DCS_COVERAGE_EXACT;
+  // The edge LUT: this file if set (refused unless built for the light's sample pattern), else
+  // <lutDirectory>/edge_lut.h edgeLutFileName() if it exists (lutDirectory empty: the
+  // environment's PENUMBRA_LUT_DIR, else the source tree's luts/), else built in memory.
+  std::string lutFile, lutDirectory;
+  dcs::EdgeLutSize lutSize;
 };
 
 std::unique_ptr<Technique> makeDepthComplexitySampling(const DcsOptions& options = {});
