@@ -19,3 +19,6 @@ penumbra_add_test(test_dcs_packing ${CMAKE_CURRENT_SOURCE_DIR}/dcs_packing_test.
 
 # DCS semi-opaque unit coding: no GL needed.
 penumbra_add_test(test_dcs_opacity ${CMAKE_CURRENT_SOURCE_DIR}/dcs_opacity_test.cpp LIBS penumbra_render)
+
+# DCS edge LUT files: no GL needed.
+penumbra_add_test(test_dcs_edge_lut ${CMAKE_CURRENT_SOURCE_DIR}/dcs_edge_lut_test.cpp LIBS penumbra_render)

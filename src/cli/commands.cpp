@@ -15,6 +15,7 @@
 #include "pipeline/compare.h"
 #include "sampling/shared.hpp"
 #include "scene/scene.h"
+#include "techniques/dcs/edge_lut.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -153,6 +154,59 @@ int compare(const CommonOptions& o, const std::vector<std::string>& names, const
         std::fprintf(stderr, "penumbra: %s: visibility RMSE %.4g exceeds --max-error %.4g\n", name.c_str(), rmse, maxError);
         return int(ExitCode::ThresholdExceeded);
       }
+  }
+  return 0;
+}
+
+int lut(const CommonOptions& o, const LutOptions& l) {
+  if (l.shape != "rect" && l.shape != "disk") throw Error("--shape", "must be rect or disk, got '" + l.shape + "'", ExitCode::Usage);
+  if (l.cube < 1 || l.cube > 1024) throw Error("--cube", "must be in 1..1024", ExitCode::Usage);
+  if (l.line < 2 || l.line > 4096 || l.line % 2) throw Error("--line", "must be even, in 2..4096", ExitCode::Usage);
+  checkWritableFolder(l.outDir, "--output");
+  Scene scene;
+  if (!o.scene.empty()) {
+    scene = loadSceneFor(o);
+  } else {
+    Light unit;  // normalised frame = world frame: a 2 x 2 rect or a unit disk at the origin
+    unit.name = l.shape;
+    unit.shape = l.shape == "rect" ? LightShape::Rect : LightShape::Disk;
+    unit.position = glm::vec3(0.0f);
+    unit.size = l.shape == "rect" ? glm::vec2(2.0f) : glm::vec2(1.0f);
+    scene.lights.push_back(unit);
+  }
+  RenderSettings s = settingsFor(o, scene);
+  json written = json::array();
+  std::vector<std::string> done;
+  for (const Light& light : scene.lights) {
+    LightSampleSet samples = makeLightSamples(scene, light, s.sampling, s.time);
+    if (dcs::edgeLutSupports(light)) {
+      std::string path = (fs::path(l.outDir) / dcs::edgeLutFileName(samples)).string();
+      if (std::find(done.begin(), done.end(), path) == done.end()) {
+        done.push_back(path);
+        dcs::EdgeLut table = dcs::buildEdgeLut(dcs::normalisedSamples(samples), samples.count, samples.setCount,
+                                               {l.cube, l.line});
+        dcs::writeEdgeLut(path, table);
+        written.push_back({{"light", light.name}, {"kind", "edge"}, {"path", path}});
+      }
+    } else {
+      PLOG_INFO("lut: light '{}' is not a rect or disk light: no edge LUT (dcs uses its exact test)", light.name);
+    }
+    if (!light.emissionFrames.empty()) {
+      // DCS paper 7.1: the luminance of each sample, N columns x M sets rows.
+      Image lum(samples.count, samples.setCount, 3, 0.0f);
+      for (std::size_t i = 0; i < samples.luminance.size(); ++i)
+        for (int c = 0; c < 3; ++c) lum.data[i * 3 + std::size_t(c)] = samples.luminance[i][c];
+      std::string path = (fs::path(l.outDir) / (scene.name + "_" + light.name + "_luminance.exr")).string();
+      writeExr(path, {{"", &lum}});
+      written.push_back({{"light", light.name}, {"kind", "luminance"}, {"path", path}});
+    }
+  }
+  if (o.json) {
+    std::printf("%s\n", written.dump(2).c_str());
+  } else {
+    for (auto& w : written)
+      std::printf("%s: %s LUT %s\n", w["light"].get<std::string>().c_str(), w["kind"].get<std::string>().c_str(),
+                  w["path"].get<std::string>().c_str());
   }
   return 0;
 }

@@ -28,4 +28,14 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
 int compare(const CommonOptions& o, const std::vector<std::string>& techniques,
             const std::string& outDir, double maxError);
 
+struct LutOptions {
+  std::string shape = "rect";  // without a scene: the light shape the table is for (rect | disk)
+  int cube = 64, line = 512;   // edge LUT sizes (edge_lut.h)
+  std::string outDir = "luts";
+};
+// Writes the dcs edge LUT (src/techniques/dcs/edge_lut.h) of the sample pattern the options
+// describe: for each rect or disk light of the scene (none given: for a light of --shape), and
+// the luminance table (N samples x M sets, RGB EXR) of each textured light.
+int lut(const CommonOptions& o, const LutOptions& l);
+
 }  // namespace penumbra::cli

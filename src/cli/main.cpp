@@ -59,6 +59,14 @@ int main(int argc, char** argv) {
   compare->add_option("-o,--output", outDir, "output folder")->capture_default_str();
   compare->add_option("--max-error", maxError, "exit 3 if a technique's visibility RMSE against the reference exceeds this");
 
+  cli::LutOptions lutOptions;
+  auto* lut = app.add_subcommand("lut", "write the dcs edge LUT of a sample pattern (and textured lights' luminance tables)");
+  addCommon(lut, o, true);
+  lut->add_option("--shape", lutOptions.shape, "light shape when no scene is given: rect | disk")->capture_default_str();
+  lut->add_option("--cube", lutOptions.cube, "sector table size (cube map faces)")->capture_default_str();
+  lut->add_option("--line", lutOptions.line, "line table size")->capture_default_str();
+  lut->add_option("-o,--output", lutOptions.outDir, "output folder")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -73,6 +81,7 @@ int main(int argc, char** argv) {
     if (*list) return cli::listTechniques(listJson);
     if (*info) return cli::info(o);
     if (*render) return cli::render(o, technique, output);
+    if (*lut) return cli::lut(o, lutOptions);
     if (*compare) {
       std::vector<std::string> names;
       std::string cur;

@@ -220,9 +220,9 @@ FrameResult Renderer::render(Technique& technique) {
     throw Error("--shading", "per-sample shading (eq. 6) needs a technique with per-sample visibility",
                 ExitCode::Usage);
 
-  if (prepared_ != &technique) {
+  if (prepared_ != technique.serial()) {
     timer.time("prepare", [&] { technique.prepare(scene_, *gpu_); });
-    prepared_ = &technique;
+    prepared_ = technique.serial();
   }
   timer.time("gbuffer", [&] { gpu_->renderGBuffer(); });
 

@@ -116,7 +116,7 @@ class Renderer {
   gl::Framebuffer colorFbo_;
   gl::Program shadeModulate_, shadePerSample_;
   gl::VertexArray emptyVao_;
-  const Technique* prepared_ = nullptr;
+  std::uint64_t prepared_ = 0;  // Technique::serial() of the technique prepared last
 };
 
 // Camera matrices shared by the pipeline and the reference (so both see the same pixels).

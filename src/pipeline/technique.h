@@ -5,6 +5,8 @@
 // time: the RGB visibility buffer of DCS eq. 2 and, if it can, per-sample transmittance.
 #pragma once
 
+#include <atomic>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -42,7 +44,13 @@ struct LightPass {
 
 class Technique {
  public:
+  Technique() : serial_(nextSerial()) {}
+  Technique(const Technique&) = delete;
+  Technique& operator=(const Technique&) = delete;
   virtual ~Technique() = default;
+  // Unique per object for the life of the process (the renderer prepares a technique it has not
+  // seen: an address can be reused by the next technique, a serial cannot).
+  std::uint64_t serial() const { return serial_; }
   // Per scene: build what the technique keeps across lights and frames (edge topology, BVH).
   // Create GL objects here or later, never in a constructor: a technique may be constructed
   // before the renderer's context is current.
@@ -55,6 +63,13 @@ class Technique {
   virtual std::size_t memoryBytes() const { return 0; }
   // Numbers about the last frame worth reporting (edges drawn, counter base, passes, ...).
   virtual std::vector<std::pair<std::string, double>> statistics() const { return {}; }
+
+ private:
+  static std::uint64_t nextSerial() {
+    static std::atomic<std::uint64_t> next{1};
+    return next++;
+  }
+  std::uint64_t serial_;
 };
 
 struct TechniqueInfo {

@@ -492,7 +492,7 @@ class DepthComplexitySampling final : public Technique {
   };
   const GpuLut& lutFor(const LightPass& pass) {
     const LightSampleSet& s = pass.samples;
-    std::vector<glm::vec2> normalised = dcs::normalisedSamples(s, pass.light);
+    std::vector<glm::vec2> normalised = dcs::normalisedSamples(s);
     std::uint64_t hash = dcs::patternHash(normalised, s.count, s.setCount);
     auto it = luts_.find(hash);
     if (it != luts_.end()) return it->second;

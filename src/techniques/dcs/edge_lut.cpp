@@ -57,16 +57,11 @@ std::string hex(std::uint64_t v) { return fmt::format("{:016x}", v); }
 
 bool edgeLutSupports(const Light& light) { return light.shape == LightShape::Rect || light.shape == LightShape::Disk; }
 
-std::vector<glm::vec2> normalisedSamples(const LightSampleSet& s, const Light& light) {
-  PENUMBRA_CHECK(edgeLutSupports(light), "normalisedSamples: rect or disk lights only");
-  const glm::dvec2 half = light.shape == LightShape::Rect ? 0.5 * glm::dvec2(light.size) : glm::dvec2(light.size.x);
-  const glm::dvec3 c(light.position), t(light.tangent), b(light.bitangent());
+std::vector<glm::vec2> normalisedSamples(const LightSampleSet& s) {
+  PENUMBRA_CHECK(s.shape == LightShape::Rect || s.shape == LightShape::Disk, "normalisedSamples: rect or disk sets only");
   std::vector<glm::vec2> out;
-  out.reserve(s.positions.size());
-  for (const glm::vec3& x : s.positions) {
-    const glm::dvec3 d = glm::dvec3(x) - c;
-    out.emplace_back(float(glm::dot(d, t) / half.x), float(glm::dot(d, b) / half.y));
-  }
+  out.reserve(s.uv.size());
+  for (const glm::vec2& uv : s.uv) out.push_back(2.0f * uv - 1.0f);
   return out;
 }
 

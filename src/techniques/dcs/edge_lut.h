@@ -44,9 +44,11 @@ namespace penumbra::dcs {
 // Rect and disk lights: the lights a table can serve.
 bool edgeLutSupports(const Light& light);
 
-// The samples of every set in the light's normalised frame: ((x - c) . t / hx, (x - c) . b / hy),
-// hx, hy the half-size (rect) or the radius (disk). [set * count + k].
-std::vector<glm::vec2> normalisedSamples(const LightSampleSet& samples, const Light& light);
+// The samples of every set in the light's normalised frame, ((x - c) . t / hx, (x - c) . b / hy)
+// with hx, hy the half-size (rect) or the radius (disk), [set * count + k]. Computed from the
+// samples' light coordinates (2 uv - 1), not their world positions, so that a pattern gives the
+// same bits on a light of any size and place. Rect and disk sets only.
+std::vector<glm::vec2> normalisedSamples(const LightSampleSet& samples);
 
 struct EdgeLutSize {
   int cube = 64;   // sector table: cube x cube texels per face
