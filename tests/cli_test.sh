@@ -28,6 +28,11 @@ expect 2 ".exr or .png" -- "$P" render -o "$T/x.txt"
 expect 1 "does not exist" -- "$P" render -o "$T/no/such/dir/x.png"
 expect 1 "/etc/hostname" -- "$P" render -o /etc/hostname/x.png
 expect 2 "\-\-backend" -- "$P" render --backend vulkan -o "$T/x.png"
+expect 2 "\-\-shape" -- "$P" lut --shape triangle -o "$T"
+expect 2 "\-\-line" -- "$P" lut --line 3 -o "$T"
+expect 1 "does not exist" -- "$P" lut -o "$T/no/such/dir"
+expect 0 "" -- "$P" lut --samples 8 --line 16 --cube 4 -o "$T"
+test -s "$T/edge_rect_stratified_correlated_n8_seed1.lut" || { echo "FAIL: lut wrote no table"; fail=1; }
 # Rendering cases need a GL context.
 "$P" render -W 32 -H 32 --samples 1 -o "$T/probe.png" 2>"$T/err"; rc=$?
 if [ "$rc" -eq 77 ]; then echo "no GL context: skipping rendering cases"; [ $fail -eq 0 ] && exit 77; exit 1; fi
