@@ -42,7 +42,7 @@ Spread spread(std::vector<double> v) {
 int main(int argc, char** argv) {
   setLogLevel("warn");
   CLI::App app{"per-stage timing of techniques against raytrace"};
-  std::string scenePath = "scenes/engine.json", backend = "egl", jsonOut;
+  std::string scenePath = "scenes/engine.json", backend = "egl", jsonOut, pattern = "correlated", shading = "modulate";
   int width = 512, height = 512, frames = 5, warmup = 1;
   std::vector<int> sampleCounts = {1};
   std::vector<std::string> techniques = {"hard-sv"};
@@ -55,21 +55,27 @@ int main(int argc, char** argv) {
   app.add_option("--warmup", warmup);
   app.add_option("--backend", backend);
   app.add_option("--json", jsonOut);
+  app.add_option("--pattern", pattern, "correlated | decorrelated | interleaved");
+  app.add_option("--shading", shading, "modulate (eq. 3) | per-sample (eq. 6)");
   CLI11_PARSE(app, argc, argv);
   try {
     Scene scene = loadScene(scenePath);
     auto ctx = gl::Context::create(gl::parseBackend(backend));
-    std::printf("scene %s: %zu triangles, %dx%d, renderer %s\n", scenePath.c_str(), scene.triangleCount(), width,
-                height, ctx->renderer().c_str());
+    std::printf("scene %s: %zu triangles, %dx%d, pattern %s, shading %s, renderer %s\n", scenePath.c_str(),
+                scene.triangleCount(), width, height, pattern.c_str(), shading.c_str(), ctx->renderer().c_str());
     nlohmann::json out;
     out["scene"] = scenePath;
     out["triangles"] = scene.triangleCount();
     out["renderer"] = ctx->renderer();
     out["width"] = width;
     out["height"] = height;
+    out["pattern"] = pattern;
+    out["shading"] = shading;
     for (int samples : sampleCounts) {
       RenderSettings s;
       s.width = width, s.height = height, s.sampling.count = samples;
+      s.sampling.pattern = parsePixelPattern(pattern);
+      s.shading = parseShadingMode(shading);
       s.perSampleResults = false;  // no comparison here: time what a frame needs
       std::vector<std::string> names = techniques;
       names.push_back("raytrace");

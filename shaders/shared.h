@@ -33,6 +33,7 @@
 #define PENUMBRA_UNIT_DCS_CHECKSUM 8    // R32F: dcs sum of the counters of a pass
 #define PENUMBRA_UNIT_DCS_SECTOR_LUT 9  // RGBA32UI cube-map array: dcs edge LUT, sectors (a cube a set)
 #define PENUMBRA_UNIT_DCS_LINE_LUT 10   // RGBA32UI 2D array: dcs edge LUT, lines (a layer a set)
+#define PENUMBRA_UNIT_FILTER_SOURCE 11  // RGBA32F: input of the interleaved-sampling filter
 #define PENUMBRA_IMAGE_SAMPLE_VIS 0     // image unit of the per-sample visibility array
 
 // ---- shader storage / uniform buffer bindings ----------------------------------------------

@@ -42,6 +42,7 @@ RenderSettings settingsFor(const CommonOptions& o, const Scene& scene) {
   s.sampling.seed = o.seed;
   s.time = o.time;
   s.shading = parseShadingMode(o.shading);
+  s.interleaveFilter = !o.noInterleaveFilter;
   return s;
 }
 

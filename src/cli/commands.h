@@ -19,6 +19,7 @@ struct CommonOptions {
   unsigned seed = 1;
   float time = 0.0f;
   std::string shading = "modulate";
+  bool noInterleaveFilter = false;  // --no-interleave-filter
   bool json = false;
 };
 

@@ -203,9 +203,11 @@ Renderer::Renderer(gl::Context& context, const Scene& scene, const RenderSetting
   gpu_ = std::make_unique<GpuScene>(scene, settings.width, settings.height);
   color_ = gl::Texture::make2D(GL_RGBA32F, settings.width, settings.height);
   visibility_ = gl::Texture::make2D(GL_RGBA32F, settings.width, settings.height);
+
   colorFbo_ = gl::Framebuffer({&color_}, nullptr);
   emptyVao_ = gl::VertexArray::create();
   shadeModulate_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"MODULATE"});
+  filter_ = gl::Program({"fullscreen.vert", "pipeline_filter.frag"});
   shadePerSample_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"PER_SAMPLE"});
 }
 
@@ -260,9 +262,47 @@ FrameResult Renderer::render(Technique& technique) {
     technique.renderVisibility(pass);
     gl::Context::checkErrors("visibility");
 
+    // Interleaved sampling (DCS paper 5.2, Algorithm 2): the gather filter over the K x K sets.
+    const bool filter = settings_.interleaveFilter && samples.pattern == PixelPattern::Interleaved && samples.interleaveK > 1;
+    // Filters `source` into the bound framebuffer (blend state is the caller's).
+    auto runFilter = [&](const gl::Texture& source) {
+      glDisable(GL_DEPTH_TEST);
+      gpu_->bindGBuffer();
+      source.bind(PENUMBRA_UNIT_FILTER_SOURCE);
+      filter_.use();
+      filter_.set("interleaveK", samples.interleaveK);
+      filter_.set("eyePosition", gpu_->cameraPosition());
+      emptyVao_.bind();
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    };
+    if (filter && !filtered_) {  // only frames that interleave pay for these targets
+      filtered_ = gl::Texture::make2D(GL_RGBA32F, settings_.width, settings_.height);
+      filteredFbo_ = gl::Framebuffer({&filtered_}, nullptr);
+    }
+    if (filter && perSample && !lightColor_) {
+      lightColor_ = gl::Texture::make2D(GL_RGBA32F, settings_.width, settings_.height);
+      lightColorFbo_ = gl::Framebuffer({&lightColor_}, nullptr);
+    }
+    const gl::Texture* vis = &visibility_;
+    if (filter) {
+      timer.time("interleave filter", [&] {
+        filteredFbo_.bind();
+        runFilter(visibility_);
+      });
+      vis = &filtered_;
+    }
+
     timer.time("shading", [&] {
       const gl::Program& prog = perSample ? shadePerSample_ : shadeModulate_;
-      colorFbo_.bind();
+      // Eq. 6 with interleaving: the light's term is shaded apart, then filtered into the image.
+      const bool separate = perSample && filter;
+      if (separate) {
+        lightColorFbo_.bind();
+        const float zero[4] = {0, 0, 0, 0};
+        glClearNamedFramebufferfv(lightColorFbo_.id(), GL_COLOR, 0, zero);
+      } else {
+        colorFbo_.bind();
+      }
       glDisable(GL_DEPTH_TEST);
       glEnable(GL_BLEND);
       glBlendEquation(GL_FUNC_ADD);
@@ -271,15 +311,19 @@ FrameResult Renderer::render(Technique& technique) {
       posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
       lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
       if (perSample) perSample_.bind(PENUMBRA_UNIT_SAMPLE_VIS);
-      else visibility_.bind(PENUMBRA_UNIT_VISIBILITY);
+      else vis->bind(PENUMBRA_UNIT_VISIBILITY);
       prog.use();
       setLightUniforms(prog, light, samples);
       emptyVao_.bind();
       glDrawArrays(GL_TRIANGLES, 0, 3);
+      if (separate) {
+        colorFbo_.bind();
+        runFilter(lightColor_);
+      }
       glDisable(GL_BLEND);
     });
     timer.time("readback", [&] {
-      Image v4 = visibility_.read(4);
+      Image v4 = vis->read(4);
       lr.visibility = Image(v4.width, v4.height, 3);
       for (std::size_t i = 0; i < v4.pixelCount(); ++i)
         for (int c = 0; c < 3; ++c) lr.visibility.data[i * 3 + c] = v4.data[i * 4 + c];
@@ -301,6 +345,7 @@ FrameResult Renderer::render(Technique& technique) {
   cpuGBuffer();  // always return the G-buffer: comparisons mask background pixels with it
   result.statistics = technique.statistics();
   result.memoryBytes = gpu_->memoryBytes() + color_.bytes() + visibility_.bytes() +
+                       (filtered_ ? filtered_.bytes() : 0) + (lightColor_ ? lightColor_.bytes() : 0) +
                        (perSample_ ? perSample_.bytes() : 0) + technique.memoryBytes();
   gl::Context::checkErrors("frame");
   return result;

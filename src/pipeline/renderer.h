@@ -37,6 +37,10 @@ struct RenderSettings {
   // Per-sample visibility of techniques that have it, read back into LightResult::perSample for
   // comparisons. Off (benchmarks), it is produced only when per-sample shading needs it.
   bool perSampleResults = true;
+  // Interleaved sampling (PixelPattern::Interleaved, K > 1): the normal/depth-aware K x K gather
+  // of shaders/pipeline_filter.frag on the visibility buffer (and, for eq. 6, on each light's
+  // shaded contribution). Per-sample results stay unfiltered.
+  bool interleaveFilter = true;
 };
 
 struct LightResult {
@@ -113,8 +117,9 @@ class Renderer {
   RenderSettings settings_;
   std::unique_ptr<GpuScene> gpu_;
   gl::Texture color_, visibility_, perSample_;
-  gl::Framebuffer colorFbo_;
-  gl::Program shadeModulate_, shadePerSample_;
+  gl::Texture filtered_, lightColor_;  // interleaved sampling: filtered visibility, eq. 6 light term
+  gl::Framebuffer colorFbo_, filteredFbo_, lightColorFbo_;
+  gl::Program shadeModulate_, shadePerSample_, filter_;
   gl::VertexArray emptyVao_;
   std::uint64_t prepared_ = 0;  // Technique::serial() of the technique prepared last
 };
