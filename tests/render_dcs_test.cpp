@@ -79,6 +79,23 @@ TEST(Dcs, DefaultSceneWithTexturedLight) {
   EXPECT_LE(r.errors.visibilityOutsideBand.rmse, 1e-3);
 }
 
+// Animated textured light (issue 4, eq. 2): each frame's emission weights the samples; dcs
+// matches the reference at every time, and the two frames give different coloured shadows.
+TEST(Dcs, AnimatedTexturedLightMatchesTheReferenceAtEveryTime) {
+  Scene scene = loadScene(scenePath("scenes/animated-window.json"));
+  std::vector<Image> visibility;
+  for (float t : {0.25f, 1.25f}) {
+    RenderSettings s = settings(128, 16);
+    s.time = t;
+    Comparison r = renderAndCompare(scene, "dcs", s);
+    EXPECT_GE(r.errors.sampleAgreement, 0.999) << "time " << t;
+    EXPECT_LE(r.errors.visibilityOutsideBand.rmse, 1e-3) << "time " << t;
+    EXPECT_LE(r.errors.shadedOutsideBand.rmse, 1e-3) << "time " << t;
+    visibility.push_back(r.frame.lights[0].visibility);
+  }
+  EXPECT_GT(compareImages(visibility[0], visibility[1]).rmse, 0.01) << "the frames should light differently";
+}
+
 // Later frames plan their counters from the previous frame's measured bound (no bound pass) and
 // give the same images.
 TEST(Dcs, LaterFramesReuseTheMeasuredBound) {
