@@ -21,23 +21,11 @@
 #include "gl/context.h"
 #include "pipeline/renderer.h"
 #include "scene/scene.h"
+#include "bench_common.h"
 
 using namespace penumbra;
 
-namespace {
-
-struct Spread {
-  double median, min, max;
-};
-
-Spread spread(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  std::size_t n = v.size();
-  double med = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-  return {med, v.front(), v.back()};
-}
-
-}  // namespace
+using bench::Spread;
 
 int main(int argc, char** argv) {
   setLogLevel("warn");
@@ -83,29 +71,16 @@ int main(int argc, char** argv) {
       for (const std::string& name : names) {
         Renderer renderer(*ctx, scene, s);
         auto tech = findTechnique(name).create();
-        std::map<std::string, std::vector<double>> stages;
-        std::vector<double> total;
-        FrameResult last;
-        for (int f = 0; f < warmup + frames; ++f) {
-          last = renderer.render(*tech);
-          if (f < warmup) continue;
-          double t = 0;
-          for (auto& st : last.timer.stages()) {
-            if (st.stage == "prepare") continue;  // once per scene, done in the warm-up
-            stages[st.stage].push_back(st.ms);
-            t += st.ms;
-          }
-          total.push_back(t);
-        }
+        bench::Timing timing = bench::timeFrames(renderer, *tech, frames, warmup);
+        const FrameResult& last = timing.last;
         std::string key = name + "@" + std::to_string(samples);
         std::printf("\n%s, %d sample(s) (%d frames after %d warm-up)\n  %-18s %10s %10s %10s\n", name.c_str(),
                     samples, frames, warmup, "stage", "median ms", "min", "max");
-        for (auto& [stage, v] : stages) {
-          Spread sp = spread(v);
+        for (auto& [stage, sp] : timing.stages) {
           std::printf("  %-18s %10.2f %10.2f %10.2f\n", stage.c_str(), sp.median, sp.min, sp.max);
           out[key]["stagesMs"][stage] = {{"median", sp.median}, {"min", sp.min}, {"max", sp.max}};
         }
-        Spread sp = spread(total);
+        Spread sp = timing.total;
         std::printf("  %-18s %10.2f %10.2f %10.2f\n", "total", sp.median, sp.min, sp.max);
         out[key]["totalMs"] = {{"median", sp.median}, {"min", sp.min}, {"max", sp.max}};
         out[key]["memoryBytes"] = last.memoryBytes;

@@ -15,6 +15,9 @@
 // checksum of all updates; a mismatch cannot be an overflow (the bound excludes it) and is
 // reported (see below).
 //
+// Semi-opaque occluders add opacity units instead of 1 (dcs/opacity.h); the covered samples
+// come from the exact 3D test or the paper's 2D naive loop or edge LUT (dcs/edge_lut.h).
+//
 // Divergences from the paper, each for exactness: updates integrate along the path from the
 // light centre to each sample in 3D (no projection onto a light plane, no clipping), the sign
 // of each update comes from the incident triangles at the pixel rather than from outer/inner
