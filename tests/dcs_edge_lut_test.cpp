@@ -26,15 +26,11 @@ std::string readBytes(const std::string& path) {
 // The sample set `penumbra lut` makes for a light of `shape` (a 2 x 2 rect or a unit disk).
 LightSampleSet unitSamples(LightShape shape, int count, std::uint32_t seed = 1) {
   Scene scene;
-  Light l;
-  l.shape = shape;
-  l.position = glm::vec3(0.0f);
-  l.size = shape == LightShape::Rect ? glm::vec2(2.0f) : glm::vec2(1.0f);
-  scene.lights.push_back(l);
+  scene.lights.push_back(unitLight(shape));
   SamplingParams p;
   p.count = count;
   p.seed = seed;
-  return makeLightSamples(scene, l, p);
+  return makeLightSamples(scene, scene.lights[0], p);
 }
 
 std::string tempPath(const std::string& name) {
@@ -89,8 +85,12 @@ TEST(DcsEdgeLut, TablesHoldTheirDefinition) {
         bool beyond = centre || glm::dot(pos[std::size_t(k)], f) > glm::dot(f, f) * (1.0f + 1e-6f);
         bool clear = !centre && glm::dot(pos[std::size_t(k)], f) < glm::dot(f, f) * (1.0f - 1e-6f);
         bool bit = (l.line[std::size_t(y * 16 + x)] >> k) & 1u;
-        if (beyond) EXPECT_TRUE(bit) << x << "," << y << " sample " << k;
-        if (clear) EXPECT_FALSE(bit) << x << "," << y << " sample " << k;
+        if (beyond) {
+          EXPECT_TRUE(bit) << x << "," << y << " sample " << k;
+        }
+        if (clear) {
+          EXPECT_FALSE(bit) << x << "," << y << " sample " << k;
+        }
       }
     }
   // Sector texel: the samples whose angle from +x is below the texel's, i.e. a prefix of the
@@ -169,6 +169,8 @@ TEST(DcsEdgeLut, ForeignCorruptAndTruncatedTablesAreRefused) {
   flipped[flipped.size() / 2] ^= 0x20;
   writeBytes(flipped);
   expectError([&] { readEdgeLut(bad); }, bad, "checksum mismatch");
+  writeBytes("penumbra-edge-lut 1\nsamples 16\nsamples 16\nend\n");
+  expectError([&] { readEdgeLut(bad); }, bad, "given twice");
   writeBytes("penumbra-edge-lut 1\nsamples 100000\nend\n");
   expectError([&] { readEdgeLut(bad); }, bad, "incomplete header");
   writeBytes("P6\n");

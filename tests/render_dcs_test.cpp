@@ -327,8 +327,9 @@ TEST(DcsSampling, StrategiesAgainstTheConvergedReference) {
   for (const Config& c : configs) EXPECT_LT(at(c.name, 64), at(c.name, 16)) << c.name;
   for (int n : {16, 64}) {
     for (const Config& c : configs)
-      if (std::string(c.name) != "interleaved filtered")
+      if (std::string(c.name) != "interleaved filtered") {
         EXPECT_LT(at("interleaved filtered", n), at(c.name, n)) << c.name << " N=" << n;
+      }
     EXPECT_NEAR(at("decorrelated stratified", n), at("correlated stratified", n), 0.5 * at("correlated stratified", n));
   }
 }

@@ -168,12 +168,7 @@ int lut(const CommonOptions& o, const LutOptions& l) {
   if (!o.scene.empty()) {
     scene = loadSceneFor(o);
   } else {
-    Light unit;  // normalised frame = world frame: a 2 x 2 rect or a unit disk at the origin
-    unit.name = l.shape;
-    unit.shape = l.shape == "rect" ? LightShape::Rect : LightShape::Disk;
-    unit.position = glm::vec3(0.0f);
-    unit.size = l.shape == "rect" ? glm::vec2(2.0f) : glm::vec2(1.0f);
-    scene.lights.push_back(unit);
+    scene.lights.push_back(dcs::unitLight(l.shape == "rect" ? LightShape::Rect : LightShape::Disk));
   }
   RenderSettings s = settingsFor(o, scene);
   json written = json::array();

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -57,6 +58,16 @@ std::string hex(std::uint64_t v) { return fmt::format("{:016x}", v); }
 
 bool edgeLutSupports(const Light& light) { return light.shape == LightShape::Rect || light.shape == LightShape::Disk; }
 
+Light unitLight(LightShape shape) {
+  PENUMBRA_CHECK(shape == LightShape::Rect || shape == LightShape::Disk, "unitLight: rect or disk");
+  Light l;
+  l.name = shape == LightShape::Rect ? "rect" : "disk";
+  l.shape = shape;
+  l.position = glm::vec3(0.0f);
+  l.size = shape == LightShape::Rect ? glm::vec2(2.0f) : glm::vec2(1.0f);
+  return l;
+}
+
 std::vector<glm::vec2> normalisedSamples(const LightSampleSet& s) {
   PENUMBRA_CHECK(s.shape == LightShape::Rect || s.shape == LightShape::Disk, "normalisedSamples: rect or disk sets only");
   std::vector<glm::vec2> out;
@@ -93,7 +104,7 @@ EdgeLut buildEdgeLut(const std::vector<glm::vec2>& normalised, int samples, int 
   const std::size_t W = std::size_t(l.words), C = std::size_t(size.cube), L = std::size_t(size.line);
   l.sector.assign(std::size_t(sets) * 6 * C * C * W, 0u);
   l.line.assign(std::size_t(sets) * L * L * W, 0u);
-  l.packed.assign(std::size_t(sets) * std::size_t((samples + 1) / 2), 0u);
+  l.packed.assign(std::size_t(sets) * std::size_t(packedWords(samples)), 0u);
   for (int set = 0; set < sets; ++set) {
     const glm::vec2* pos = &normalised[std::size_t(set) * samples];
     std::vector<double> angle(std::size_t(samples), -1.0);  // -1: the centre, in no sector
@@ -123,14 +134,14 @@ EdgeLut buildEdgeLut(const std::vector<glm::vec2>& normalised, int samples, int 
     for (int k = 0; k < samples; ++k) {
       auto q = [](float v) { return std::uint32_t(std::clamp(std::lround((double(v) + 1.0) * 0.5 * 255.0), 0L, 255L)); };
       std::uint32_t word = q(pos[k].x) | (q(pos[k].y) << 8);
-      l.packed[std::size_t(set) * std::size_t((samples + 1) / 2) + std::size_t(k / 2)] |= word << (16 * (k % 2));
+      l.packed[std::size_t(set) * std::size_t(packedWords(samples)) + std::size_t(k / 2)] |= word << (16 * (k % 2));
     }
   }
   return l;
 }
 
 glm::vec2 unpackPosition(const EdgeLut& l, int set, int k) {
-  std::uint32_t word = l.packed[std::size_t(set) * std::size_t((l.samples + 1) / 2) + std::size_t(k / 2)] >> (16 * (k % 2));
+  std::uint32_t word = l.packed[std::size_t(set) * std::size_t(packedWords(l.samples)) + std::size_t(k / 2)] >> (16 * (k % 2));
   return {float(word & 255u) / 255.0f * 2.0f - 1.0f, float((word >> 8) & 255u) / 255.0f * 2.0f - 1.0f};
 }
 
@@ -168,26 +179,27 @@ EdgeLut readEdgeLut(const std::string& path) {
   EdgeLut l;
   std::string patternHex, checksumHex;
   bool ended = false;
-  int fields = 0;
+  std::set<std::string> seen;
   while (!ended && std::getline(in, line)) {
     std::istringstream kv(line);
     std::string key;
     kv >> key;
+    if (key != "end" && !seen.insert(key).second) throw Error(path, "header key '" + key + "' given twice");
     bool ok = true;
     if (key == "end") ended = true;
-    else if (key == "samples") ok = bool(kv >> l.samples), ++fields;
-    else if (key == "sets") ok = bool(kv >> l.sets), ++fields;
-    else if (key == "words") ok = bool(kv >> l.words), ++fields;
-    else if (key == "cube") ok = bool(kv >> l.size.cube), ++fields;
-    else if (key == "line") ok = bool(kv >> l.size.line), ++fields;
-    else if (key == "extent") ok = bool(kv >> l.extent), ++fields;
-    else if (key == "pattern") ok = bool(kv >> patternHex), ++fields;
-    else if (key == "checksum") ok = bool(kv >> checksumHex), ++fields;
+    else if (key == "samples") ok = bool(kv >> l.samples);
+    else if (key == "sets") ok = bool(kv >> l.sets);
+    else if (key == "words") ok = bool(kv >> l.words);
+    else if (key == "cube") ok = bool(kv >> l.size.cube);
+    else if (key == "line") ok = bool(kv >> l.size.line);
+    else if (key == "extent") ok = bool(kv >> l.extent);
+    else if (key == "pattern") ok = bool(kv >> patternHex);
+    else if (key == "checksum") ok = bool(kv >> checksumHex);
     else throw Error(path, "unknown header line '" + line + "'");
     if (!ok) throw Error(path, "bad header line '" + line + "'");
     if (line.size() > 200) throw Error(path, "header line too long");
   }
-  if (!ended || fields != 8) throw Error(path, "incomplete header");
+  if (!ended || seen.size() != 8) throw Error(path, "incomplete header");
   if (l.samples < 1 || l.samples > 128 || l.sets < 1 || l.sets > 4096 || l.words != (l.samples + 31) / 32 ||
       l.size.cube < 1 || l.size.cube > 1024 || l.size.line < 2 || l.size.line > 4096 || !(l.extent > 0.0f))
     throw Error(path, "header values out of range");
@@ -198,7 +210,7 @@ EdgeLut readEdgeLut(const std::string& path) {
   }
   const std::size_t W = std::size_t(l.words), C = std::size_t(l.size.cube), L = std::size_t(l.size.line);
   const std::size_t S = std::size_t(l.sets);
-  const std::size_t total = (S * 6 * C * C * W + S * L * L * W + S * std::size_t((l.samples + 1) / 2)) * 4;
+  const std::size_t total = (S * 6 * C * C * W + S * L * L * W + S * std::size_t(packedWords(l.samples))) * 4;
   // Check the size before allocating: a header must not make us allocate what the file lacks.
   const auto here = in.tellg();
   in.seekg(0, std::ios::end);
@@ -208,7 +220,7 @@ EdgeLut readEdgeLut(const std::string& path) {
   in.seekg(here);
   l.sector.resize(S * 6 * C * C * W);
   l.line.resize(S * L * L * W);
-  l.packed.resize(S * std::size_t((l.samples + 1) / 2));
+  l.packed.resize(S * std::size_t(packedWords(l.samples)));
   for (auto* v : {&l.sector, &l.line, &l.packed}) in.read(reinterpret_cast<char*>(v->data()), std::streamsize(v->size() * 4));
   if (!in) throw Error(path, "truncated payload");
   if (hex(payloadChecksum(l)) != checksumHex) throw Error(path, "checksum mismatch (corrupt file)");

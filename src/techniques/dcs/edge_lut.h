@@ -50,6 +50,13 @@ bool edgeLutSupports(const Light& light);
 // same bits on a light of any size and place. Rect and disk sets only.
 std::vector<glm::vec2> normalisedSamples(const LightSampleSet& samples);
 
+// A light whose world frame is the normalised frame (a 2 x 2 rect or a unit disk at the
+// origin, facing -y): `penumbra lut` builds tables for a pattern on it when no scene is given.
+Light unitLight(LightShape shape);
+
+// 32-bit words of packed positions per set: two samples a word.
+inline int packedWords(int samples) { return (samples + 1) / 2; }
+
 struct EdgeLutSize {
   int cube = 64;   // sector table: cube x cube texels per face
   int line = 512;  // line table: line x line texels
