@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
     };
     auto run = [&](const Scene& sc, const RenderSettings& s, const std::string& technique) {
       Renderer r(*ctx, sc, s);
-      auto t = findTechnique(technique).create();
+      auto t = makeTechnique(technique);
       return bench::timeFrames(r, *t, frames, warmup);
     };
 
@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
       s.width = s.height = 1024;
       s.sampling.pattern = PixelPattern::Interleaved;
       Renderer r(*ctx, scene, s);
-      auto t = findTechnique("dcs-lut").create();
+      auto t = makeTechnique("dcs-lut");
       FrameResult f = r.render(*t);
       double px = 1024.0 * 1024.0, targets = statistic(f, "targets");
       double sets = double(s.sampling.interleaveK * s.sampling.interleaveK);

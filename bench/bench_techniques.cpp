@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
       std::map<std::string, double> totals;
       for (const std::string& name : names) {
         Renderer renderer(*ctx, scene, s);
-        auto tech = findTechnique(name).create();
+        auto tech = makeTechnique(name);
         bench::Timing timing = bench::timeFrames(renderer, *tech, frames, warmup);
         const FrameResult& last = timing.last;
         std::string key = name + "@" + std::to_string(samples);

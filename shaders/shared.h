@@ -34,7 +34,10 @@
 #define PENUMBRA_UNIT_DCS_SECTOR_LUT 9  // RGBA32UI cube-map array: dcs edge LUT, sectors (a cube a set)
 #define PENUMBRA_UNIT_DCS_LINE_LUT 10   // RGBA32UI 2D array: dcs edge LUT, lines (a layer a set)
 #define PENUMBRA_UNIT_FILTER_SOURCE 11  // RGBA32F: input of the interleaved-sampling filter
+#define PENUMBRA_UNIT_SHADOW_MAPS 12    // multi-view depth maps (techniques/shadow_map): a layer a sample
+#define PENUMBRA_UNIT_CENTRAL_DEPTH 13  // reproject: the z-buffered central depth map
 #define PENUMBRA_IMAGE_SAMPLE_VIS 0     // image unit of the per-sample visibility array
+#define PENUMBRA_IMAGE_SHADOW_MAPS 1    // R32UI 2D array: point-rendered depth maps (atomicMax)
 
 // ---- shader storage / uniform buffer bindings ----------------------------------------------
 #define PENUMBRA_SSBO_LIGHT_SAMPLES 0   // vec4 position (xyz), per set then sample
@@ -44,6 +47,7 @@
 #define PENUMBRA_SSBO_DCS_STATUS 4      // dcs: resolve status (overflowing pixels)
 #define PENUMBRA_SSBO_DCS_PROFILE 5     // dcs: wedge counters (PENUMBRA_DCS_PROFILE=1)
 #define PENUMBRA_SSBO_DCS_PACKED 6      // dcs: packed sample positions (edge_lut.h), naive mode
+#define PENUMBRA_SSBO_POINTS 7          // vwss: point count, then xyz world positions (3 floats each)
 
 // ---- light shapes (match penumbra::LightShape) ---------------------------------------------
 #define PENUMBRA_LIGHT_POINT 0
@@ -59,6 +63,7 @@
 // ---- limits --------------------------------------------------------------------------------
 #define PENUMBRA_MAX_SAMPLES 128
 #define PENUMBRA_DCS_MAX_TARGETS 7      // packed counter targets per pass (+1 checksum = 8 MRT)
+#define PENUMBRA_MAP_LOCAL_SIZE 64      // threads per work group of the point reprojection
 
 // Integer hash (PCG output permutation); identical in C++ and GLSL.
 PENUMBRA_FN uint penumbraHash(uint v) {

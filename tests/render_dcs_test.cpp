@@ -101,7 +101,7 @@ TEST(Dcs, AnimatedTexturedLightMatchesTheReferenceAtEveryTime) {
 TEST(Dcs, LaterFramesReuseTheMeasuredBound) {
   Scene scene = loadScene(scenePath("scenes/hard/15-two-plates.json"));
   Renderer renderer(context(), scene, settings(96, 32));
-  auto dcs = findTechnique("dcs").create();
+  auto dcs = makeTechnique("dcs");
   FrameResult first = renderer.render(*dcs), second = renderer.render(*dcs);
   auto hasBoundPass = [](const FrameResult& f) {
     for (auto& s : f.timer.stages())
@@ -195,7 +195,7 @@ TEST_P(DcsCoverageModes, DifferFromExactOnFewDecisions) {
   Scene scene = loadScene(scenePath(c.scene));
   Renderer renderer(context(), scene, settings(128, c.samples));
   auto render = [&](const char* name) {
-    auto t = findTechnique(name).create();
+    auto t = makeTechnique(name);
     return renderer.render(*t);
   };
   FrameResult exact = render("dcs"), naive = render("dcs-naive"), lut = render("dcs-lut");
@@ -246,7 +246,7 @@ TEST(DcsCoverageModes, LutServesEveryInterleavedSet) {
   RenderSettings s = settings(96, 16);
   s.sampling.pattern = PixelPattern::Interleaved;
   Renderer renderer(context(), scene, s);
-  auto exactTech = findTechnique("dcs").create(), lutTech = findTechnique("dcs-lut").create();
+  auto exactTech = makeTechnique("dcs"), lutTech = makeTechnique("dcs-lut");
   FrameResult exact = renderer.render(*exactTech), lut = renderer.render(*lutTech);
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
   const auto& a = lut.lights[0].perSample;
@@ -304,7 +304,7 @@ TEST(DcsSampling, StrategiesAgainstTheConvergedReference) {
   FrameResult converged;
   {
     Renderer r(context(), scene, settings(128, 16));
-    auto t = findTechnique("raytrace-converged").create();
+    auto t = makeTechnique("raytrace-converged");
     converged = r.render(*t);
   }
   std::map<std::pair<std::string, int>, double> rmse;
@@ -316,7 +316,7 @@ TEST(DcsSampling, StrategiesAgainstTheConvergedReference) {
       s.sampling.pattern = c.pattern;
       s.interleaveFilter = c.filter;
       Renderer r(context(), scene, s);
-      auto t = findTechnique("dcs").create();
+      auto t = makeTechnique("dcs");
       double e = measureErrors(r.render(*t), converged).visibility.rmse;
       rmse[std::make_pair(std::string(c.name), n)] = e;
       RecordProperty(std::string(c.name) + " N" + std::to_string(n), std::to_string(e));
@@ -415,7 +415,7 @@ TEST_P(DcsOverflow, StackIsShadowedOrTheBaseWidens) {
   Scene scene = plateStack(c.plates);
   Renderer renderer(context(), scene, settings(64, 16));
   auto dcs = makeDepthComplexitySampling({SilhouetteMode::Accurate, 4, c.base});
-  auto ray = findTechnique("raytrace").create();
+  auto ray = makeTechnique("raytrace");
   FrameResult f = renderer.render(*dcs), ref = renderer.render(*ray);
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
   TechniqueErrors e = measureErrors(f, ref);
@@ -443,7 +443,7 @@ TEST_P(DcsOverflow, TooNarrowPlanIsDetectedAndRedone) {
   DcsOptions o{SilhouetteMode::Accurate, 4, c.base};
   o.firstFrameBound = 0;
   auto dcs = makeDepthComplexitySampling(o);
-  auto ray = findTechnique("raytrace").create();
+  auto ray = makeTechnique("raytrace");
   FrameResult f = renderer.render(*dcs), ref = renderer.render(*ray);
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
   EXPECT_GE(measureErrors(f, ref).sampleAgreement, 0.999);

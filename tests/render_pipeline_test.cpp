@@ -34,7 +34,7 @@ Scene litFloor(float lightSize) {
 TEST(Pipeline, ModulateShadingMatchesEquation3) {
   Scene scene = litFloor(0.5f);
   Renderer renderer(context(), scene, settings(64, 4));
-  auto none = findTechnique("none").create();
+  auto none = makeTechnique("none");
   FrameResult f = renderer.render(*none);
   const Light& l = scene.lights[0];
   int checked = 0;
@@ -59,10 +59,10 @@ TEST(Pipeline, PerSampleShadingConvergesToModulateForSmallLights) {
   // they agree to well under 1% on an unoccluded floor.
   Scene scene = litFloor(0.05f);
   RenderSettings s = settings(64, 16);
-  auto ray = findTechnique("raytrace").create();
+  auto ray = makeTechnique("raytrace");
   FrameResult modulate = Renderer(context(), scene, s).render(*ray);
   s.shading = ShadingMode::PerSample;
-  auto ray2 = findTechnique("raytrace").create();
+  auto ray2 = makeTechnique("raytrace");
   FrameResult perSample = Renderer(context(), scene, s).render(*ray2);
   ErrorStats e = compareImages(perSample.color, modulate.color, {}, modulate.gbuffer.valid);
   double maxValue = 0;
@@ -77,7 +77,7 @@ TEST(Pipeline, PerSampleShadingNeedsPerSampleTechnique) {
   RenderSettings s = settings(32, 4);
   s.shading = ShadingMode::PerSample;
   Renderer renderer(context(), scene, s);
-  auto hard = findTechnique("hard-sv").create();
+  auto hard = makeTechnique("hard-sv");
   EXPECT_THROW(renderer.render(*hard), Error);
 }
 
@@ -89,7 +89,7 @@ TEST(Pipeline, EglAndOSMesaGiveTheSameImage) {
   for (int b = 0; b < 2; ++b) {
     auto ctx = gl::Context::create(backends[b]);
     Renderer renderer(*ctx, scene, s);
-    auto hard = findTechnique("hard-sv").create();
+    auto hard = makeTechnique("hard-sv");
     images[b] = renderer.render(*hard);
     EXPECT_EQ(gl::Context::takeErrorCount(), 0) << gl::toString(backends[b]);
   }
@@ -102,7 +102,7 @@ TEST(Pipeline, EglAndOSMesaGiveTheSameImage) {
 TEST(Pipeline, RepeatedRendersAreIdentical) {
   Scene scene = defaultScene();
   Renderer renderer(context(), scene, settings(96, 4));
-  auto hard = findTechnique("hard-sv").create();
+  auto hard = makeTechnique("hard-sv");
   FrameResult a = renderer.render(*hard);
   FrameResult b = renderer.render(*hard);
   EXPECT_EQ(compareImages(a.color, b.color).maxAbs, 0.0);
@@ -121,7 +121,7 @@ TEST(Pipeline, EveryTechniqueRendersWithoutGlErrors) {
   for (auto& t : techniqueTable()) {
     if (t.name == "raytrace-converged") continue;  // 1024 rays a pixel: covered by the CLI run
     Renderer renderer(context(), scene, settings(64, 8));
-    auto tech = t.create();
+    auto tech = t.create({});
     FrameResult f = renderer.render(*tech);
     EXPECT_EQ(gl::Context::takeErrorCount(), 0) << t.name;
     double sum = 0;

@@ -39,8 +39,8 @@ struct Comparison {
 // any GL error.
 inline Comparison renderAndCompare(const Scene& scene, const std::string& technique, const RenderSettings& s) {
   Renderer renderer(context(), scene, s);
-  auto tech = findTechnique(technique).create();
-  auto ref = findTechnique("raytrace").create();
+  auto tech = makeTechnique(technique);
+  auto ref = makeTechnique("raytrace");
   Comparison c;
   c.frame = renderer.render(*tech);
   c.reference = renderer.render(*ref);

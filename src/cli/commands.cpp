@@ -113,7 +113,9 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   auto context = gl::Context::create(gl::parseBackend(o.backend));
   PLOG_INFO("renderer: {} ({})", context->renderer(), context->version());
   Renderer renderer(*context, scene, settings);
-  auto tech = info.create();
+  TechniqueParams params(o.params);
+  auto tech = info.create(params);
+  params.checkConsumed();
   FrameResult frame = renderer.render(*tech);
   writeFrame(output, frame);
   json j = frameSummary(frame);
@@ -142,7 +144,7 @@ int compare(const CommonOptions& o, const std::vector<std::string>& names, const
   auto context = gl::Context::create(gl::parseBackend(o.backend));
   PLOG_INFO("renderer: {} ({})", context->renderer(), context->version());
 
-  CompareReport report = compareTechniques(*context, scene, settings, techniques, outDir);
+  CompareReport report = compareTechniques(*context, scene, settings, techniques, outDir, TechniqueParams(o.params));
   json j = report.json;
   j["backend"] = o.backend;
   std::ofstream(fs::path(outDir) / "report.json") << j.dump(2) << "\n";

@@ -20,6 +20,7 @@ struct CommonOptions {
   float time = 0.0f;
   std::string shading = "modulate";
   bool noInterleaveFilter = false;  // --no-interleave-filter
+  std::vector<std::string> params;  // --param key=value (technique parameters)
   bool json = false;
 };
 

@@ -16,6 +16,7 @@ void addCommon(CLI::App* app, cli::CommonOptions& o, bool renderOptions) {
   app->add_option("scene", o.scene, "scene file (.json, .gltf, .glb, .obj, .ply, .off, .stl); none: built-in default");
   app->add_option("--set", o.overrides, "override a scene key: key=value (repeatable)");
   app->add_flag("--json", o.json, "machine-readable output on stdout");
+  app->add_option("--param", o.params, "technique parameter key=value (repeatable; see README, e.g. map=512)");
   if (!renderOptions) return;
   app->add_option("--backend", o.backend, "GL backend: egl | osmesa")->capture_default_str();
   app->add_option("-W,--width", o.width, "image width (default: the scene's)");

@@ -160,6 +160,14 @@ Image Texture::read(int channels, int layer) const {
   return img;
 }
 
+std::vector<std::uint32_t> Texture::readUint() const {
+  PENUMBRA_CHECK(fmt_ == GL_R32UI, "readUint of a texture that is not R32UI");
+  std::vector<std::uint32_t> out(std::size_t(w_) * h_ * std::max(layers_, 1));
+  glGetTextureImage(id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(out.size() * sizeof(std::uint32_t)), out.data());
+  Context::checkErrors("Texture::readUint");
+  return out;
+}
+
 void Texture::upload(const float* data, int channels, int layer) const {
   if (layers_ == 0)
     glTextureSubImage2D(id(), 0, 0, 0, w_, h_, pixelFormat(channels), GL_FLOAT, data);
@@ -173,7 +181,7 @@ std::size_t Texture::bytes() const {
 
 // ---- Framebuffer -----------------------------------------------------------------------------
 
-Framebuffer::Framebuffer(const std::vector<Attachment>& colors, const Texture* depth) {
+Framebuffer::Framebuffer(const std::vector<Attachment>& colors, const Texture* depth, int depthLayer) {
   GLuint id = 0;
   glCreateFramebuffers(1, &id);
   static_cast<Object&>(*this) = Object(id);
@@ -188,7 +196,8 @@ Framebuffer::Framebuffer(const std::vector<Attachment>& colors, const Texture* d
   }
   glNamedFramebufferDrawBuffers(id, GLsizei(bufs.size()), bufs.data());
   if (depth) {
-    glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth->id(), 0);
+    if (depthLayer >= 0) glNamedFramebufferTextureLayer(id, GL_DEPTH_ATTACHMENT, depth->id(), 0, depthLayer);
+    else glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth->id(), 0);
     w_ = depth->width(), h_ = depth->height();
   }
   PENUMBRA_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
@@ -205,6 +214,19 @@ std::vector<Framebuffer::Attachment> wholeTextures(const std::vector<const Textu
 
 Framebuffer::Framebuffer(const std::vector<const Texture*>& colors, const Texture* depth)
     : Framebuffer(wholeTextures(colors), depth) {}
+
+Framebuffer Framebuffer::empty(int width, int height) {
+  GLuint id = 0;
+  glCreateFramebuffers(1, &id);
+  Framebuffer f;
+  static_cast<Object&>(f) = Object(id);
+  glNamedFramebufferParameteri(id, GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+  glNamedFramebufferParameteri(id, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+  f.w_ = width, f.h_ = height;
+  PENUMBRA_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
+                 "framebuffer without attachments incomplete");
+  return f;
+}
 
 void Framebuffer::bind() const {
   glBindFramebuffer(GL_FRAMEBUFFER, id());

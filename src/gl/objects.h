@@ -84,6 +84,8 @@ class Texture : public Object<deleteTexture> {
   Image read(int channels, int layer = -1) const;
   // Uploads float data (channels 1..4) to the whole texture (or one layer of an array).
   void upload(const float* data, int channels, int layer = -1) const;
+  // Reads an R32UI texture (all layers) back: [layer][row][column].
+  std::vector<std::uint32_t> readUint() const;
   // Uploads RGBA unsigned-integer texels to every layer (layer-face) of an RGBA32UI texture.
   void uploadUint4(const std::uint32_t* texels) const;
   std::size_t bytes() const;  // GPU memory estimate for reports
@@ -101,9 +103,13 @@ class Framebuffer : public Object<deleteFramebuffer> {
     int layer = -1;
   };
   Framebuffer() = default;
-  Framebuffer(const std::vector<Attachment>& colors, const Texture* depth);
+  // depthLayer >= 0: that layer of an array depth texture; -1: the whole texture (layered).
+  Framebuffer(const std::vector<Attachment>& colors, const Texture* depth, int depthLayer = -1);
   // Colour attachments in order (draw buffers 0..n-1), optional depth texture.
   Framebuffer(const std::vector<const Texture*>& colors, const Texture* depth);
+  // No attachments: rasterisation of a width x height viewport whose fragments only have side
+  // effects (image and buffer stores).
+  static Framebuffer empty(int width, int height);
   void bind() const;  // binds and sets the viewport to the attachment size
 
  private:

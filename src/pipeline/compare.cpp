@@ -115,7 +115,12 @@ nlohmann::json errorsJson(const TechniqueErrors& e) {
 }
 
 CompareReport compareTechniques(gl::Context& context, const Scene& scene, const RenderSettings& settings,
-                                const std::vector<std::string>& techniques, const std::string& outDir) {
+                                const std::vector<std::string>& techniques, const std::string& outDir,
+                                const TechniqueParams& params) {
+  // Every technique is created (and its parameters checked) before the long renders start.
+  std::vector<std::unique_ptr<Technique>> created;
+  for (auto& name : techniques) created.push_back(makeTechnique(name, params));
+  params.checkConsumed();
   namespace fs = std::filesystem;
   Renderer renderer(context, scene, settings);
   auto write = [&](const std::string& name, const FrameResult& f) {
@@ -124,7 +129,7 @@ CompareReport compareTechniques(gl::Context& context, const Scene& scene, const 
     writeFrame((fs::path(outDir) / (name + ".png")).string(), f);
   };
   PLOG_INFO("[1/{}] reference: raytrace ({} samples)", techniques.size() + 1, settings.sampling.count);
-  auto refTech = findTechnique("raytrace").create();
+  auto refTech = makeTechnique("raytrace");
   FrameResult ref = renderer.render(*refTech);
   write("raytrace", ref);
 
@@ -141,6 +146,7 @@ CompareReport compareTechniques(gl::Context& context, const Scene& scene, const 
   j["seed"] = settings.sampling.seed;
   j["shading"] = toString(settings.shading);
   j["triangles"] = scene.triangleCount();
+  j["params"] = params.given();
   j["reference"] = frameSummary(ref);
   j["techniques"] = nlohmann::json::array();
   report.table = fmt::format("{:<20} {:>10} {:>10} {:>10} {:>10} {:>12}\n", "technique", "total ms",
@@ -150,10 +156,11 @@ CompareReport compareTechniques(gl::Context& context, const Scene& scene, const 
   for (std::size_t i = 0; i < techniques.size(); ++i) {
     const auto& name = techniques[i];
     PLOG_INFO("[{}/{}] {}", i + 2, techniques.size() + 1, name);
-    auto tech = findTechnique(name).create();
+    auto& tech = created[i];
     RenderSettings s = settings;
     if (s.shading == ShadingMode::PerSample && !tech->providesPerSample()) s.shading = ShadingMode::Modulate;
     FrameResult f = (s.shading == settings.shading) ? renderer.render(*tech) : Renderer(context, scene, s).render(*tech);
+    tech.reset();  // its render targets go before the next technique allocates its own
     TechniqueErrors e = measureErrors(f, ref);
     write(name, f);
     if (!outDir.empty()) {

@@ -47,7 +47,9 @@ struct CompareReport {
 // Renders the reference (`raytrace`, same samples) and each technique, writes
 // <outDir>/<technique>.exr/.png, <technique>_heat.png (visibility error, 0..0.25) and returns
 // the report. `outDir` empty: write nothing.
+// `params` (--param) go to every technique; a key none of them reads is refused.
 CompareReport compareTechniques(gl::Context& context, const Scene& scene, const RenderSettings& settings,
-                                const std::vector<std::string>& techniques, const std::string& outDir);
+                                const std::vector<std::string>& techniques, const std::string& outDir,
+                                const TechniqueParams& params = {});
 
 }  // namespace penumbra

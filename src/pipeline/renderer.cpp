@@ -101,6 +101,7 @@ GpuScene::GpuScene(const Scene& scene, int width, int height)
     d.count = GLsizei(verts.size()) - d.first;
     if (d.count > 0) draws_.push_back(d);
   }
+  vertexCount_ = GLsizei(verts.size());
   vertices_ = gl::Buffer(verts);
   vao_ = gl::VertexArray::create();
   vao_.vertexBuffer(vertices_, sizeof(GVertex))
@@ -145,6 +146,12 @@ void GpuScene::drawGBuffer(const gl::Program& program) const {
     if (tex) materialTextures_[std::size_t(mat.baseColorTexture)].bind(PENUMBRA_UNIT_MATERIAL_TEX);
     glDrawArrays(GL_TRIANGLES, d.first, d.count);
   }
+}
+
+void GpuScene::drawTriangles(GLsizei instances) const {
+  if (vertexCount_ == 0) return;
+  vao_.bind();
+  glDrawArraysInstanced(GL_TRIANGLES, 0, vertexCount_, instances);
 }
 
 void GpuScene::renderGBuffer() {

@@ -72,6 +72,9 @@ class GpuScene {
   // Draws every triangle of the scene (G-buffer layout: position, face normal, uv).
   void drawGBuffer(const gl::Program& program) const;
   void renderGBuffer();  // fills the G-buffer textures below
+  // Draws every triangle (attribute 0: position) `instances` times, no material state: for
+  // passes that only need occluder geometry (depth maps, point generation).
+  void drawTriangles(GLsizei instances = 1) const;
   const gl::Texture& position() const { return position_; }
   const gl::Texture& normal() const { return normal_; }
   const gl::Texture& albedo() const { return albedo_; }
@@ -93,6 +96,7 @@ class GpuScene {
   gl::Buffer vertices_;
   gl::VertexArray vao_;
   std::vector<Draw> draws_;
+  GLsizei vertexCount_ = 0;
   std::vector<gl::Texture> materialTextures_;  // parallel to scene.textures
   gl::Texture position_, normal_, albedo_, depth_;
   gl::Framebuffer fbo_;

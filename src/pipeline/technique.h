@@ -72,15 +72,41 @@ class Technique {
   std::uint64_t serial_;
 };
 
+// Parameters of techniques from the command line (`--param key=value`, repeatable). One set is
+// shared by every technique of a run: each technique reads the keys it knows (get* records
+// them as known and consumed); `checkConsumed` then refuses a key no technique read, naming the
+// keys that were known, so a misspelt parameter is never silently dropped.
+class TechniqueParams {
+ public:
+  TechniqueParams() = default;
+  // "key=value" strings; throws Error("--param") for a malformed one or a repeated key.
+  explicit TechniqueParams(const std::vector<std::string>& keyValues);
+  int getInt(const std::string& key, int fallback, int lo, int hi) const;
+  double getDouble(const std::string& key, double fallback, double lo, double hi) const;
+  bool getBool(const std::string& key, bool fallback) const;
+  bool empty() const { return values_.empty(); }
+  // Throws Error("--param") if a given key was read by no technique created with these params.
+  void checkConsumed() const;
+  // "key=value" of every given key, for reports.
+  std::vector<std::string> given() const;
+
+ private:
+  const std::string* find(const std::string& key) const;
+  std::vector<std::pair<std::string, std::string>> values_;
+  mutable std::vector<std::string> known_, consumed_;
+};
+
 struct TechniqueInfo {
   std::string name;
   std::string description;  // one line for `penumbra list`
-  std::function<std::unique_ptr<Technique>()> create;
+  std::function<std::unique_ptr<Technique>(const TechniqueParams&)> create;
 };
 
 // The explicit name -> factory table (src/techniques/registry.cpp). No static registration.
 const std::vector<TechniqueInfo>& techniqueTable();
 // Throws penumbra::Error("--technique", ...) listing the known names.
 const TechniqueInfo& findTechnique(const std::string& name);
+// findTechnique(name).create(params).
+std::unique_ptr<Technique> makeTechnique(const std::string& name, const TechniqueParams& params = {});
 
 }  // namespace penumbra

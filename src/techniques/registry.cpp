@@ -1,44 +1,66 @@
 // The explicit table of techniques: name -> factory. Add a technique here and nowhere else.
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
 #include "core/error.h"
 #include "pipeline/technique.h"
 #include "techniques/dcs/dcs.h"
 #include "techniques/hard_sv/hard_sv.h"
+#include "techniques/mvr/mvr.h"
 #include "techniques/none/none.h"
 #include "techniques/raytrace/raytrace.h"
+#include "techniques/reproject/reproject.h"
+#include "techniques/vwss/vwss.h"
 
 namespace penumbra {
 
 const std::vector<TechniqueInfo>& techniqueTable() {
   static const std::vector<TechniqueInfo> table = {
-      {"none", "unshadowed direct lighting", [] { return makeUnshadowed(); }},
+      {"none", "unshadowed direct lighting", [](const TechniqueParams&) { return makeUnshadowed(); }},
       {"hard-sv", "hard shadows from the light centre, z-fail shadow volumes (float counter)",
-       [] { return makeHardShadowVolumes(); }},
+       [](const TechniqueParams&) { return makeHardShadowVolumes(); }},
       {"dcs", "depth complexity sampling: per-sample occluder counts, accurate silhouettes (exact; semi-opaque layers multiply)",
-       [] { return makeDepthComplexitySampling({SilhouetteMode::Accurate}); }},
+       [](const TechniqueParams&) { return makeDepthComplexitySampling({SilhouetteMode::Accurate}); }},
       {"dcs-standard", "depth complexity sampling with standard silhouettes (from the light centre)",
-       [] { return makeDepthComplexitySampling({SilhouetteMode::Standard}); }},
+       [](const TechniqueParams&) { return makeDepthComplexitySampling({SilhouetteMode::Standard}); }},
       {"dcs-sum", "depth complexity sampling, semi-opaque occluders as the paper's sum of opacities",
-       [] {
+       [](const TechniqueParams&) {
          DcsOptions o;
          o.opacity = dcs::OpacityMode::Sum;
          return makeDepthComplexitySampling(o);
        }},
       {"dcs-naive", "dcs with the paper's covered-sample loop over 8-bit packed positions (approximate)",
-       [] {
+       [](const TechniqueParams&) {
          DcsOptions o;
          o.coverage = PENUMBRA_DCS_COVERAGE_NAIVE;
          return makeDepthComplexitySampling(o);
        }},
       {"dcs-lut", "dcs with the paper's edge LUT (cube-map sectors & line table, approximate)",
-       [] {
+       [](const TechniqueParams&) {
          DcsOptions o;
          o.coverage = PENUMBRA_DCS_COVERAGE_LUT;
          return makeDepthComplexitySampling(o);
        }},
+      {"mvr", "multi-view rasterisation: a depth map per light sample, one draw each, PCF (VWSS paper's reference)",
+       [](const TechniqueParams& p) { return makeMultiViewRasterisation(p, false); }},
+      {"mvr-layered", "mvr in one instanced draw, a geometry shader routing instances to map layers",
+       [](const TechniqueParams& p) { return makeMultiViewRasterisation(p, true); }},
+      {"vwss", "view-warped soft shadows: points from one enlarged central view, compute splat (buffered)",
+       [](const TechniqueParams& p) { return makeViewWarpedSoftShadows(p, VwssMode::Buffered); }},
+      {"vwss-unbuffered", "vwss splatting from the point-generation fragment shader (no point buffer)",
+       [](const TechniqueParams& p) { return makeViewWarpedSoftShadows(p, VwssMode::Unbuffered); }},
+      {"vwss-graphics", "vwss's points drawn as GL_POINTS, a draw per map, depth-tested (graphics pipeline)",
+       [](const TechniqueParams& p) { return makeViewWarpedSoftShadows(p, VwssMode::Graphics); }},
+      {"reproject", "fragment reprojection: the central z-buffered map reprojected into every map (atomics)",
+       [](const TechniqueParams& p) { return makeFragmentReprojection(p, true); }},
+      {"reproject-unsync", "fragment reprojection without synchronisation (last writer wins)",
+       [](const TechniqueParams& p) { return makeFragmentReprojection(p, false); }},
       {"raytrace", "Embree reference with the same light samples as every technique (per sample)",
-       [] { return makeRaytraceSameSamples(); }},
+       [](const TechniqueParams&) { return makeRaytraceSameSamples(); }},
       {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility only)",
-       [] { return makeRaytraceConverged(1024); }},
+       [](const TechniqueParams&) { return makeRaytraceConverged(1024); }},
   };
   return table;
 }
@@ -50,6 +72,87 @@ const TechniqueInfo& findTechnique(const std::string& name) {
     known += (known.empty() ? "" : ", ") + t.name;
   }
   throw Error("--technique", "unknown technique '" + name + "' (known: " + known + ")", ExitCode::Usage);
+}
+
+std::unique_ptr<Technique> makeTechnique(const std::string& name, const TechniqueParams& params) {
+  return findTechnique(name).create(params);
+}
+
+// ---- TechniqueParams -------------------------------------------------------------------------
+
+TechniqueParams::TechniqueParams(const std::vector<std::string>& keyValues) {
+  for (auto& kv : keyValues) {
+    auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
+      throw Error("--param", "expected key=value, got '" + kv + "'", ExitCode::Usage);
+    std::string key = kv.substr(0, eq);
+    if (find(key)) throw Error("--param", "key '" + key + "' given twice", ExitCode::Usage);
+    values_.emplace_back(key, kv.substr(eq + 1));
+  }
+}
+
+const std::string* TechniqueParams::find(const std::string& key) const {
+  if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.push_back(key);
+  for (auto& [k, v] : values_)
+    if (k == key) {
+      if (std::find(consumed_.begin(), consumed_.end(), key) == consumed_.end()) consumed_.push_back(key);
+      return &v;
+    }
+  return nullptr;
+}
+
+namespace {
+double parseNumber(const std::string& key, const std::string& v, double lo, double hi) {
+  std::size_t used = 0;
+  double x = 0.0;
+  try {
+    x = std::stod(v, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != v.size() || !std::isfinite(x))
+    throw Error("--param", key + ": expected a number, got '" + v + "'", ExitCode::Usage);
+  if (x < lo || x > hi)
+    throw Error("--param", fmt::format("{}: {} is outside [{}, {}]", key, v, lo, hi), ExitCode::Usage);
+  return x;
+}
+}  // namespace
+
+int TechniqueParams::getInt(const std::string& key, int fallback, int lo, int hi) const {
+  const std::string* v = find(key);
+  if (!v) return fallback;
+  double x = parseNumber(key, *v, lo, hi);
+  if (x != std::floor(x)) throw Error("--param", key + ": expected an integer, got '" + *v + "'", ExitCode::Usage);
+  return int(x);
+}
+
+double TechniqueParams::getDouble(const std::string& key, double fallback, double lo, double hi) const {
+  const std::string* v = find(key);
+  return v ? parseNumber(key, *v, lo, hi) : fallback;
+}
+
+bool TechniqueParams::getBool(const std::string& key, bool fallback) const {
+  const std::string* v = find(key);
+  if (!v) return fallback;
+  if (*v == "1" || *v == "true" || *v == "on") return true;
+  if (*v == "0" || *v == "false" || *v == "off") return false;
+  throw Error("--param", key + ": expected 0/1, got '" + *v + "'", ExitCode::Usage);
+}
+
+void TechniqueParams::checkConsumed() const {
+  for (auto& [k, v] : values_)
+    if (std::find(consumed_.begin(), consumed_.end(), k) == consumed_.end()) {
+      std::string known;
+      for (auto& n : known_) known += (known.empty() ? "" : ", ") + n;
+      throw Error("--param", "no technique of this run has a parameter '" + k + "' (known: " +
+                                 (known.empty() ? "none" : known) + ")", ExitCode::Usage);
+    }
+}
+
+std::vector<std::string> TechniqueParams::given() const {
+  std::vector<std::string> out;
+  for (auto& [k, v] : values_) out.push_back(k + "=" + v);
+  return out;
 }
 
 }  // namespace penumbra

@@ -1,0 +1,17 @@
+// mvr, layered: passes each triangle to the map layer of its instance (gl_in[] indexed by
+// constants only: a non-constant index is a known Mesa crash, hard-cases.md).
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 3) out;
+flat in int vLayer[];
+void main() {
+  gl_Layer = vLayer[0];
+  gl_Position = gl_in[0].gl_Position;
+  EmitVertex();
+  gl_Layer = vLayer[0];
+  gl_Position = gl_in[1].gl_Position;
+  EmitVertex();
+  gl_Layer = vLayer[0];
+  gl_Position = gl_in[2].gl_Position;
+  EmitVertex();
+  EndPrimitive();
+}

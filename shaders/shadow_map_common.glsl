@@ -1,0 +1,37 @@
+// The light-sample views of the multi-view shadow-map techniques (src/techniques/shadow_map):
+// every map looks along mapAxis from its sample position with the same symmetric square frustum
+// (half-angle tangent mapTanHalf), reversed depth z = mapNear / d for view depth d (1 at the near
+// plane, 0 at infinity, as the camera's), so a larger stored value is closer: atomicMax on the
+// uint bits of a positive float depth is a z-buffer (VWSS Listing 2 uses InterlockedMax alike).
+uniform vec3 mapAxis;
+uniform vec3 mapRight;
+uniform vec3 mapUp;
+uniform float mapTanHalf;
+uniform float mapNear;
+uniform int mapSize;
+
+// Clip coordinates of p in a view along mapAxis whose eye is `eye` with near plane `near`
+// (glClipControl ZERO_TO_ONE: clipped at d < near, never at the far end).
+vec4 viewClip(vec3 p, vec3 eye, float near) {
+  vec3 r = p - eye;
+  return vec4(dot(r, mapRight) / mapTanHalf, dot(r, mapUp) / mapTanHalf, near, dot(r, mapAxis));
+}
+vec4 mapClip(vec3 p, vec3 eye) { return viewClip(p, eye, mapNear); }
+
+// Texel of normalised device coordinates in a size x size map, as the rasteriser assigns
+// fragments (glClipControl GL_UPPER_LEFT flips y): texel (i, j) holds what covers its centre.
+ivec2 viewTexel(vec2 ndc, int size) {
+  return ivec2(floor(vec2(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y) * float(size)));
+}
+
+// The inverse for a texel centre: normalised device coordinates.
+vec2 viewTexelNdc(ivec2 texel, int size) {
+  vec2 uv = (vec2(texel) + 0.5) / float(size);
+  return vec2(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
+}
+
+// True for a float whose exponent is all ones (Inf or NaN), tested on its bits so that no
+// compiler assumption about NaN can remove the test (hard case 22).
+bool mapNonFinite(vec3 v) {
+  return any(equal(floatBitsToUint(v) & 0x7f800000u, uvec3(0x7f800000u)));
+}

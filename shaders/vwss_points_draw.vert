@@ -1,0 +1,11 @@
+// vwss through the graphics pipeline (VWSS Figure 13, bottom): the same points drawn as GL_POINTS
+// (1 pixel: the texel under the point, as the compute splat), one draw per map, z-buffered by
+// the depth test into a depth-map layer.
+#include "common_light.glsl"
+#include "shadow_map_common.glsl"
+#include "shadow_map_points.glsl"
+uniform int layer;
+void main() {
+  vec3 p = loadPoint(uint(gl_VertexID));
+  gl_Position = mapNonFinite(p) ? vec4(2.0, 2.0, 2.0, 1.0) : mapClip(p, samplePositions[layer].xyz);
+}

@@ -1,0 +1,67 @@
+#include "techniques/mvr/mvr.h"
+
+#include "pipeline/renderer.h"
+#include "techniques/shadow_map/maps.h"
+
+namespace penumbra {
+namespace {
+
+class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
+ public:
+  MultiViewRasterisation(const shadow_map::MapOptions& o, bool layered)
+      : MultiViewTechnique(layered ? "mvr-layered" : "mvr", o), layered_(layered) {}
+
+ protected:
+  void renderMaps(LightPass& pass, const shadow_map::MapFrame& frame) override {
+    const gl::Texture& maps = ensureMaps(GL_DEPTH_COMPONENT32F, frame);
+    pass.timer.time(name() + " depth maps", [&] {
+      if (!program_) {
+        program_ = layered_ ? gl::Program({"mvr_depth.vert", "mvr_depth.geom", "depth_only.frag"}, {"LAYERED"})
+                            : gl::Program({"mvr_depth.vert", "depth_only.frag"});
+      }
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_GREATER);  // reversed depth
+      glDepthMask(GL_TRUE);
+      glDisable(GL_CULL_FACE);
+      glDisable(GL_BLEND);
+      program_.use();
+      shadow_map::setMapUniforms(program_, frame);
+      if (layered_) {
+        if (!layeredFbo_ || fboFor_ != maps.id()) layeredFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &maps);
+        layeredFbo_.bind();
+        pass.gpu.drawTriangles(frame.layers);
+      } else {
+        if (fboFor_ != maps.id()) {
+          layerFbos_.clear();
+          for (int l = 0; l < frame.layers; ++l)
+            layerFbos_.emplace_back(std::vector<gl::Framebuffer::Attachment>{}, &maps, l);
+        }
+        for (int l = 0; l < frame.layers; ++l) {
+          layerFbos_[std::size_t(l)].bind();
+          program_.set("layer", l);
+          pass.gpu.drawTriangles(1);
+        }
+      }
+      fboFor_ = maps.id();
+      glDisable(GL_DEPTH_TEST);
+    });
+  }
+  void addStatistics(std::vector<std::pair<std::string, double>>& out) const override {
+    out.emplace_back("draws", layered_ ? 1.0 : double(layerFbos_.size()));
+  }
+
+ private:
+  bool layered_;
+  gl::Program program_;
+  gl::Framebuffer layeredFbo_;
+  std::vector<gl::Framebuffer> layerFbos_;
+  GLuint fboFor_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Technique> makeMultiViewRasterisation(const TechniqueParams& params, bool layered) {
+  return std::make_unique<MultiViewRasterisation>(shadow_map::readMapOptions(params), layered);
+}
+
+}  // namespace penumbra

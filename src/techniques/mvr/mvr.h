@@ -1,0 +1,14 @@
+// `mvr`: multi-view rasterisation (Heckbert & Herf 1997; the VWSS paper's MVR reference): the
+// occluders rasterised into one 32-bit depth map per light sample, then per-sample shadow
+// mapping with PCF (techniques/shadow_map/maps.h).
+#pragma once
+
+#include <memory>
+
+#include "pipeline/technique.h"
+
+namespace penumbra {
+// layered: one instanced draw, a geometry shader routing each instance to its map layer;
+// otherwise one draw per map. Parameters: map, pcf, bias, slope-bias, max-angle.
+std::unique_ptr<Technique> makeMultiViewRasterisation(const TechniqueParams& params, bool layered);
+}  // namespace penumbra

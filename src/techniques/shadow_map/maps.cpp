@@ -1,0 +1,201 @@
+#include "techniques/shadow_map/maps.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "gl/context.h"
+#include "pipeline/renderer.h"
+#include "sampling/shared.hpp"
+
+namespace penumbra::shadow_map {
+
+MapOptions readMapOptions(const TechniqueParams& params) {
+  MapOptions o;
+  o.size = params.getInt("map", o.size, 16, 16384);
+  o.pcf = params.getInt("pcf", o.pcf, 1, 9);
+  if (o.pcf != 1 && o.pcf != 5 && o.pcf != 9)
+    throw Error("--param", fmt::format("pcf: must be 1, 5 or 9, got {}", o.pcf), ExitCode::Usage);
+  o.biasConstant = params.getDouble("bias", o.biasConstant, -1.0, 1e30);
+  o.biasSlope = params.getDouble("slope-bias", o.biasSlope, 0.0, 100.0);
+  o.maxHalfAngle = params.getDouble("max-angle", o.maxHalfAngle, 1.0, 89.0);
+  return o;
+}
+
+MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSampleSet& samples,
+                         const CpuGBuffer& g, const MapOptions& options) {
+  MapFrame f;
+  f.size = options.size;
+  f.layers = samples.setCount * samples.count;
+  const glm::vec3 c = light.position;
+  glm::vec3 lo, hi;
+  scene.bounds(lo, hi);
+  const float radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
+  f.zNear = std::max(1e-5f * radius, 1e-7f);
+
+  glm::vec3 hint = light.tangent;
+  if (light.shape == LightShape::Rect || light.shape == LightShape::Disk) {
+    f.axis = glm::normalize(light.normal);
+  } else {
+    // Isotropic lights: towards the receivers' centroid.
+    glm::dvec3 sum(0.0);
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < g.position.size(); ++i)
+      if (g.valid[i]) sum += glm::dvec3(g.position[i]), ++n;
+    glm::vec3 towards = n ? glm::vec3(sum / double(n)) - c : glm::vec3(0.0f);
+    f.axis = glm::length(towards) > 1e-6f * radius ? glm::normalize(towards) : glm::vec3(0.0f, -1.0f, 0.0f);
+    hint = std::abs(f.axis.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+  }
+  f.right = hint - f.axis * glm::dot(hint, f.axis);
+  if (glm::length(f.right) < 1e-6f) f.right = std::abs(f.axis.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  f.right = glm::normalize(f.right - f.axis * glm::dot(f.right, f.axis));
+  // right x up = -axis: the handedness of a GL camera (x right, y up, looking down -z), so a
+  // counter-clockwise front face stays counter-clockwise in every map (vwss culls back faces).
+  f.up = glm::cross(f.right, f.axis);
+
+  f.sampleAxialMin = f.sampleAxialMax = 0.0f;
+  for (auto& s : samples.positions) {
+    glm::vec3 r = s - c;
+    f.sampleLateral = std::max({f.sampleLateral, std::abs(glm::dot(r, f.right)), std::abs(glm::dot(r, f.up))});
+    f.sampleAxialMin = std::min(f.sampleAxialMin, glm::dot(r, f.axis));
+    f.sampleAxialMax = std::max(f.sampleAxialMax, glm::dot(r, f.axis));
+  }
+  // Every receiver inside every sample's frustum: seen from the sample nearest to it along the
+  // axis and farthest sideways.
+  const float tanMax = std::tan(glm::radians(float(options.maxHalfAngle)));
+  float tanHalf = 0.0f;
+  for (std::size_t i = 0; i < g.position.size(); ++i) {
+    if (!g.valid[i]) continue;
+    glm::vec3 r = g.position[i] - c;
+    float depth = glm::dot(r, f.axis) - f.sampleAxialMax;
+    float lateral = std::max(std::abs(glm::dot(r, f.right)), std::abs(glm::dot(r, f.up))) + f.sampleLateral;
+    if (depth <= f.zNear || lateral > tanMax * depth) {
+      ++f.outsidePixels;
+      continue;
+    }
+    tanHalf = std::max(tanHalf, lateral / depth);
+  }
+  if (tanHalf <= 0.0f) tanHalf = 1.0f;
+  // Two texels of margin: the PCF taps of a receiver on the border stay in the map.
+  f.tanHalf = tanHalf * (1.0f + 4.0f / float(f.size));
+  return f;
+}
+
+void setMapUniforms(const gl::Program& p, const MapFrame& f) {
+  p.set("mapAxis", f.axis);
+  p.set("mapRight", f.right);
+  p.set("mapUp", f.up);
+  p.set("mapTanHalf", f.tanHalf);
+  p.set("mapNear", f.zNear);
+  p.set("mapSize", f.size);
+}
+
+std::size_t semiOpaqueTriangles(const Scene& scene) {
+  std::size_t n = 0;
+  for (auto& m : scene.meshes) {
+    float opacity = scene.materials[std::size_t(m.material)].opacity;
+    if (opacity > 0.0f && opacity < 1.0f) n += m.mesh.triangles.size();
+  }
+  return n;
+}
+
+// ---- MultiViewTechnique ----------------------------------------------------------------------
+
+void MultiViewTechnique::prepare(const Scene& scene, GpuScene&) {
+  semiOpaque_ = semiOpaqueTriangles(scene);
+  warned_ = false;
+  maps_ = gl::Texture();
+}
+
+const gl::Texture& MultiViewTechnique::ensureMaps(GLenum format, const MapFrame& frame) {
+  if (maps_.format() != format || maps_.width() != frame.size || maps_.layers() != frame.layers) {
+    GLint maxLayers = 0, maxSize = 0;
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    if (frame.layers > maxLayers)
+      throw Error(name_, fmt::format("{} depth maps (sets x samples) exceed the GL's {} array layers", frame.layers, maxLayers));
+    if (frame.size > maxSize)
+      throw Error(name_, fmt::format("map size {} exceeds the GL's {}", frame.size, maxSize));
+    maps_ = gl::Texture();
+    maps_ = gl::Texture::make2DArray(format, frame.size, frame.size, frame.layers);
+    if (glGetError() == GL_OUT_OF_MEMORY)
+      throw Error(name_, fmt::format("out of GPU memory for {} depth maps of {}^2 ({:.0f} MiB)", frame.layers, frame.size,
+                                     double(maps_.bytes()) / 1048576.0));
+  }
+  maps_.clear(glm::vec4(0.0f));
+  return maps_;
+}
+
+const gl::Program& MultiViewTechnique::resolveProgram(bool perSample) {
+  auto key = std::make_pair(maps_.format(), perSample);
+  auto it = resolve_.find(key);
+  if (it != resolve_.end()) return it->second;
+  std::vector<std::string> defs = {"PCF_TAPS " + std::to_string(options_.pcf)};
+  if (maps_.format() == GL_R32UI) defs.push_back("UINT_MAPS");
+  if (perSample) defs.push_back("PER_SAMPLE_OUT");
+  return resolve_.emplace(key, gl::Program({"fullscreen.vert", "shadow_map_resolve.frag"}, defs)).first->second;
+}
+
+void MultiViewTechnique::renderVisibility(LightPass& pass) {
+  frame_ = pass.timer.time(name_ + " views", [&] {
+    return computeMapFrame(pass.scene, pass.light, pass.samples, pass.cpuGBuffer(), options_);
+  });
+  if (semiOpaque_ && !warned_) {
+    PLOG_WARN("{}: {} semi-opaque triangles drawn as opaque occluders (README \"Semi-opaque occluders\")", name_, semiOpaque_);
+    warned_ = true;
+  }
+  renderMaps(pass, frame_);
+  pass.timer.time(name_ + " lighting", [&] {
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    const gl::Program& prog = resolveProgram(pass.perSample != nullptr);
+    setMapUniforms(prog, frame_);
+    prog.set("eyePosition", pass.gpu.cameraPosition());
+    prog.set("surfaceOffset", pass.scene.surfaceOffset());
+    double bias = options_.biasConstant >= 0.0 ? options_.biasConstant : 4.0 * pass.scene.surfaceOffset();
+    prog.set("biasConstant", float(bias));
+    prog.set("biasSlope", float(options_.biasSlope));
+    maps_.bind(PENUMBRA_UNIT_SHADOW_MAPS);
+    if (pass.perSample) pass.perSample->bindImage(PENUMBRA_IMAGE_SAMPLE_VIS, GL_WRITE_ONLY);
+    resolveVisibility(pass, prog);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  });
+  gl::Context::checkErrors(name_.c_str());
+}
+
+std::vector<std::pair<std::string, double>> MultiViewTechnique::statistics() const {
+  std::vector<std::pair<std::string, double>> s = {
+      {"maps", frame_.layers},
+      {"map size", frame_.size},
+      {"pcf taps", options_.pcf},
+      {"frustum half-angle deg", glm::degrees(std::atan(frame_.tanHalf))},
+      {"pixels outside maps", double(frame_.outsidePixels)},
+      {"map bytes", double(maps_.bytes())},
+      {"semi-opaque triangles as opaque", double(semiOpaque_)},
+  };
+  addStatistics(s);
+  return s;
+}
+
+int splatMaps(const gl::Program& program, const gl::Texture& maps, std::size_t threads, int layers,
+              const SplatOptions& options) {
+  if (threads == 0 || layers == 0) return 0;
+  maps.bindImage(PENUMBRA_IMAGE_SHADOW_MAPS, GL_READ_WRITE);
+  program.use();
+  const int per = options.mapsPerThread <= 0 ? layers : std::min(options.mapsPerThread, layers);
+  const std::size_t groups = (threads + PENUMBRA_MAP_LOCAL_SIZE - 1) / PENUMBRA_MAP_LOCAL_SIZE;
+  const GLuint gx = GLuint(std::min<std::size_t>(groups, 65535)), gy = GLuint((groups + gx - 1) / gx);
+  int dispatches = 0;
+  for (int first = 0; first < layers; first += per) {
+    program.set("firstLayer", first);
+    program.set("layerCount", std::min(per, layers - first));
+    glDispatchCompute(gx, gy, 1);
+    ++dispatches;
+  }
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  return dispatches;
+}
+
+}  // namespace penumbra::shadow_map

@@ -1,0 +1,99 @@
+// What the multi-view shadow-map techniques share (mvr, vwss, reproject): the light-sample
+// views, the map array, and the lighting stage (per-sample shadow mapping with PCF). Each
+// technique only says how its maps are made (MultiViewTechnique::renderMaps).
+//
+// Views: one per light sample of every sample set (layer set * N + k, the index of the sample
+// in LightSampleSet::positions), all looking along one axis (the light normal of rect and disk
+// lights; for sphere and point lights the direction from the light to the receivers' centroid)
+// with one symmetric square frustum wide enough that every visible surface point the G-buffer
+// holds is inside every sample's frustum (then so is every occluder between it and a sample).
+// Reversed depth z = near / d (shaders/shadow_map_common.glsl).
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/objects.h"
+#include "pipeline/technique.h"
+
+namespace penumbra::shadow_map {
+
+struct MapOptions {
+  int size = 1024;            // map resolution (square), as the VWSS paper's 1024^2
+  int pcf = 5;                // taps per map: 1, 5 (the VWSS paper's) or 9
+  double biasConstant = -1.0; // world units along the view axis; < 0: 4 x Scene::surfaceOffset()
+  double biasSlope = 1.5;     // texels of receiver slope (taps reach one texel away)
+  double maxHalfAngle = 80.0; // degrees: receivers needing a wider frustum are left unshadowed
+};
+// Reads map, pcf, bias, slope-bias, max-angle from --param.
+MapOptions readMapOptions(const TechniqueParams& params);
+
+struct MapFrame {
+  glm::vec3 axis{0.0f, -1.0f, 0.0f}, right{1.0f, 0.0f, 0.0f}, up{0.0f, 0.0f, 1.0f};
+  float tanHalf = 1.0f;  // tangent of the frustum's half-angle (both directions)
+  float zNear = 1e-3f;   // near plane of every sample view
+  int size = 0;          // map resolution
+  int layers = 0;        // sets * N
+  // Lateral and axial reach of the samples around the light centre (frame coordinates).
+  float sampleLateral = 0.0f, sampleAxialMin = 0.0f, sampleAxialMax = 0.0f;
+  std::size_t outsidePixels = 0;  // surface pixels beyond maxHalfAngle (left unshadowed)
+};
+MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSampleSet& samples,
+                         const CpuGBuffer& gbuffer, const MapOptions& options);
+// The uniforms of shaders/shadow_map_common.glsl.
+void setMapUniforms(const gl::Program& program, const MapFrame& frame);
+
+// Triangles of meshes whose material is semi-opaque (opacity < 1): the multi-view techniques
+// draw them as opaque occluders (README "Semi-opaque occluders"), counted and reported.
+std::size_t semiOpaqueTriangles(const Scene& scene);
+
+// A technique whose visibility is shadow mapping in one map per light sample.
+class MultiViewTechnique : public Technique {
+ public:
+  MultiViewTechnique(std::string name, const MapOptions& options) : name_(std::move(name)), options_(options) {}
+  void prepare(const Scene& scene, GpuScene& gpu) override;
+  void renderVisibility(LightPass& pass) override;
+  bool providesPerSample() const override { return true; }
+  std::size_t memoryBytes() const override { return maps_.bytes() + extraBytes(); }
+  std::vector<std::pair<std::string, double>> statistics() const override;
+
+ protected:
+  // Fill the maps for `frame`: ensureMaps() then render into them.
+  virtual void renderMaps(LightPass& pass, const MapFrame& frame) = 0;
+  virtual std::size_t extraBytes() const { return 0; }
+  virtual void addStatistics(std::vector<std::pair<std::string, double>>& out) const {}
+  // The map array for `frame`: DEPTH32F (rasterised) or R32UI (point-splatted), cleared to
+  // "nothing" (depth 0 = infinitely far). Throws penumbra::Error if the GL cannot hold it.
+  const gl::Texture& ensureMaps(GLenum format, const MapFrame& frame);
+  const std::string& name() const { return name_; }
+  const MapOptions& options() const { return options_; }
+  const gl::Texture& maps() const { return maps_; }
+
+ private:
+  const gl::Program& resolveProgram(bool perSample);
+  std::string name_;
+  MapOptions options_;
+  gl::Texture maps_;
+  std::map<std::pair<GLenum, bool>, gl::Program> resolve_;
+  MapFrame frame_;
+  std::size_t semiOpaque_ = 0;
+  bool warned_ = false;
+};
+
+// Point rendering into an R32UI map array with compute (shaders/shadow_map_reproject.comp):
+// `mapsPerThread` maps per traversal of the points (1: serial, 0 or >= layers: fully parallel).
+struct SplatOptions {
+  int mapsPerThread = 8;
+  bool synchronized = true;  // imageAtomicMax; false: plain stores (last writer wins)
+};
+// Binds `maps` as the splat image and dispatches over `threads` points, once per group of maps.
+// `program` has the uniforms of shadow_map_common.glsl set. Returns the number of dispatches.
+int splatMaps(const gl::Program& program, const gl::Texture& maps, std::size_t threads, int layers,
+              const SplatOptions& options);
+
+}  // namespace penumbra::shadow_map

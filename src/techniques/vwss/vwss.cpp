@@ -1,0 +1,235 @@
+#include "techniques/vwss/vwss.h"
+
+#include <algorithm>
+#include <cmath>
+#include <array>
+#include <limits>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "pipeline/renderer.h"
+#include "sampling/shared.hpp"
+#include "techniques/shadow_map/maps.h"
+
+namespace penumbra {
+namespace {
+
+struct VwssOptions {
+  VwssMode mode = VwssMode::Buffered;
+  shadow_map::SplatOptions splat;
+  bool backFaces = false;
+  double scale = 0.0;  // 0: eq. 3
+};
+
+const char* modeName(VwssMode m) {
+  switch (m) {
+    case VwssMode::Unbuffered: return "vwss-unbuffered";
+    case VwssMode::Graphics: return "vwss-graphics";
+    default: return "vwss";
+  }
+}
+
+// Distance beyond the samples (along the axis) of the nearest scene vertex in front of them: the
+// z_n of eq. 3 (where the samples' near plane could sit without clipping an occluder).
+float nearestOccluder(const Scene& scene, const glm::vec3& centre, const shadow_map::MapFrame& f) {
+  float nearest = std::numeric_limits<float>::infinity();
+  for (auto& m : scene.meshes)
+    for (auto& v : m.mesh.positions) {
+      float d = glm::dot(v - centre, f.axis) - f.sampleAxialMax;
+      if (d > f.zNear) nearest = std::min(nearest, d);
+    }
+  return std::isfinite(nearest) ? nearest : 1.0f;
+}
+
+class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
+ public:
+  ViewWarpedSoftShadows(const shadow_map::MapOptions& m, const VwssOptions& o)
+      : MultiViewTechnique(modeName(o.mode), m), o_(o) {}
+
+  void prepare(const Scene& scene, GpuScene& gpu) override {
+    MultiViewTechnique::prepare(scene, gpu);
+    nearestCache_.clear();
+    points_ = gl::Buffer();
+    capacity_ = 0;
+  }
+
+ protected:
+  void renderMaps(LightPass& pass, const shadow_map::MapFrame& frame) override {
+    const Light& light = pass.light;
+    // Eq. 1-2: back along the axis until the central frustum holds every sample's frustum: at
+    // the light's plane it must span the light (rect: max(w, h), disk: the diameter; sphere
+    // and point lights: the samples' lateral reach, and behind the rearmost sample).
+    float halfExtent = frame.sampleLateral;
+    if (light.shape == LightShape::Rect) halfExtent = 0.5f * std::max(light.size.x, light.size.y);
+    if (light.shape == LightShape::Disk) halfExtent = light.size.x;
+    const float back = std::max(0.0f, -frame.sampleAxialMin);
+    distance_ = halfExtent / frame.tanHalf + back;
+    const glm::vec3 eye = light.position - distance_ * frame.axis;
+    const float centralNear = std::max(distance_ - back, frame.zNear);
+    // Eq. 3: raise the resolution by (z_n + d) / z_n, z_n the nearest occluder beyond the light.
+    auto key = std::make_pair(pass.lightIndex, std::array<float, 3>{frame.axis.x, frame.axis.y, frame.axis.z});
+    auto it = nearestCache_.find(key);
+    if (it == nearestCache_.end()) it = nearestCache_.emplace(key, nearestOccluder(pass.scene, light.position, frame)).first;
+    zn_ = it->second;
+    scaleEq3_ = (zn_ + distance_) / zn_;
+    double scale = o_.scale > 0.0 ? o_.scale : scaleEq3_;
+    GLint maxFb = 0;
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &maxFb);
+    int res = int(std::ceil(double(frame.size) * scale));
+    capped_ = res > maxFb;
+    sourceSize_ = std::min(res, int(maxFb));
+    if (capped_ && !warnedCap_) {
+      PLOG_WARN("{}: eq. 3 asks for a {}^2 point-generation view; capped at the GL's {} (occluders nearer than the light "
+                "size are sampled below mvr's rate)", name(), res, maxFb);
+      warnedCap_ = true;
+    }
+
+    const gl::Texture* maps = nullptr;
+    if (o_.mode == VwssMode::Graphics) maps = &ensureMaps(GL_DEPTH_COMPONENT32F, frame);
+    else maps = &ensureMaps(GL_R32UI, frame);
+    if (sourceFbo_.id() == 0 || sourceFboSize_ != sourceSize_) {
+      sourceFbo_ = gl::Framebuffer::empty(sourceSize_, sourceSize_);
+      sourceFboSize_ = sourceSize_;
+    }
+
+    auto generate = [&](const gl::Program& prog) {
+      sourceFbo_.bind();
+      glDisable(GL_DEPTH_TEST);
+      glDisable(GL_BLEND);
+      if (o_.backFaces) {
+        glDisable(GL_CULL_FACE);
+      } else {
+        glEnable(GL_CULL_FACE);
+        glFrontFace(GL_CCW);
+        glCullFace(GL_BACK);
+      }
+      prog.use();
+      shadow_map::setMapUniforms(prog, frame);
+      prog.set("centralEye", eye);
+      prog.set("centralNear", centralNear);
+      pass.gpu.drawTriangles(1);
+      glDisable(GL_CULL_FACE);
+    };
+
+    if (o_.mode == VwssMode::Unbuffered) {
+      pass.timer.time(name() + " points+maps", [&] {
+        const gl::Program& prog = program("unbuffered", {"vwss_points.vert", "vwss_points.frag"}, {"UNBUFFERED"});
+        maps->bindImage(PENUMBRA_IMAGE_SHADOW_MAPS, GL_READ_WRITE);
+        prog.set("layerCount", frame.layers);
+        generate(prog);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      });
+      pointCount_ = 0;
+      return;
+    }
+
+    // Buffered: points into the buffer; grown and regenerated if it overflowed.
+    pass.timer.time(name() + " points", [&] {
+      const gl::Program& prog = program("points", {"vwss_points.vert", "vwss_points.frag"}, {});
+      regrown_ = 0;
+      // A point a source pixel to start with (the buffer grows when overdraw needs more).
+      if (capacity_ == 0) capacity_ = std::max<std::size_t>(std::size_t(sourceSize_) * sourceSize_, 1u << 16);
+      for (;;) {
+        if (points_.size() < 16 + 12 * capacity_) points_ = gl::Buffer(16 + 12 * capacity_, nullptr);
+        const std::uint32_t zero[4] = {0, 0, 0, 0};
+        points_.write(zero, sizeof(zero));
+        points_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_POINTS);
+        prog.set("pointCapacity", unsigned(capacity_));
+        generate(prog);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        std::uint32_t count = 0;
+        points_.read(&count, sizeof(count));
+        pointCount_ = count;
+        if (count <= capacity_) break;
+        capacity_ = std::size_t(double(count) * 1.25);
+        ++regrown_;
+      }
+    });
+
+    pass.timer.time(name() + " depth maps", [&] {
+      points_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_POINTS);
+      if (o_.mode == VwssMode::Graphics) {
+        const gl::Program& prog = program("draw", {"vwss_points_draw.vert", "depth_only.frag"}, {});
+        prog.use();
+        shadow_map::setMapUniforms(prog, frame);
+        prog.set("pointCapacity", unsigned(capacity_));
+        if (layerFbosFor_ != maps->id()) {
+          layerFbos_.clear();
+          for (int l = 0; l < frame.layers; ++l) layerFbos_.emplace_back(std::vector<gl::Framebuffer::Attachment>{}, maps, l);
+          layerFbosFor_ = maps->id();
+        }
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);
+        glDepthMask(GL_TRUE);
+        if (!emptyVao_) emptyVao_ = gl::VertexArray::create();
+        emptyVao_.bind();
+        for (int l = 0; l < frame.layers; ++l) {
+          layerFbos_[std::size_t(l)].bind();
+          prog.set("layer", l);
+          glDrawArrays(GL_POINTS, 0, GLsizei(pointCount_));
+        }
+        glDisable(GL_DEPTH_TEST);
+        dispatches_ = frame.layers;
+      } else {
+        const gl::Program& prog = program("splat", {"shadow_map_reproject.comp"}, {});
+        shadow_map::setMapUniforms(prog, frame);
+        prog.set("pointCapacity", unsigned(capacity_));
+        dispatches_ = shadow_map::splatMaps(prog, *maps, pointCount_, frame.layers, o_.splat);
+      }
+    });
+  }
+
+  std::size_t extraBytes() const override { return points_.size(); }
+
+  void addStatistics(std::vector<std::pair<std::string, double>>& out) const override {
+    out.emplace_back("points", double(pointCount_));
+    out.emplace_back("point buffer bytes", double(points_.size()));
+    out.emplace_back("point buffer regrown", double(regrown_));
+    out.emplace_back("source resolution", double(sourceSize_));
+    out.emplace_back("eq. 3 scale", scaleEq3_);
+    out.emplace_back("source resolution capped", capped_ ? 1.0 : 0.0);
+    out.emplace_back("eq. 1 distance", distance_);
+    out.emplace_back("z_n", zn_);
+    out.emplace_back("maps per thread", o_.splat.mapsPerThread);
+    out.emplace_back("point passes", double(dispatches_));
+  }
+
+ private:
+  const gl::Program& program(const std::string& key, const std::vector<std::string>& files,
+                             const std::vector<std::string>& defs) {
+    auto it = programs_.find(key);
+    if (it == programs_.end()) it = programs_.emplace(key, gl::Program(files, defs)).first;
+    return it->second;
+  }
+
+  VwssOptions o_;
+  std::map<std::string, gl::Program> programs_;
+  std::map<std::pair<int, std::array<float, 3>>, float> nearestCache_;
+  gl::Buffer points_;
+  std::size_t capacity_ = 0, pointCount_ = 0;
+  int regrown_ = 0, dispatches_ = 0;
+  gl::Framebuffer sourceFbo_;
+  int sourceFboSize_ = 0, sourceSize_ = 0;
+  std::vector<gl::Framebuffer> layerFbos_;
+  GLuint layerFbosFor_ = 0;
+  gl::VertexArray emptyVao_;
+  float distance_ = 0.0f, zn_ = 0.0f;
+  double scaleEq3_ = 1.0;
+  bool capped_ = false, warnedCap_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueParams& params, VwssMode mode) {
+  VwssOptions o;
+  o.mode = mode;
+  if (mode == VwssMode::Buffered) o.splat.mapsPerThread = params.getInt("k", 8, 0, 4096);
+  o.backFaces = params.getBool("backfaces", false);
+  o.scale = params.getDouble("scale", 0.0, 0.0, 64.0);
+  return std::make_unique<ViewWarpedSoftShadows>(shadow_map::readMapOptions(params), o);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,24 @@
+// `vwss`: view-warped soft shadows (VWSS paper, section 3). The occluders are rasterised once
+// from a central view moved back along the light normal until its frustum holds every light
+// sample's (eq. 1-2), at a resolution raised by eq. 3, depth test off and back faces culled:
+// every fragment is a point. Buffered: the points go to a storage buffer and a compute shader
+// splats each into several sample maps per thread with atomicMax (Listing 2); unbuffered: the
+// point-generation fragment shader splats directly (Figure 3); graphics: the buffered points
+// drawn as GL_POINTS, one draw per map, z-buffered by the depth test (Figure 13, bottom).
+// Lighting: shadow_map/maps.h. Depth bias is applied there, after reprojection.
+#pragma once
+
+#include <memory>
+
+#include "pipeline/technique.h"
+
+namespace penumbra {
+
+enum class VwssMode { Buffered, Unbuffered, Graphics };
+
+// Parameters (besides the map ones of shadow_map/maps.h): k (maps per compute thread: 1 serial,
+// 0 all, default 8 as Listing 2), backfaces (1: keep back faces, section 3.1's option), scale
+// (point-generation resolution factor; 0: eq. 3).
+std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueParams& params, VwssMode mode);
+
+}  // namespace penumbra
