@@ -6,8 +6,8 @@
 // visibility buffer of DCS eq. 2 (textured lights are exact per sample).
 // Depth bias, applied here after the maps are made (fragment reprojection section 3.1.1: bias
 // after reprojection), in world units along the view axis: biasConstant + biasSlope * (one
-// texel's footprint at the receiver's depth) * tan(angle between the receiver normal and the
-// direction to the sample), the slope-scaled bias of shadow-map practice.
+// texel's footprint at the receiver's depth) * (the receiver plane's depth slope in the map,
+// capped at 100: grazing receivers need it), the slope-scaled bias of shadow-map practice.
 #include "common_light.glsl"
 #include "shadow_map_common.glsl"
 
@@ -46,10 +46,11 @@ const ivec2 tapOffset[1] = ivec2[](ivec2(0, 0));
 float shadowTest(vec3 o, vec3 n, vec3 x, int layer) {
   vec4 c = mapClip(o, x);
   if (!(c.w > mapNear)) return 1.0;  // in or behind the sample's plane: nothing in between
-  vec3 dir = normalize(x - o);
-  float cosT = clamp(abs(dot(n, dir)), 1e-4, 1.0);
-  float tanT = min(sqrt(1.0 - cosT * cosT) / cosT, 10.0);
-  float receiver = c.w - (biasConstant + biasSlope * tanT * c.w * 2.0 * mapTanHalf / float(mapSize));
+  // Depth slope of the receiver's plane in this map: view depth gained per world unit of
+  // lateral image-plane offset, |n_lateral| / |n . ray|, the ray scaled to unit depth.
+  vec3 ray = (o - x) / c.w;
+  float slope = min(length(n - mapAxis * dot(n, mapAxis)) / max(abs(dot(n, ray)), 1e-4), 100.0);
+  float receiver = c.w - (biasConstant + biasSlope * slope * c.w * 2.0 * mapTanHalf / float(mapSize));
   // Lit iff the stored (reversed) depth is at most the receiver's: nothing nearer to the sample.
   float zReceiver = receiver > 0.0 ? mapNear / receiver : 3.0e38;
   ivec2 t = viewTexel(c.xy / c.w, mapSize);

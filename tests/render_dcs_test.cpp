@@ -21,13 +21,6 @@ std::string caseName(const ::testing::TestParamInfo<Case>& info) {
   return sceneTestName(info.param.scene) + "_N" + std::to_string(info.param.samples);
 }
 
-double statistic(const FrameResult& f, const std::string& key) {
-  for (auto& [k, v] : f.statistics)
-    if (k == key) return v;
-  ADD_FAILURE() << "no statistic " << key;
-  return 0.0;
-}
-
 class DcsVsRaytrace : public ::testing::TestWithParam<Case> {};
 
 TEST_P(DcsVsRaytrace, PerSampleVisibilityMatchesOutsideEdgeBand) {

@@ -37,9 +37,10 @@ struct Comparison {
 
 // Renders `technique` and `raytrace` (same samples) and measures the errors; fails the test on
 // any GL error.
-inline Comparison renderAndCompare(const Scene& scene, const std::string& technique, const RenderSettings& s) {
+inline Comparison renderAndCompare(const Scene& scene, const std::string& technique, const RenderSettings& s,
+                                   const TechniqueParams& params = {}) {
   Renderer renderer(context(), scene, s);
-  auto tech = makeTechnique(technique);
+  auto tech = makeTechnique(technique, params);
   auto ref = makeTechnique("raytrace");
   Comparison c;
   c.frame = renderer.render(*tech);
@@ -47,6 +48,14 @@ inline Comparison renderAndCompare(const Scene& scene, const std::string& techni
   c.errors = measureErrors(c.frame, c.reference);
   EXPECT_EQ(gl::Context::takeErrorCount(), 0) << "GL errors while rendering " << technique;
   return c;
+}
+
+// A Technique::statistics() value of a frame (fails the test if absent).
+inline double statistic(const FrameResult& f, const std::string& key) {
+  for (auto& [k, v] : f.statistics)
+    if (k == key) return v;
+  ADD_FAILURE() << "no statistic " << key;
+  return 0.0;
 }
 
 // Fraction of surface pixels outside the edge band whose visibility decision differs.
