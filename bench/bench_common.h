@@ -34,6 +34,13 @@ struct Timing {
   }
 };
 
+// A Technique::statistics() value of a frame, 0 if the technique does not report it.
+inline double statistic(const FrameResult& f, const std::string& key) {
+  for (auto& [k, v] : f.statistics)
+    if (k == key) return v;
+  return 0.0;
+}
+
 inline Timing timeFrames(Renderer& renderer, Technique& technique, int frames, int warmup) {
   std::map<std::string, std::vector<double>> stages;
   std::vector<double> total;

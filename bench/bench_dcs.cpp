@@ -22,16 +22,11 @@
 #include "scene/scene.h"
 
 using namespace penumbra;
+using bench::statistic;
 
 namespace {
 
 double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
-
-double statistic(const FrameResult& f, const std::string& key) {
-  for (auto& [k, v] : f.statistics)
-    if (k == key) return v;
-  return 0.0;
-}
 
 }  // namespace
 

@@ -1,0 +1,285 @@
+// Benchmark (not a test) of the multi-view shadow-map studies of issue 5, in one run on one
+// machine (VWSS paper, section 4):
+//  1. Tables 1-2: scenes of about 110k, 220k, 550k and 660k triangles (the engine instanced
+//     1, 2, 5 and 6 times), 24 and 128 maps: points, G-buffer, point generation, depth maps,
+//     lighting, total, range, speed-up of depth maps and total over mvr, RMSE against the
+//     same-sample reference; memory; the slope of depth-map time against triangles (Fig. 12).
+//  2. Figure 13 top: buffered against unbuffered as the number of maps grows.
+//  3. Figure 13 bottom: the same points rendered by compute (serial, partially parallel,
+//     fully parallel) and by the graphics pipeline.
+//  4. Figure 8: the light grows to 16x its area at a constant sample density (8 to 128 samples;
+//     our limit is PENUMBRA_MAX_SAMPLES = 128, the paper goes to 64x and 512); vwss against mvr
+//     per-sample as the samples move away from the light centre.
+//  5. Convergence: mvr, vwss and reproject RMSE at 512^2, 1024^2, 2048^2 maps on the same frames.
+//
+//   penumbra_bench_multiview [SCENE] [-W 256] [-H 256] [--map 1024] [--frames 3] [--warmup 1]
+//                            [--copies 1,2,5,6] [--maps 24,128] [--study 1,2,3,4,5] [--backend egl]
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "bench_common.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "gl/context.h"
+#include "pipeline/compare.h"
+#include "pipeline/renderer.h"
+#include "sampling/light_samples.h"
+#include "scene/scene.h"
+
+using namespace penumbra;
+using bench::statistic;
+
+namespace {
+
+double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
+
+// The scene with every mesh but the first (the floor) repeated `copies` times on a grid.
+Scene instanced(const Scene& base, int copies, float spacing) {
+  Scene s = base;
+  const glm::vec2 offsets[] = {{0, 0}, {1, 0}, {-1, 0}, {0, -1}, {1, -1}, {-1, -1}, {0, 1}, {1, 1}, {-1, 1}};
+  for (int c = 1; c < copies && c < 9; ++c)
+    for (std::size_t m = 1; m < base.meshes.size(); ++m) {
+      SceneMesh copy = base.meshes[m];
+      for (auto& p : copy.mesh.positions) p += glm::vec3(offsets[c].x * spacing, 0.0f, offsets[c].y * spacing);
+      s.meshes.push_back(std::move(copy));
+    }
+  return s;
+}
+
+struct Run {
+  bench::Timing timing;
+  double rmse = 0.0;
+};
+
+struct Bench {
+  gl::Context& ctx;
+  int width, height, frames, warmup;
+
+  RenderSettings settings(int samples) const {
+    RenderSettings s;
+    s.width = width, s.height = height;
+    s.sampling.count = samples;
+    s.perSampleResults = false;  // timing: no readback of per-sample layers
+    return s;
+  }
+  FrameResult reference(const Scene& scene, const RenderSettings& s) const {
+    Renderer r(ctx, scene, s);
+    auto t = makeTechnique("raytrace");
+    return r.render(*t);
+  }
+  Run run(const Scene& scene, const RenderSettings& s, const std::string& name, const std::vector<std::string>& params,
+          const FrameResult* ref) const {
+    Renderer r(ctx, scene, s);
+    auto t = makeTechnique(name, TechniqueParams(params));
+    Run out;
+    out.timing = bench::timeFrames(r, *t, frames, warmup);
+    if (ref) out.rmse = measureErrors(out.timing.last, *ref).visibility.rmse;
+    return out;
+  }
+};
+
+// Least-squares slope of y against x.
+double slope(const std::vector<double>& x, const std::vector<double>& y) {
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) mx += x[i], my += y[i];
+  mx /= double(x.size()), my /= double(y.size());
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) num += (x[i] - mx) * (y[i] - my), den += (x[i] - mx) * (x[i] - mx);
+  return den > 0 ? num / den : 0.0;
+}
+
+std::vector<int> parseList(const std::string& s) {
+  std::vector<int> v;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    std::size_t j = s.find(',', i);
+    v.push_back(std::stoi(s.substr(i, j - i)));
+    if (j == std::string::npos) break;
+    i = j + 1;
+  }
+  return v;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  setLogLevel("error");
+  CLI::App app{"the multi-view shadow-map studies of issue 5 in one run"};
+  std::string scenePath = "scenes/engine.json", backend = "egl", copiesArg = "1,2,5,6", mapsArg = "24,128",
+              studyArg = "1,2,3,4,5";
+  int width = 256, height = 256, map = 1024, frames = 3, warmup = 1;
+  float spacing = 1.6f;
+  app.add_option("scene", scenePath, "base scene: the floor then the occluders to instance");
+  app.add_option("-W", width);
+  app.add_option("-H", height);
+  app.add_option("--map", map, "depth-map resolution of studies 1-4");
+  app.add_option("--frames", frames);
+  app.add_option("--warmup", warmup);
+  app.add_option("--copies", copiesArg, "instances of the occluders per scene of study 1");
+  app.add_option("--spacing", spacing, "distance between instances");
+  app.add_option("--maps", mapsArg, "light samples (maps) of study 1");
+  app.add_option("--study", studyArg, "studies to run");
+  app.add_option("--backend", backend);
+  CLI11_PARSE(app, argc, argv);
+  try {
+    auto ctx = gl::Context::create(gl::parseBackend(backend));
+    Scene base = loadScene(scenePath);
+    Bench b{*ctx, width, height, frames, warmup};
+    const std::string mapParam = "map=" + std::to_string(map);
+    std::set<int> studies;
+    for (int s : parseList(studyArg)) studies.insert(s);
+    std::printf("Multi-view shadow-map studies (issue 5): %s, %dx%d image, %d^2 maps, median of %d frames after %d "
+                "warm-up, times in ms (glFinish + steady clock), renderer %s\n\n",
+                scenePath.c_str(), width, height, map, frames, warmup, ctx->renderer().c_str());
+
+    if (studies.count(1)) {
+      std::printf("1. VWSS Tables 1-2 shape: mvr (a draw per map), mvr-layered, vwss (buffered, compute, k=8), "
+                  "reproject; RMSE of the visibility buffer against raytrace with the same samples\n");
+      for (int n : parseList(mapsArg)) {
+        std::printf("\n%d maps of %d^2 (%d PCF taps per map: %d depth samples per pixel)\n", n, map, 5, 5 * n);
+        std::printf("%-9s %8s %-12s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s %9s\n", "triangles", "points", "technique",
+                    "G-buffer", "points", "maps", "lighting", "total", "range", "x maps", "x total", "RMSE", "map MiB",
+                    "point MiB");
+        std::vector<double> tris;
+        std::map<std::string, std::vector<double>> depthTimes;
+        for (int copies : parseList(copiesArg)) {
+          Scene scene = instanced(base, copies, spacing);
+          RenderSettings s = b.settings(n);
+          FrameResult ref = b.reference(scene, s);
+          tris.push_back(double(scene.triangleCount()));
+          double mvrMaps = 0, mvrTotal = 0;
+          for (std::string name : {"mvr", "mvr-layered", "vwss", "reproject"}) {
+            Run r = b.run(scene, s, name, {mapParam}, &ref);
+            const auto& t = r.timing;
+            double points = t.stage(name + " points") + t.stage(name + " central map");
+            double maps = points + t.stage(name + " depth maps");
+            double lighting = t.stage(name + " lighting") + t.stage("shading") + t.stage(name + " views");
+            if (name == "mvr") mvrMaps = maps, mvrTotal = t.total.median;
+            depthTimes[name].push_back(maps);
+            std::printf("%-9zu %8.0f %-12s %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %7.2f %7.4f %8.0f %9.1f\n",
+                        scene.triangleCount(), statistic(t.last, "points"), name.c_str(), t.stage("gbuffer"), points,
+                        t.stage(name + " depth maps"), lighting, t.total.median, t.total.max - t.total.min,
+                        mvrMaps / std::max(maps, 1e-9), mvrTotal / std::max(t.total.median, 1e-9), r.rmse,
+                        mib(statistic(t.last, "map bytes")), mib(statistic(t.last, "point buffer bytes")));
+            std::fflush(stdout);
+          }
+        }
+        std::printf("slope of depth-map time (points + maps) against triangles, ms per 100k triangles:");
+        for (auto& [name, v] : depthTimes) std::printf("  %s %.3f", name.c_str(), 1e5 * slope(tris, v));
+        std::printf("\n");
+      }
+      std::printf("(x maps, x total: mvr's time over the row's; range: max - min of the total over the timed frames)\n\n");
+    }
+
+    Scene two = instanced(base, 2, spacing);
+    if (studies.count(2)) {
+      std::printf("2. VWSS Figure 13 top: buffered (points, then compute splat k=8) against unbuffered (splat in the "
+                  "point-generation fragment shader); %zu triangles; depth-map generation ms\n", two.triangleCount());
+      std::printf("%6s %10s %10s %8s\n", "maps", "buffered", "unbuffered", "ratio");
+      for (int n : {8, 16, 32, 64, 128}) {
+        RenderSettings s = b.settings(n);
+        Run bu = b.run(two, s, "vwss", {mapParam}, nullptr), un = b.run(two, s, "vwss-unbuffered", {mapParam}, nullptr);
+        double tb = bu.timing.stage("vwss points") + bu.timing.stage("vwss depth maps");
+        double tu = un.timing.stage("vwss-unbuffered points+maps");
+        std::printf("%6d %10.2f %10.2f %8.2f\n", n, tb, tu, tu / std::max(tb, 1e-9));
+        std::fflush(stdout);
+      }
+      std::printf("\n");
+    }
+
+    if (studies.count(3)) {
+      std::printf("3. VWSS Figure 13 bottom: the same points into the maps by compute (serial k=1, partially parallel "
+                  "k=8, fully parallel k=all) and by the graphics pipeline (GL_POINTS, a draw per map); ms of the "
+                  "depth-map stage only\n");
+      std::printf("%6s %10s %10s %10s %10s %10s\n", "maps", "points", "serial", "partial", "full", "graphics");
+      for (int n : {24, 128}) {
+        RenderSettings s = b.settings(n);
+        Run serial = b.run(two, s, "vwss", {mapParam, "k=1"}, nullptr);
+        Run partial = b.run(two, s, "vwss", {mapParam, "k=8"}, nullptr);
+        Run full = b.run(two, s, "vwss", {mapParam, "k=0"}, nullptr);
+        Run graphics = b.run(two, s, "vwss-graphics", {mapParam}, nullptr);
+        std::printf("%6d %10.0f %10.2f %10.2f %10.2f %10.2f\n", n, statistic(serial.timing.last, "points"),
+                    serial.timing.stage("vwss depth maps"), partial.timing.stage("vwss depth maps"),
+                    full.timing.stage("vwss depth maps"), graphics.timing.stage("vwss-graphics depth maps"));
+        std::fflush(stdout);
+      }
+      std::printf("\n");
+    }
+
+    if (studies.count(4)) {
+      std::printf("4. VWSS Figure 8: the light grows at one sample per 1/8 of its first area; RMSE against raytrace "
+                  "(same samples) and the fraction of per-sample decisions where vwss and mvr differ, by the "
+                  "sample's distance from the centre in units of the first light's half-size\n");
+      std::printf("%6s %7s %9s %9s %9s | %8s %8s %8s %8s %8s\n", "area x", "samples", "mvr RMSE", "vwss RMSE",
+                  "vwss-mvr", "[0,1)", "[1,2)", "[2,3)", "[3,4]", "scale");
+      const Light light0 = base.lights.at(0);
+      const float half0 = 0.5f * std::max(light0.size.x, light0.size.y);
+      for (int f : {1, 2, 4, 8, 16}) {
+        Scene scene = base;
+        scene.lights.resize(1);
+        scene.lights[0].size = light0.size * std::sqrt(float(f));
+        RenderSettings s = b.settings(8 * f);
+        s.perSampleResults = true;
+        FrameResult ref = b.reference(scene, s);
+        Run mvr = b.run(scene, s, "mvr", {mapParam}, &ref), vwss = b.run(scene, s, "vwss", {mapParam}, &ref);
+        LightSampleSet samples = makeLightSamples(scene, scene.lights[0], s.sampling);
+        double differ[4] = {0, 0, 0, 0}, count[4] = {0, 0, 0, 0};
+        const auto& a = mvr.timing.last.lights[0].perSample;
+        const auto& v = vwss.timing.last.lights[0].perSample;
+        const int nS = samples.count;
+        for (std::size_t px = 0; px < ref.gbuffer.valid.size(); ++px) {
+          if (!ref.gbuffer.valid[px]) continue;
+          for (int k = 0; k < nS; ++k) {
+            glm::vec3 r = samples.position(0, k) - scene.lights[0].position;
+            float dist = std::max(std::abs(glm::dot(r, scene.lights[0].tangent)),
+                                  std::abs(glm::dot(r, scene.lights[0].bitangent()))) / half0;
+            int bin = std::min(3, int(dist));
+            count[bin] += 1;
+            differ[bin] += std::abs(a[px * std::size_t(nS) + std::size_t(k)] - v[px * std::size_t(nS) + std::size_t(k)]) > 0.5f;
+          }
+        }
+        double vsMvr = 0, n = 0;
+        for (std::size_t i = 0; i < mvr.timing.last.lights[0].visibility.data.size(); ++i) {
+          double d = mvr.timing.last.lights[0].visibility.data[i] - vwss.timing.last.lights[0].visibility.data[i];
+          vsMvr += d * d, n += 1;
+        }
+        std::printf("%6d %7d %9.4f %9.4f %9.4f |", f, nS, mvr.rmse, vwss.rmse, std::sqrt(vsMvr / std::max(n, 1.0)));
+        for (int i = 0; i < 4; ++i) {
+          if (count[i] > 0) std::printf(" %8.4f", differ[i] / count[i]);
+          else std::printf(" %8s", "-");
+        }
+        std::printf(" %8.2f\n", statistic(vwss.timing.last, "source resolution") / double(map));
+        std::fflush(stdout);
+      }
+      std::printf("(vwss-mvr: RMSE between the two visibility buffers over all pixels; scale: vwss's eq. 3 factor)\n\n");
+    }
+
+    if (studies.count(5)) {
+      std::printf("5. Convergence with map resolution, 24 samples, %zu triangles: RMSE against raytrace (same samples), "
+                  "depth-map ms (points + maps), memory MiB (maps + point buffer / central map)\n",
+                  base.triangleCount());
+      std::printf("%6s | %9s %8s %8s | %9s %8s %8s | %9s %8s %8s\n", "map", "mvr RMSE", "ms", "MiB", "vwss RMSE", "ms",
+                  "MiB", "repr RMSE", "ms", "MiB");
+      RenderSettings s = b.settings(24);
+      FrameResult ref = b.reference(base, s);
+      for (int m : {512, 1024, 2048}) {
+        std::printf("%6d |", m);
+        for (std::string name : {"mvr", "vwss", "reproject"}) {
+          Run r = b.run(base, s, name, {"map=" + std::to_string(m)}, &ref);
+          const auto& t = r.timing;
+          double ms = t.stage(name + " points") + t.stage(name + " central map") + t.stage(name + " depth maps");
+          std::printf(" %9.4f %8.2f %8.0f |", r.rmse, ms, mib(double(t.last.memoryBytes)));
+          std::fflush(stdout);
+        }
+        std::printf("\n");
+      }
+    }
+    return 0;
+  } catch (const Error& e) {
+    std::fprintf(stderr, "penumbra_bench_multiview: %s\n", e.what());
+    return int(e.exitCode());
+  }
+}
