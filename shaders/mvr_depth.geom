@@ -3,14 +3,18 @@
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
 flat in int vLayer[];
+flat out int gLayer;  // for fragment shaders that need it (shadow_map_transmittance.frag)
 void main() {
   gl_Layer = vLayer[0];
+  gLayer = vLayer[0];
   gl_Position = gl_in[0].gl_Position;
   EmitVertex();
   gl_Layer = vLayer[0];
+  gLayer = vLayer[0];
   gl_Position = gl_in[1].gl_Position;
   EmitVertex();
   gl_Layer = vLayer[0];
+  gLayer = vLayer[0];
   gl_Position = gl_in[2].gl_Position;
   EmitVertex();
   EndPrimitive();

@@ -20,6 +20,24 @@ float storedDepth(ivec3 t) { return uintBitsToFloat(texelFetch(shadowMaps, t, 0)
 layout(binding = PENUMBRA_UNIT_SHADOW_MAPS) uniform sampler2DArray shadowMaps;  // DEPTH32F
 float storedDepth(ivec3 t) { return texelFetch(shadowMaps, t, 0).r; }
 #endif
+#ifdef SEMI_OPAQUE
+// Semi-opaque surfaces of each map texel (shaders/shadow_map_transmittance.frag): a count and
+// K entries (reversed depth, opacity in the low 8 bits) a map.
+layout(binding = PENUMBRA_UNIT_SEMI_COUNT) uniform usampler2DArray semiCount;
+layout(binding = PENUMBRA_UNIT_SEMI_LAYERS) uniform usampler2DArray semiLayers;
+uniform int semiSlots;
+// Product of 1 - opacity of the semi-opaque surfaces of texel t nearer to the sample than the
+// receiver (reversed depth zReceiver), as the reference multiplies along its ray.
+float semiOpaqueTransmittance(ivec3 t, float zReceiver) {
+  int n = min(int(texelFetch(semiCount, t, 0).r), semiSlots);
+  float transmittance = 1.0;
+  for (int i = 0; i < n; ++i) {
+    uint e = texelFetch(semiLayers, ivec3(t.xy, t.z * semiSlots + i), 0).r;
+    if (uintBitsToFloat(e & 0xFFFFFF00u) > zReceiver) transmittance *= 1.0 - float(e & 0xFFu) / 255.0;
+  }
+  return transmittance;
+}
+#endif
 #ifdef PER_SAMPLE_OUT
 layout(binding = PENUMBRA_IMAGE_SAMPLE_VIS, r32f) uniform writeonly image2DArray sampleVisibility;
 #endif
@@ -60,7 +78,13 @@ float shadowTest(vec3 o, vec3 n, vec3 x, int layer) {
     // Outside the map: nothing was drawn there (the frustum holds every receiver, see
     // shadow_map/maps.h computeMapFrame), lit.
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(mapSize)))) lit += 1.0;
-    else lit += storedDepth(ivec3(q, layer)) <= zReceiver ? 1.0 : 0.0;
+    else {
+      float tap = storedDepth(ivec3(q, layer)) <= zReceiver ? 1.0 : 0.0;
+#ifdef SEMI_OPAQUE
+      if (tap > 0.0) tap *= semiOpaqueTransmittance(ivec3(q, layer), zReceiver);
+#endif
+      lit += tap;
+    }
   }
   return lit / float(TAPS);
 }

@@ -36,8 +36,12 @@
 #define PENUMBRA_UNIT_FILTER_SOURCE 11  // RGBA32F: input of the interleaved-sampling filter
 #define PENUMBRA_UNIT_SHADOW_MAPS 12    // multi-view depth maps (techniques/shadow_map): a layer a sample
 #define PENUMBRA_UNIT_CENTRAL_DEPTH 13  // reproject: the z-buffered central depth map
+#define PENUMBRA_UNIT_SEMI_COUNT 14     // R32UI 2D array: semi-opaque surfaces on each map texel
+#define PENUMBRA_UNIT_SEMI_LAYERS 15    // R32UI 2D array: K entries a map (shadow_map/maps.h)
 #define PENUMBRA_IMAGE_SAMPLE_VIS 0     // image unit of the per-sample visibility array
 #define PENUMBRA_IMAGE_SHADOW_MAPS 1    // R32UI 2D array: point-rendered depth maps (atomicMax)
+#define PENUMBRA_IMAGE_SEMI_COUNT 2     // R32UI 2D array: semi-opaque surfaces a texel (atomicAdd)
+#define PENUMBRA_IMAGE_SEMI_LAYERS 3    // R32UI 2D array: their entries (depth and opacity)
 
 // ---- shader storage / uniform buffer bindings ----------------------------------------------
 #define PENUMBRA_SSBO_LIGHT_SAMPLES 0   // vec4 position (xyz), per set then sample
@@ -48,6 +52,7 @@
 #define PENUMBRA_SSBO_DCS_PROFILE 5     // dcs: wedge counters (PENUMBRA_DCS_PROFILE=1)
 #define PENUMBRA_SSBO_DCS_PACKED 6      // dcs: packed sample positions (edge_lut.h), naive mode
 #define PENUMBRA_SSBO_POINTS 7          // vwss: point count, then xyz world positions (3 floats each)
+#define PENUMBRA_SSBO_SEMI_STATUS 8     // multi-view maps: most semi-opaque surfaces on one texel
 
 // ---- light shapes (match penumbra::LightShape) ---------------------------------------------
 #define PENUMBRA_LIGHT_POINT 0

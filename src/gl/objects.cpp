@@ -176,6 +176,7 @@ void Texture::upload(const float* data, int channels, int layer) const {
 }
 
 std::size_t Texture::bytes() const {
+  if (fmt_ == 0) return 0;  // no texture
   return std::size_t(w_) * h_ * std::max(1, layers_) * formatInfo(fmt_).bytesPerTexel;
 }
 
@@ -215,13 +216,14 @@ std::vector<Framebuffer::Attachment> wholeTextures(const std::vector<const Textu
 Framebuffer::Framebuffer(const std::vector<const Texture*>& colors, const Texture* depth)
     : Framebuffer(wholeTextures(colors), depth) {}
 
-Framebuffer Framebuffer::empty(int width, int height) {
+Framebuffer Framebuffer::empty(int width, int height, int layers) {
   GLuint id = 0;
   glCreateFramebuffers(1, &id);
   Framebuffer f;
   static_cast<Object&>(f) = Object(id);
   glNamedFramebufferParameteri(id, GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
   glNamedFramebufferParameteri(id, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+  if (layers > 0) glNamedFramebufferParameteri(id, GL_FRAMEBUFFER_DEFAULT_LAYERS, layers);
   f.w_ = width, f.h_ = height;
   PENUMBRA_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
                  "framebuffer without attachments incomplete");

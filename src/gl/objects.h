@@ -108,8 +108,8 @@ class Framebuffer : public Object<deleteFramebuffer> {
   // Colour attachments in order (draw buffers 0..n-1), optional depth texture.
   Framebuffer(const std::vector<const Texture*>& colors, const Texture* depth);
   // No attachments: rasterisation of a width x height viewport whose fragments only have side
-  // effects (image and buffer stores).
-  static Framebuffer empty(int width, int height);
+  // effects (image and buffer stores); layers > 0: layered (geometry shaders set gl_Layer).
+  static Framebuffer empty(int width, int height, int layers = 0);
   void bind() const;  // binds and sets the viewport to the attachment size
 
  private:

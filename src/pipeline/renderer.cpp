@@ -102,6 +102,7 @@ GpuScene::GpuScene(const Scene& scene, int width, int height)
     if (d.count > 0) draws_.push_back(d);
   }
   vertexCount_ = GLsizei(verts.size());
+  for (auto& d : draws_) allOccluders_ = allOccluders_ && scene.materials[std::size_t(d.material)].opacity > 0.0f;
   vertices_ = gl::Buffer(verts);
   vao_ = gl::VertexArray::create();
   vao_.vertexBuffer(vertices_, sizeof(GVertex))
@@ -148,10 +149,19 @@ void GpuScene::drawGBuffer(const gl::Program& program) const {
   }
 }
 
-void GpuScene::drawTriangles(GLsizei instances) const {
-  if (vertexCount_ == 0) return;
+void GpuScene::drawTriangles(GLsizei instances, Occluders which, const gl::Program* program) const {
   vao_.bind();
-  glDrawArraysInstanced(GL_TRIANGLES, 0, vertexCount_, instances);
+  if (which == Occluders::Opaque && !scene_.hasSemiOpaque() && allOccluders_) {
+    if (vertexCount_ > 0) glDrawArraysInstanced(GL_TRIANGLES, 0, vertexCount_, instances);
+    return;
+  }
+  for (auto& d : draws_) {
+    float opacity = scene_.materials[std::size_t(d.material)].opacity;
+    bool semi = opacity > 0.0f && opacity < 1.0f;
+    if (opacity <= 0.0f || semi != (which == Occluders::SemiOpaque)) continue;
+    if (program) program->set("opacity", opacity);
+    glDrawArraysInstanced(GL_TRIANGLES, d.first, d.count, instances);
+  }
 }
 
 void GpuScene::renderGBuffer() {

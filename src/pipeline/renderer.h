@@ -72,9 +72,12 @@ class GpuScene {
   // Draws every triangle of the scene (G-buffer layout: position, face normal, uv).
   void drawGBuffer(const gl::Program& program) const;
   void renderGBuffer();  // fills the G-buffer textures below
-  // Draws every triangle (attribute 0: position) `instances` times, no material state: for
-  // passes that only need occluder geometry (depth maps, point generation).
-  void drawTriangles(GLsizei instances = 1) const;
+  // Draws triangles (attribute 0: position) `instances` times: for passes that only need
+  // occluder geometry (depth maps, point generation). Opaque: materials of opacity 1;
+  // SemiOpaque: opacity in (0, 1), with `program`'s uniform "opacity" set per draw. Fully
+  // transparent materials (opacity 0) occlude nothing and are never drawn.
+  enum class Occluders { Opaque, SemiOpaque };
+  void drawTriangles(GLsizei instances, Occluders which, const gl::Program* program = nullptr) const;
   const gl::Texture& position() const { return position_; }
   const gl::Texture& normal() const { return normal_; }
   const gl::Texture& albedo() const { return albedo_; }
@@ -97,6 +100,7 @@ class GpuScene {
   gl::VertexArray vao_;
   std::vector<Draw> draws_;
   GLsizei vertexCount_ = 0;
+  bool allOccluders_ = true;  // no material of opacity 0: one draw covers every occluder
   std::vector<gl::Texture> materialTextures_;  // parallel to scene.textures
   gl::Texture position_, normal_, albedo_, depth_;
   gl::Framebuffer fbo_;

@@ -29,7 +29,7 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
       if (layered_) {
         if (!layeredFbo_ || fboFor_ != maps.id()) layeredFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &maps);
         layeredFbo_.bind();
-        pass.gpu.drawTriangles(frame.layers);
+        pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::Opaque);
       } else {
         if (fboFor_ != maps.id()) {
           layerFbos_.clear();
@@ -39,7 +39,7 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
         for (int l = 0; l < frame.layers; ++l) {
           layerFbos_[std::size_t(l)].bind();
           program_.set("layer", l);
-          pass.gpu.drawTriangles(1);
+          pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
         }
       }
       fboFor_ = maps.id();

@@ -35,7 +35,7 @@ class FragmentReprojection final : public shadow_map::MultiViewTechnique {
       depthProgram_.use();
       shadow_map::setMapUniforms(depthProgram_, frame);
       depthProgram_.set("eye", pass.light.position);
-      pass.gpu.drawTriangles(1);
+      pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
       glDisable(GL_DEPTH_TEST);
     });
     pass.timer.time(name() + " depth maps", [&] {

@@ -106,8 +106,58 @@ std::size_t semiOpaqueTriangles(const Scene& scene) {
 
 void MultiViewTechnique::prepare(const Scene& scene, GpuScene&) {
   semiOpaque_ = semiOpaqueTriangles(scene);
-  warned_ = false;
   maps_ = gl::Texture();
+  semiCount_ = gl::Texture();
+  semiLayers_ = gl::Texture();
+  semiSlots_ = 0;
+}
+
+void MultiViewTechnique::renderSemiOpaque(LightPass& pass, const MapFrame& frame) {
+  if (!semiProgram_) {
+    semiProgram_ = gl::Program({"mvr_depth.vert", "mvr_depth.geom", "shadow_map_transmittance.frag"}, {"LAYERED"});
+    semiStatus_ = gl::Buffer(sizeof(std::uint32_t), nullptr);
+    semiFbo_ = gl::Framebuffer();
+  }
+  semiReruns_ = 0;
+  for (;;) {
+    const int slots = std::max(semiSlots_, 1);
+    if (semiCount_.width() != frame.size || semiCount_.layers() != frame.layers || semiLayers_.layers() != frame.layers * slots) {
+      GLint maxLayers = 0;
+      glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+      double bytes = 4.0 * double(frame.size) * frame.size * frame.layers * (slots + 1);
+      if (frame.layers * slots > maxLayers || bytes > 4.0 * 1024 * 1024 * 1024)
+        throw Error(name_, fmt::format("{} semi-opaque surfaces on one map texel need {} layers ({:.0f} MiB) for {} maps of "
+                                       "{}^2: beyond this GL's {} layers or 4 GiB (use a smaller --param map)",
+                                       slots, frame.layers * slots, bytes / 1048576.0, frame.layers, frame.size, maxLayers));
+      semiCount_ = gl::Texture::make2DArray(GL_R32UI, frame.size, frame.size, frame.layers);
+      semiLayers_ = gl::Texture();
+      semiLayers_ = gl::Texture::make2DArray(GL_R32UI, frame.size, frame.size, frame.layers * slots);
+      semiFbo_ = gl::Framebuffer::empty(frame.size, frame.size, frame.layers);
+    }
+    semiCount_.clear(glm::vec4(0.0f));
+    const std::uint32_t zero = 0;
+    semiStatus_.write(&zero, sizeof(zero));
+    semiStatus_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SEMI_STATUS);
+    semiCount_.bindImage(PENUMBRA_IMAGE_SEMI_COUNT, GL_READ_WRITE);
+    semiLayers_.bindImage(PENUMBRA_IMAGE_SEMI_LAYERS, GL_WRITE_ONLY);
+    semiFbo_.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    semiProgram_.use();
+    setMapUniforms(semiProgram_, frame);
+    semiProgram_.set("semiSlots", slots);
+    pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::SemiOpaque, &semiProgram_);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    std::uint32_t most = 0;
+    semiStatus_.read(&most, sizeof(most));
+    if (int(most) <= slots) {
+      semiSlots_ = std::max(slots, int(most));
+      return;
+    }
+    semiSlots_ = int(most);
+    ++semiReruns_;
+  }
 }
 
 const gl::Texture& MultiViewTechnique::ensureMaps(GLenum format, const MapFrame& frame) {
@@ -130,12 +180,14 @@ const gl::Texture& MultiViewTechnique::ensureMaps(GLenum format, const MapFrame&
 }
 
 const gl::Program& MultiViewTechnique::resolveProgram(bool perSample) {
-  auto key = std::make_pair(maps_.format(), perSample);
+  const bool semi = semiOpaque_ > 0;
+  auto key = std::make_tuple(maps_.format(), perSample, semi);
   auto it = resolve_.find(key);
   if (it != resolve_.end()) return it->second;
   std::vector<std::string> defs = {"PCF_TAPS " + std::to_string(options_.pcf)};
   if (maps_.format() == GL_R32UI) defs.push_back("UINT_MAPS");
   if (perSample) defs.push_back("PER_SAMPLE_OUT");
+  if (semi) defs.push_back("SEMI_OPAQUE");
   return resolve_.emplace(key, gl::Program({"fullscreen.vert", "shadow_map_resolve.frag"}, defs)).first->second;
 }
 
@@ -143,11 +195,8 @@ void MultiViewTechnique::renderVisibility(LightPass& pass) {
   frame_ = pass.timer.time(name_ + " views", [&] {
     return computeMapFrame(pass.scene, pass.light, pass.samples, pass.cpuGBuffer(), options_);
   });
-  if (semiOpaque_ && !warned_) {
-    PLOG_WARN("{}: {} semi-opaque triangles drawn as opaque occluders (README \"Semi-opaque occluders\")", name_, semiOpaque_);
-    warned_ = true;
-  }
   renderMaps(pass, frame_);
+  if (semiOpaque_) pass.timer.time(name_ + " semi-opaque maps", [&] { renderSemiOpaque(pass, frame_); });
   pass.timer.time(name_ + " lighting", [&] {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     const gl::Program& prog = resolveProgram(pass.perSample != nullptr);
@@ -158,6 +207,11 @@ void MultiViewTechnique::renderVisibility(LightPass& pass) {
     prog.set("biasConstant", float(bias));
     prog.set("biasSlope", float(options_.biasSlope));
     maps_.bind(PENUMBRA_UNIT_SHADOW_MAPS);
+    if (semiOpaque_) {
+      semiCount_.bind(PENUMBRA_UNIT_SEMI_COUNT);
+      semiLayers_.bind(PENUMBRA_UNIT_SEMI_LAYERS);
+      prog.set("semiSlots", semiSlots_);
+    }
     if (pass.perSample) pass.perSample->bindImage(PENUMBRA_IMAGE_SAMPLE_VIS, GL_WRITE_ONLY);
     resolveVisibility(pass, prog);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -173,7 +227,10 @@ std::vector<std::pair<std::string, double>> MultiViewTechnique::statistics() con
       {"frustum half-angle deg", glm::degrees(std::atan(frame_.tanHalf))},
       {"pixels outside maps", double(frame_.outsidePixels)},
       {"map bytes", double(maps_.bytes())},
-      {"semi-opaque triangles as opaque", double(semiOpaque_)},
+      {"semi-opaque triangles", double(semiOpaque_)},
+      {"semi-opaque map bytes", double(semiCount_.bytes() + semiLayers_.bytes())},
+      {"semi-opaque entries per texel", double(semiSlots_)},
+      {"semi-opaque reruns", double(semiReruns_)},
   };
   addStatistics(s);
   return s;

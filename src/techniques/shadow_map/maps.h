@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <map>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -48,18 +49,27 @@ MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSamp
 // The uniforms of shaders/shadow_map_common.glsl.
 void setMapUniforms(const gl::Program& program, const MapFrame& frame);
 
-// Triangles of meshes whose material is semi-opaque (opacity < 1): the multi-view techniques
-// draw them as opaque occluders (README "Semi-opaque occluders"), counted and reported.
+// Triangles of meshes whose material is semi-opaque (opacity in (0, 1)).
 std::size_t semiOpaqueTriangles(const Scene& scene);
 
 // A technique whose visibility is shadow mapping in one map per light sample.
+// Semi-opaque occluders (only when the scene has some): left out of the technique's opaque maps
+// and rasterised per map (one layered draw, as mvr-layered) into a per-texel list of K entries
+// (depth and opacity of each semi-opaque surface on the texel's ray), K sized to the scene: the
+// most surfaces any texel holds, measured in the same pass (a frame that needs more is redone
+// with enough, statistic "semi-opaque reruns"). The lighting multiplies a sample's visibility by
+// 1 - opacity of every entry nearer to the sample than the receiver, as the reference does along
+// its ray. Points cannot carry this (several points of one surface land on a texel), so vwss and
+// reproject use the same rasterised lists.
 class MultiViewTechnique : public Technique {
  public:
   MultiViewTechnique(std::string name, const MapOptions& options) : name_(std::move(name)), options_(options) {}
   void prepare(const Scene& scene, GpuScene& gpu) override;
   void renderVisibility(LightPass& pass) override;
   bool providesPerSample() const override { return true; }
-  std::size_t memoryBytes() const override { return maps_.bytes() + extraBytes(); }
+  std::size_t memoryBytes() const override {
+    return maps_.bytes() + semiCount_.bytes() + semiLayers_.bytes() + extraBytes();
+  }
   std::vector<std::pair<std::string, double>> statistics() const override;
 
  protected:
@@ -76,13 +86,18 @@ class MultiViewTechnique : public Technique {
 
  private:
   const gl::Program& resolveProgram(bool perSample);
+  void renderSemiOpaque(LightPass& pass, const MapFrame& frame);
   std::string name_;
   MapOptions options_;
   gl::Texture maps_;
-  std::map<std::pair<GLenum, bool>, gl::Program> resolve_;
+  std::map<std::tuple<GLenum, bool, bool>, gl::Program> resolve_;
   MapFrame frame_;
   std::size_t semiOpaque_ = 0;
-  bool warned_ = false;
+  gl::Texture semiCount_, semiLayers_;
+  gl::Framebuffer semiFbo_;
+  gl::Program semiProgram_;
+  gl::Buffer semiStatus_;
+  int semiSlots_ = 0, semiReruns_ = 0;
 };
 
 // Point rendering into an R32UI map array with compute (shaders/shadow_map_reproject.comp):
