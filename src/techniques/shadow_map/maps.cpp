@@ -66,12 +66,14 @@ MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSamp
   // Every receiver inside every sample's frustum: seen from the sample nearest to it along the
   // axis and farthest sideways.
   const float tanMax = std::tan(glm::radians(float(options.maxHalfAngle)));
+  const bool oneSided = light.shape == LightShape::Rect || light.shape == LightShape::Disk;
   float tanHalf = 0.0f;
   for (std::size_t i = 0; i < g.position.size(); ++i) {
     if (!g.valid[i]) continue;
     glm::vec3 r = g.position[i] - c;
     float depth = glm::dot(r, f.axis) - f.sampleAxialMax;
     float lateral = std::max(std::abs(glm::dot(r, f.right)), std::abs(glm::dot(r, f.up))) + f.sampleLateral;
+    if (oneSided && depth <= 0.0f) continue;  // behind the light: it emits nothing there
     if (depth <= f.zNear || lateral > tanMax * depth) {
       ++f.outsidePixels;
       continue;

@@ -42,7 +42,9 @@ struct MapFrame {
   int layers = 0;        // sets * N
   // Lateral and axial reach of the samples around the light centre (frame coordinates).
   float sampleLateral = 0.0f, sampleAxialMin = 0.0f, sampleAxialMax = 0.0f;
-  std::size_t outsidePixels = 0;  // surface pixels beyond maxHalfAngle (left unshadowed)
+  // Surface pixels beyond maxHalfAngle or behind an isotropic light's samples (left unshadowed);
+  // pixels behind a one-sided light, which it does not light, are not counted.
+  std::size_t outsidePixels = 0;
 };
 MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSampleSet& samples,
                          const CpuGBuffer& gbuffer, const MapOptions& options);
