@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "core/log.h"
 #include "gl/context.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"

@@ -6,9 +6,7 @@
 #include <limits>
 #include <map>
 
-#include <fmt/format.h>
 
-#include "core/error.h"
 #include "core/log.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
