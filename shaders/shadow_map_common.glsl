@@ -30,6 +30,19 @@ vec2 viewTexelNdc(ivec2 texel, int size) {
   return vec2(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
 }
 
+// Depth bias (shadow-map practice: constant plus slope-scaled), world units along the axis:
+// biasConstant + biasSlope * (one texel's footprint at depth d) * (the receiver plane's depth
+// slope in the view from `eye`: view depth gained per world unit of lateral image-plane offset,
+// |n_lateral| / |n . ray| with the ray scaled to unit depth, capped at 100 for grazing
+// receivers). Returns the biased receiver depth for o (view depth d > 0, normal n).
+uniform float biasConstant;
+uniform float biasSlope;
+float biasedDepth(vec3 o, vec3 n, vec3 eye, float d) {
+  vec3 ray = (o - eye) / d;
+  float slope = min(length(n - mapAxis * dot(n, mapAxis)) / max(abs(dot(n, ray)), 1e-4), 100.0);
+  return d - (biasConstant + biasSlope * slope * d * 2.0 * mapTanHalf / float(mapSize));
+}
+
 // True for a float whose exponent is all ones (Inf or NaN), tested on its bits so that no
 // compiler assumption about NaN can remove the test (hard case 22).
 bool mapNonFinite(vec3 v) {

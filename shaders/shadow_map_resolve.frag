@@ -4,10 +4,8 @@
 // point as every technique and the reference (shared.h penumbraShadowOrigin). The per-sample
 // results go to the per-sample array and, weighted by the sample luminance L_i, to the
 // visibility buffer of DCS eq. 2 (textured lights are exact per sample).
-// Depth bias, applied here after the maps are made (fragment reprojection section 3.1.1: bias
-// after reprojection), in world units along the view axis: biasConstant + biasSlope * (one
-// texel's footprint at the receiver's depth) * (the receiver plane's depth slope in the map,
-// capped at 100: grazing receivers need it), the slope-scaled bias of shadow-map practice.
+// Depth bias (shadow_map_common.glsl biasedDepth), applied here after the maps are made
+// (fragment reprojection section 3.1.1: bias after reprojection).
 #include "common_light.glsl"
 #include "shadow_map_common.glsl"
 
@@ -43,8 +41,6 @@ layout(binding = PENUMBRA_IMAGE_SAMPLE_VIS, r32f) uniform writeonly image2DArray
 #endif
 uniform vec3 eyePosition;  // the camera
 uniform float surfaceOffset;
-uniform float biasConstant;
-uniform float biasSlope;
 
 out vec4 outVisibility;
 
@@ -64,11 +60,7 @@ const ivec2 tapOffset[1] = ivec2[](ivec2(0, 0));
 float shadowTest(vec3 o, vec3 n, vec3 x, int layer) {
   vec4 c = mapClip(o, x);
   if (!(c.w > mapNear)) return 1.0;  // in or behind the sample's plane: nothing in between
-  // Depth slope of the receiver's plane in this map: view depth gained per world unit of
-  // lateral image-plane offset, |n_lateral| / |n . ray|, the ray scaled to unit depth.
-  vec3 ray = (o - x) / c.w;
-  float slope = min(length(n - mapAxis * dot(n, mapAxis)) / max(abs(dot(n, ray)), 1e-4), 100.0);
-  float receiver = c.w - (biasConstant + biasSlope * slope * c.w * 2.0 * mapTanHalf / float(mapSize));
+  float receiver = biasedDepth(o, n, x, c.w);
   // Lit iff the stored (reversed) depth is at most the receiver's: nothing nearer to the sample.
   float zReceiver = receiver > 0.0 ? mapNear / receiver : 3.0e38;
   ivec2 t = viewTexel(c.xy / c.w, mapSize);

@@ -38,6 +38,8 @@
 #define PENUMBRA_UNIT_CENTRAL_DEPTH 13  // reproject: the z-buffered central depth map
 #define PENUMBRA_UNIT_SEMI_COUNT 14     // R32UI 2D array: semi-opaque surfaces on each map texel
 #define PENUMBRA_UNIT_SEMI_LAYERS 15    // R32UI 2D array: K entries a map (shadow_map/maps.h)
+#define PENUMBRA_UNIT_PCSS_DEPTH 16     // pcss: the light centre's depth map, read raw (blocker search)
+#define PENUMBRA_UNIT_PCSS_COMPARE 17   // pcss: the same map through a depth-comparison sampler (PCF)
 #define PENUMBRA_IMAGE_SAMPLE_VIS 0     // image unit of the per-sample visibility array
 #define PENUMBRA_IMAGE_SHADOW_MAPS 1    // R32UI 2D array: point-rendered depth maps (atomicMax)
 #define PENUMBRA_IMAGE_SEMI_COUNT 2     // R32UI 2D array: semi-opaque surfaces a texel (atomicAdd)

@@ -21,6 +21,7 @@ void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
 void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
 void deleteProgram(GLuint id) { glDeleteProgram(id); }
+void deleteSampler(GLuint id) { glDeleteSamplers(1, &id); }
 
 // ---- Buffer ----------------------------------------------------------------------------------
 
@@ -234,6 +235,30 @@ void Framebuffer::bind() const {
   glBindFramebuffer(GL_FRAMEBUFFER, id());
   glViewport(0, 0, w_, h_);
 }
+
+// ---- Sampler ---------------------------------------------------------------------------------
+
+Sampler Sampler::make(bool linear, float border, GLenum compareFunc) {
+  GLuint id = 0;
+  glCreateSamplers(1, &id);
+  Sampler s;
+  static_cast<Object&>(s) = Object(id);
+  const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+  glSamplerParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
+  glSamplerParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
+  glSamplerParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+  glSamplerParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+  const float b[4] = {border, border, border, border};
+  glSamplerParameterfv(id, GL_TEXTURE_BORDER_COLOR, b);
+  if (compareFunc) {
+    glSamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glSamplerParameteri(id, GL_TEXTURE_COMPARE_FUNC, GLint(compareFunc));
+  }
+  return s;
+}
+
+void Sampler::bind(GLuint unit) const { glBindSampler(unit, id()); }
+void Sampler::unbind(GLuint unit) { glBindSampler(unit, 0); }
 
 // ---- VertexArray -----------------------------------------------------------------------------
 

@@ -45,6 +45,7 @@ void deleteTexture(GLuint id);
 void deleteFramebuffer(GLuint id);
 void deleteVertexArray(GLuint id);
 void deleteProgram(GLuint id);
+void deleteSampler(GLuint id);
 
 class Buffer : public Object<deleteBuffer> {
  public:
@@ -114,6 +115,18 @@ class Framebuffer : public Object<deleteFramebuffer> {
 
  private:
   int w_ = 0, h_ = 0;
+};
+
+// Sampling state bound to a texture unit in place of the texture's own (one depth texture read
+// both raw and through a depth comparison).
+class Sampler : public Object<deleteSampler> {
+ public:
+  Sampler() = default;
+  // Clamp to a border of `border` (all channels); linear or nearest filtering; with
+  // compareFunc != 0, depth comparison (GL_TEXTURE_COMPARE_MODE = COMPARE_REF_TO_TEXTURE).
+  static Sampler make(bool linear, float border, GLenum compareFunc = 0);
+  void bind(GLuint unit) const;
+  static void unbind(GLuint unit);
 };
 
 class VertexArray : public Object<deleteVertexArray> {

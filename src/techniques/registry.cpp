@@ -10,6 +10,7 @@
 #include "techniques/hard_sv/hard_sv.h"
 #include "techniques/mvr/mvr.h"
 #include "techniques/none/none.h"
+#include "techniques/pcss/pcss.h"
 #include "techniques/raytrace/raytrace.h"
 #include "techniques/reproject/reproject.h"
 #include "techniques/vwss/vwss.h"
@@ -57,6 +58,10 @@ const std::vector<TechniqueInfo>& techniqueTable() {
        [](const TechniqueParams& p) { return makeFragmentReprojection(p, true); }},
       {"reproject-unsync", "fragment reprojection without synchronisation (last writer wins)",
        [](const TechniqueParams& p) { return makeFragmentReprojection(p, false); }},
+      {"pcss", "percentage-closer soft shadows, one map from the light centre, Vogel disk + noise (Sterna: 32 blocker, 16 PCF samples)",
+       [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, kPcssSterna); }},
+      {"pcss-ultra", "pcss with the 'Ultra' preset the VWSS paper compares with (64 blocker, 96 PCF samples)",
+       [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, kPcssUltra); }},
       {"raytrace", "Embree reference with the same light samples as every technique (per sample)",
        [](const TechniqueParams&) { return makeRaytraceSameSamples(); }},
       {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility only)",

@@ -8,8 +8,8 @@ namespace {
 
 class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
  public:
-  MultiViewRasterisation(const shadow_map::MapOptions& o, bool layered)
-      : MultiViewTechnique(layered ? "mvr-layered" : "mvr", o), layered_(layered) {}
+  MultiViewRasterisation(const shadow_map::MapOptions& o, int pcf, bool layered)
+      : MultiViewTechnique(layered ? "mvr-layered" : "mvr", o, pcf), layered_(layered) {}
 
  protected:
   void renderMaps(LightPass& pass, const shadow_map::MapFrame& frame) override {
@@ -61,7 +61,8 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
 }  // namespace
 
 std::unique_ptr<Technique> makeMultiViewRasterisation(const TechniqueParams& params, bool layered) {
-  return std::make_unique<MultiViewRasterisation>(shadow_map::readMapOptions(params), layered);
+  return std::make_unique<MultiViewRasterisation>(shadow_map::readMapOptions(params), shadow_map::readPcfTaps(params),
+                                                  layered);
 }
 
 }  // namespace penumbra

@@ -11,8 +11,8 @@ namespace {
 
 class FragmentReprojection final : public shadow_map::MultiViewTechnique {
  public:
-  FragmentReprojection(const shadow_map::MapOptions& m, double scale, const shadow_map::SplatOptions& s)
-      : MultiViewTechnique(s.synchronized ? "reproject" : "reproject-unsync", m), scale_(scale), splat_(s) {}
+  FragmentReprojection(const shadow_map::MapOptions& m, int pcf, double scale, const shadow_map::SplatOptions& s)
+      : MultiViewTechnique(s.synchronized ? "reproject" : "reproject-unsync", m, pcf), scale_(scale), splat_(s) {}
 
  protected:
   void renderMaps(LightPass& pass, const shadow_map::MapFrame& frame) override {
@@ -24,19 +24,7 @@ class FragmentReprojection final : public shadow_map::MultiViewTechnique {
         centralFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &central_);
       }
       if (!depthProgram_) depthProgram_ = gl::Program({"mvr_depth.vert", "depth_only.frag"}, {"CENTRAL"});
-      centralFbo_.bind();
-      const float zero = 0.0f;
-      glClearNamedFramebufferfv(centralFbo_.id(), GL_DEPTH, 0, &zero);
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_GREATER);
-      glDepthMask(GL_TRUE);
-      glDisable(GL_CULL_FACE);
-      glDisable(GL_BLEND);
-      depthProgram_.use();
-      shadow_map::setMapUniforms(depthProgram_, frame);
-      depthProgram_.set("eye", pass.light.position);
-      pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
-      glDisable(GL_DEPTH_TEST);
+      shadow_map::renderDepthView(pass, frame, pass.light.position, centralFbo_, depthProgram_);
     });
     pass.timer.time(name() + " depth maps", [&] {
       if (!splatProgram_) {
@@ -74,7 +62,7 @@ std::unique_ptr<Technique> makeFragmentReprojection(const TechniqueParams& param
   s.synchronized = synchronized;
   s.mapsPerThread = params.getInt("k", 0, 0, 4096);
   double scale = params.getDouble("scale", 1.0, 0.125, 16.0);
-  return std::make_unique<FragmentReprojection>(shadow_map::readMapOptions(params), scale, s);
+  return std::make_unique<FragmentReprojection>(shadow_map::readMapOptions(params), shadow_map::readPcfTaps(params), scale, s);
 }
 
 }  // namespace penumbra

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -15,13 +16,53 @@ namespace penumbra::shadow_map {
 MapOptions readMapOptions(const TechniqueParams& params) {
   MapOptions o;
   o.size = params.getInt("map", o.size, 16, 16384);
-  o.pcf = params.getInt("pcf", o.pcf, 1, 9);
-  if (o.pcf != 1 && o.pcf != 5 && o.pcf != 9)
-    throw Error("--param", fmt::format("pcf: must be 1, 5 or 9, got {}", o.pcf), ExitCode::Usage);
   o.biasConstant = params.getDouble("bias", o.biasConstant, -1.0, 1e30);
   o.biasSlope = params.getDouble("slope-bias", o.biasSlope, 0.0, 100.0);
   o.maxHalfAngle = params.getDouble("max-angle", o.maxHalfAngle, 1.0, 89.0);
   return o;
+}
+
+int readPcfTaps(const TechniqueParams& params) {
+  int pcf = params.getInt("pcf", 5, 1, 9);
+  if (pcf != 1 && pcf != 5 && pcf != 9)
+    throw Error("--param", fmt::format("pcf: must be 1, 5 or 9, got {}", pcf), ExitCode::Usage);
+  return pcf;
+}
+
+void setBiasUniforms(const gl::Program& p, const MapOptions& o, const Scene& scene) {
+  p.set("biasConstant", float(o.biasConstant >= 0.0 ? o.biasConstant : 4.0 * scene.surfaceOffset()));
+  p.set("biasSlope", float(o.biasSlope));
+}
+
+void renderDepthView(LightPass& pass, const MapFrame& frame, const glm::vec3& eye, const gl::Framebuffer& fbo,
+                     const gl::Program& program, bool semiOpaque) {
+  fbo.bind();
+  const float zero = 0.0f;  // reversed depth: infinitely far
+  glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &zero);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  program.use();
+  setMapUniforms(program, frame);
+  program.set("eye", eye);
+  pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
+  if (semiOpaque) pass.gpu.drawTriangles(1, GpuScene::Occluders::SemiOpaque);
+  glDisable(GL_DEPTH_TEST);
+}
+
+float NearestOccluder::get(const Scene& scene, int lightIndex, const glm::vec3& centre, const MapFrame& f) {
+  auto key = std::make_pair(lightIndex, std::array<float, 3>{f.axis.x, f.axis.y, f.axis.z});
+  auto it = cache_.find(key);
+  if (it != cache_.end()) return it->second;
+  float nearest = std::numeric_limits<float>::infinity();
+  for (auto& m : scene.meshes)
+    for (auto& v : m.mesh.positions) {
+      float d = glm::dot(v - centre, f.axis) - f.sampleAxialMax;
+      if (d > f.zNear) nearest = std::min(nearest, d);
+    }
+  return cache_.emplace(key, std::isfinite(nearest) ? nearest : 1.0f).first->second;
 }
 
 MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSampleSet& samples,
@@ -185,7 +226,7 @@ const gl::Program& MultiViewTechnique::resolveProgram(bool perSample) {
   auto key = std::make_tuple(maps_.format(), perSample, semi);
   auto it = resolve_.find(key);
   if (it != resolve_.end()) return it->second;
-  std::vector<std::string> defs = {"PCF_TAPS " + std::to_string(options_.pcf)};
+  std::vector<std::string> defs = {"PCF_TAPS " + std::to_string(pcf_)};
   if (maps_.format() == GL_R32UI) defs.push_back("UINT_MAPS");
   if (perSample) defs.push_back("PER_SAMPLE_OUT");
   if (semi) defs.push_back("SEMI_OPAQUE");
@@ -204,9 +245,7 @@ void MultiViewTechnique::renderVisibility(LightPass& pass) {
     setMapUniforms(prog, frame_);
     prog.set("eyePosition", pass.gpu.cameraPosition());
     prog.set("surfaceOffset", pass.scene.surfaceOffset());
-    double bias = options_.biasConstant >= 0.0 ? options_.biasConstant : 4.0 * pass.scene.surfaceOffset();
-    prog.set("biasConstant", float(bias));
-    prog.set("biasSlope", float(options_.biasSlope));
+    setBiasUniforms(prog, options_, pass.scene);
     maps_.bind(PENUMBRA_UNIT_SHADOW_MAPS);
     if (semiOpaque_) {
       semiCount_.bind(PENUMBRA_UNIT_SEMI_COUNT);
@@ -224,7 +263,7 @@ std::vector<std::pair<std::string, double>> MultiViewTechnique::statistics() con
   std::vector<std::pair<std::string, double>> s = {
       {"maps", frame_.layers},
       {"map size", frame_.size},
-      {"pcf taps", options_.pcf},
+      {"pcf taps", pcf_},
       {"frustum half-angle deg", glm::degrees(std::atan(frame_.tanHalf))},
       {"pixels outside maps", double(frame_.outsidePixels)},
       {"map bytes", double(maps_.bytes())},

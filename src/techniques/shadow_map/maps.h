@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstddef>
+#include <array>
 #include <map>
 #include <string>
 #include <tuple>
@@ -24,15 +25,17 @@
 
 namespace penumbra::shadow_map {
 
+// The view and bias options of every shadow-map technique (multi-view and single-view).
 struct MapOptions {
   int size = 1024;            // map resolution (square), as the VWSS paper's 1024^2
-  int pcf = 5;                // taps per map: 1, 5 (the VWSS paper's) or 9
   double biasConstant = -1.0; // world units along the view axis; < 0: 4 x Scene::surfaceOffset()
   double biasSlope = 1.5;     // texels of receiver slope (taps reach one texel away)
   double maxHalfAngle = 80.0; // degrees: receivers needing a wider frustum are left unshadowed
 };
-// Reads map, pcf, bias, slope-bias, max-angle from --param.
+// Reads map, bias, slope-bias, max-angle from --param.
 MapOptions readMapOptions(const TechniqueParams& params);
+// The uniforms of shadow_map_common.glsl biasedDepth.
+void setBiasUniforms(const gl::Program& program, const MapOptions& options, const Scene& scene);
 
 struct MapFrame {
   glm::vec3 axis{0.0f, -1.0f, 0.0f}, right{1.0f, 0.0f, 0.0f}, up{0.0f, 0.0f, 1.0f};
@@ -50,6 +53,23 @@ MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSamp
                          const CpuGBuffer& gbuffer, const MapOptions& options);
 // The uniforms of shaders/shadow_map_common.glsl.
 void setMapUniforms(const gl::Program& program, const MapFrame& frame);
+// One z-buffered depth map seen from `eye` (the light centre) along the frame's axis, into `fbo`
+// (a DEPTH32F attachment of the frame's or another size): reproject's central map (opaque
+// occluders), pcss's shadow map (semiOpaque: semi-opaque ones too, as opaque).
+// `program`: mvr_depth.vert with CENTRAL, depth_only.frag.
+void renderDepthView(LightPass& pass, const MapFrame& frame, const glm::vec3& eye, const gl::Framebuffer& fbo,
+                     const gl::Program& program, bool semiOpaque = false);
+
+// Distance beyond the samples (along the axis) of the nearest scene vertex in front of them:
+// where the samples' near plane could sit without clipping an occluder (VWSS eq. 3's z_n, the
+// pcss blocker-search plane). Cached per light and axis (one pass over the vertices).
+class NearestOccluder {
+ public:
+  float get(const Scene& scene, int lightIndex, const glm::vec3& centre, const MapFrame& frame);
+
+ private:
+  std::map<std::pair<int, std::array<float, 3>>, float> cache_;
+};
 
 // Triangles of meshes whose material is semi-opaque (opacity in (0, 1)).
 std::size_t semiOpaqueTriangles(const Scene& scene);
@@ -65,7 +85,9 @@ std::size_t semiOpaqueTriangles(const Scene& scene);
 // reproject use the same rasterised lists.
 class MultiViewTechnique : public Technique {
  public:
-  MultiViewTechnique(std::string name, const MapOptions& options) : name_(std::move(name)), options_(options) {}
+  // pcf: taps per map, 1, 5 (the VWSS paper's) or 9 (readPcfTaps).
+  MultiViewTechnique(std::string name, const MapOptions& options, int pcf)
+      : name_(std::move(name)), options_(options), pcf_(pcf) {}
   void prepare(const Scene& scene, GpuScene& gpu) override;
   void renderVisibility(LightPass& pass) override;
   bool providesPerSample() const override { return true; }
@@ -91,6 +113,7 @@ class MultiViewTechnique : public Technique {
   void renderSemiOpaque(LightPass& pass, const MapFrame& frame);
   std::string name_;
   MapOptions options_;
+  int pcf_;
   gl::Texture maps_;
   std::map<std::tuple<GLenum, bool, bool>, gl::Program> resolve_;
   MapFrame frame_;
@@ -101,6 +124,9 @@ class MultiViewTechnique : public Technique {
   gl::Buffer semiStatus_;
   int semiSlots_ = 0, semiReruns_ = 0;
 };
+
+// Reads pcf (taps per map: 1, 5 or 9; default 5) from --param.
+int readPcfTaps(const TechniqueParams& params);
 
 // Point rendering into an R32UI map array with compute (shaders/shadow_map_reproject.comp):
 // `mapsPerThread` maps per traversal of the points (1: serial, 0 or >= layers: fully parallel).

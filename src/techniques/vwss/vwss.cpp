@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <array>
-#include <limits>
 #include <map>
 
 
@@ -30,26 +28,14 @@ const char* modeName(VwssMode m) {
   }
 }
 
-// Distance beyond the samples (along the axis) of the nearest scene vertex in front of them: the
-// z_n of eq. 3 (where the samples' near plane could sit without clipping an occluder).
-float nearestOccluder(const Scene& scene, const glm::vec3& centre, const shadow_map::MapFrame& f) {
-  float nearest = std::numeric_limits<float>::infinity();
-  for (auto& m : scene.meshes)
-    for (auto& v : m.mesh.positions) {
-      float d = glm::dot(v - centre, f.axis) - f.sampleAxialMax;
-      if (d > f.zNear) nearest = std::min(nearest, d);
-    }
-  return std::isfinite(nearest) ? nearest : 1.0f;
-}
-
 class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
  public:
-  ViewWarpedSoftShadows(const shadow_map::MapOptions& m, const VwssOptions& o)
-      : MultiViewTechnique(modeName(o.mode), m), o_(o) {}
+  ViewWarpedSoftShadows(const shadow_map::MapOptions& m, int pcf, const VwssOptions& o)
+      : MultiViewTechnique(modeName(o.mode), m, pcf), o_(o) {}
 
   void prepare(const Scene& scene, GpuScene& gpu) override {
     MultiViewTechnique::prepare(scene, gpu);
-    nearestCache_.clear();
+    nearest_ = {};
     points_ = gl::Buffer();
     capacity_ = 0;
   }
@@ -68,10 +54,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
     const glm::vec3 eye = light.position - distance_ * frame.axis;
     const float centralNear = std::max(distance_ - back, frame.zNear);
     // Eq. 3: raise the resolution by (z_n + d) / z_n, z_n the nearest occluder beyond the light.
-    auto key = std::make_pair(pass.lightIndex, std::array<float, 3>{frame.axis.x, frame.axis.y, frame.axis.z});
-    auto it = nearestCache_.find(key);
-    if (it == nearestCache_.end()) it = nearestCache_.emplace(key, nearestOccluder(pass.scene, light.position, frame)).first;
-    zn_ = it->second;
+    zn_ = nearest_.get(pass.scene, pass.lightIndex, light.position, frame);
     scaleEq3_ = (zn_ + distance_) / zn_;
     double scale = o_.scale > 0.0 ? o_.scale : scaleEq3_;
     GLint maxFb = 0;
@@ -205,7 +188,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
 
   VwssOptions o_;
   std::map<std::string, gl::Program> programs_;
-  std::map<std::pair<int, std::array<float, 3>>, float> nearestCache_;
+  shadow_map::NearestOccluder nearest_;
   gl::Buffer points_;
   std::size_t capacity_ = 0, pointCount_ = 0;
   int regrown_ = 0, dispatches_ = 0;
@@ -227,7 +210,7 @@ std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueParams& para
   if (mode == VwssMode::Buffered) o.splat.mapsPerThread = params.getInt("k", 8, 0, 4096);
   o.backFaces = params.getBool("backfaces", false);
   o.scale = params.getDouble("scale", 0.0, 0.0, 64.0);
-  return std::make_unique<ViewWarpedSoftShadows>(shadow_map::readMapOptions(params), o);
+  return std::make_unique<ViewWarpedSoftShadows>(shadow_map::readMapOptions(params), shadow_map::readPcfTaps(params), o);
 }
 
 }  // namespace penumbra
