@@ -4,7 +4,8 @@ add_executable(test_render ${CMAKE_CURRENT_SOURCE_DIR}/gl_test_main.cpp
                ${CMAKE_CURRENT_SOURCE_DIR}/render_hard_sv_test.cpp
                ${CMAKE_CURRENT_SOURCE_DIR}/render_pipeline_test.cpp
                ${CMAKE_CURRENT_SOURCE_DIR}/render_dcs_test.cpp
-               ${CMAKE_CURRENT_SOURCE_DIR}/render_shadow_map_test.cpp)
+               ${CMAKE_CURRENT_SOURCE_DIR}/render_shadow_map_test.cpp
+               ${CMAKE_CURRENT_SOURCE_DIR}/render_pcss_test.cpp)
 target_link_libraries(test_render PRIVATE penumbra_render penumbra_scene GTest::gtest penumbra_warnings)
 target_compile_definitions(test_render PRIVATE PENUMBRA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 gtest_discover_tests(test_render PROPERTIES SKIP_RETURN_CODE 77 DISCOVERY_TIMEOUT 60
