@@ -40,6 +40,8 @@
 #define PENUMBRA_UNIT_SEMI_LAYERS 15    // R32UI 2D array: K entries a map (shadow_map/maps.h)
 #define PENUMBRA_UNIT_PCSS_DEPTH 16     // pcss: the light centre's depth map, read raw (blocker search)
 #define PENUMBRA_UNIT_PCSS_COMPARE 17   // pcss: the same map through a depth-comparison sampler (PCF)
+#define PENUMBRA_UNIT_PCSS_AUX 18       // pcss: the penumbra mask or the min-filtered map, read by the shadow pass
+#define PENUMBRA_UNIT_PCSS_SOURCE 19    // pcss: input of a separable filter / the checkerboard target
 #define PENUMBRA_IMAGE_SAMPLE_VIS 0     // image unit of the per-sample visibility array
 #define PENUMBRA_IMAGE_SHADOW_MAPS 1    // R32UI 2D array: point-rendered depth maps (atomicMax)
 #define PENUMBRA_IMAGE_SEMI_COUNT 2     // R32UI 2D array: semi-opaque surfaces a texel (atomicAdd)

@@ -392,6 +392,7 @@ void Program::set(const char* n, int v) const { glProgramUniform1i(id(), locatio
 void Program::set(const char* n, unsigned v) const { glProgramUniform1ui(id(), location(n), v); }
 void Program::set(const char* n, float v) const { glProgramUniform1f(id(), location(n), v); }
 void Program::set(const char* n, const glm::vec2& v) const { glProgramUniform2f(id(), location(n), v.x, v.y); }
+void Program::set(const char* n, const glm::ivec2& v) const { glProgramUniform2i(id(), location(n), v.x, v.y); }
 void Program::set(const char* n, const glm::vec3& v) const { glProgramUniform3fv(id(), location(n), 1, glm::value_ptr(v)); }
 void Program::set(const char* n, const glm::vec4& v) const { glProgramUniform4fv(id(), location(n), 1, glm::value_ptr(v)); }
 void Program::set(const char* n, const glm::mat4& v) const {

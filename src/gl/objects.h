@@ -155,6 +155,7 @@ class Program : public Object<deleteProgram> {
   void set(const char* name, unsigned v) const;
   void set(const char* name, float v) const;
   void set(const char* name, const glm::vec2& v) const;
+  void set(const char* name, const glm::ivec2& v) const;
   void set(const char* name, const glm::vec3& v) const;
   void set(const char* name, const glm::vec4& v) const;
   void set(const char* name, const glm::mat4& v) const;

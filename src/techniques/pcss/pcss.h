@@ -1,7 +1,9 @@
-// `pcss`: percentage-closer soft shadows (Fernando 2005) with the sampling of "Contact-hardening
-// soft shadows made fast" (Sterna 2018): Vogel disk samples rotated per pixel by interleaved
-// gradient noise, hardware comparison PCF. One depth map from the light centre; a single view,
-// so one shadow factor for every light sample (shaders/pcss_resolve.frag).
+// `pcss`: percentage-closer soft shadows (Fernando 2005) with the improvements of "Contact-
+// hardening soft shadows made fast" (Sterna 2018): Vogel disk samples rotated per pixel by
+// interleaved gradient noise, hardware comparison PCF, and the cheaper penumbra estimates: the
+// quarter-resolution blurred penumbra mask (2.2), the min filter (2.3), and checkerboard
+// rendering (3). One depth map from the light centre; a single view, so one shadow factor for
+// every light sample (shaders/pcss_*.frag).
 #pragma once
 
 #include <memory>
@@ -10,18 +12,30 @@
 
 namespace penumbra {
 
-struct PcssPreset {
-  int blockerSamples;
-  int pcfSamples;
+enum class PcssMode {
+  Regular,       // blocker search per pixel (Sterna's "regular CHSS")
+  PenumbraMask,  // blocker search at quarter resolution, blurred, read by the shadow pass
+  MinFilter,     // blocker depth from the separable min (nearest) filter of the map, blurred
+  Fixed,         // no blocker search: the search radius as the kernel (not contact-hardening)
 };
-// Sterna's Table 1 configuration (32-sample blocker search, 16-sample PCF) and the "Ultra" of
-// shipping games that the VWSS paper compares with (64 and 96).
-inline constexpr PcssPreset kPcssSterna{32, 16};
-inline constexpr PcssPreset kPcssUltra{64, 96};
 
-// Parameters (besides the map ones of shadow_map/maps.h): blocker-samples, pcf-samples.
-// Semi-opaque occluders are drawn into the map as opaque (counted: statistic
-// "semi-opaque triangles as opaque").
-std::unique_ptr<Technique> makePercentageCloserSoftShadows(const TechniqueParams& params, PcssPreset preset);
+struct PcssOptions {
+  PcssMode mode = PcssMode::Regular;
+  int blockerSamples = 32, pcfSamples = 16;  // Sterna's Table 1 (mask: 32, shadow: 16)
+  bool checkerboard = false;
+  double kernelScale = 1.0;  // blocker-search scale (penumbra mask: 1.4, Sterna's 1.2-1.6)
+  bool noBlockerOne = false; // penumbra mask: the largest radius, not 0, where nothing blocks
+  bool blur = true;          // penumbra mask / min filter: the 7x7 Gaussian (sigma 3)
+  int minRadius = 0;         // min filter: window half-size in texels; 0: from the light size
+};
+
+// Presets: Sterna (32 blocker-search samples, 16 PCF) and the "Ultra" of shipping games the
+// VWSS paper compares with (64 and 96).
+PcssOptions pcssPreset(PcssMode mode, bool ultra, bool checkerboard);
+
+// Parameters (besides the map ones of shadow_map/maps.h): blocker-samples, pcf-samples,
+// checkerboard, kernel-scale, no-blocker-one, blur, min-radius. Semi-opaque occluders are drawn
+// into the map as opaque (statistic "semi-opaque triangles as opaque").
+std::unique_ptr<Technique> makePercentageCloserSoftShadows(const TechniqueParams& params, PcssOptions options);
 
 }  // namespace penumbra
