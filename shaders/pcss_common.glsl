@@ -35,13 +35,22 @@ vec2 mapUv(vec2 ndc) { return vec2(ndc.x * 0.5 + 0.5, 0.5 - 0.5 * ndc.y); }
 // World units per uv unit at view depth d.
 float worldPerUv(float d) { return 2.0 * d * mapTanHalf; }
 
-// A surface point seen from the light centre: its map uv, biased depth, reversed depth.
+// A surface point seen from the light centre: its map uv, biased depth, reversed depth, and its
+// plane (for the receiver-plane depth of each tap, shadow_map_common.glsl planeDepth).
 struct Receiver {
   vec2 uv;
   float depth;  // biased view depth
   float z;      // mapNear / depth
   bool inView;  // false: on or behind the light's plane, or the bias ate it (lit)
+  vec3 o, n;    // evaluation point and face normal
+  float d, bias;
 };
+
+// Reversed depth of the receiver's plane, biased, along the ray through map uv.
+float tapZ(Receiver r, vec2 uv) {
+  float depth = planeDepth(r.o, r.n, lightPosition, vec2(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0), r.d) - r.bias;
+  return depth > mapNear ? mapNear / depth : 3.0e38;
+}
 
 Receiver receiverOf(ivec2 px, out vec3 p, out vec3 n) {
   Receiver r;
@@ -50,8 +59,12 @@ Receiver receiverOf(ivec2 px, out vec3 p, out vec3 n) {
   n = texelFetch(gNormal, px, 0).xyz;
   vec3 o = penumbraShadowOrigin(p, n, eyePosition, surfaceOffset);
   vec4 c = mapClip(o, lightPosition);
+  r.o = o;
+  r.n = n;
+  r.d = c.w;
   r.inView = c.w > mapNear;
-  r.depth = r.inView ? biasedDepth(o, n, lightPosition, c.w) : 0.0;
+  r.bias = r.inView ? depthBias(o, n, lightPosition, c.w) : 0.0;
+  r.depth = c.w - r.bias;
   r.inView = r.inView && r.depth > mapNear;
   r.z = r.inView ? mapNear / r.depth : 0.0;
   r.uv = r.inView ? mapUv(c.xy / c.w) : vec2(0.0);
@@ -69,8 +82,9 @@ float averageBlockerDepth(Receiver r, float phi) {
   float radius = searchRadius(r);
   float sum = 0.0, count = 0.0;
   for (int i = 0; i < blockerSamples; ++i) {
-    float z = texture(depthRaw, r.uv + radius * vogelDisk(i, blockerSamples, phi)).r;
-    if (z > r.z) {
+    vec2 uv = r.uv + radius * vogelDisk(i, blockerSamples, phi);
+    float z = texture(depthRaw, uv).r;
+    if (z > tapZ(r, uv)) {
       sum += mapNear / z;
       count += 1.0;
     }
@@ -87,7 +101,10 @@ float penumbraRadius(Receiver r, float blocker) {
 // Step 3: PCF with the comparison sampler (4 texels a tap, bilinear).
 float percentageCloser(Receiver r, float radius, float phi) {
   float lit = 0.0;
-  for (int i = 0; i < pcfSamples; ++i) lit += texture(depthCmp, vec3(r.uv + radius * vogelDisk(i, pcfSamples, phi), r.z));
+  for (int i = 0; i < pcfSamples; ++i) {
+    vec2 uv = r.uv + radius * vogelDisk(i, pcfSamples, phi);
+    lit += texture(depthCmp, vec3(uv, tapZ(r, uv)));
+  }
   return lit / float(pcfSamples);
 }
 

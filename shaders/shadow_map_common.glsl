@@ -30,17 +30,29 @@ vec2 viewTexelNdc(ivec2 texel, int size) {
   return vec2(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0);
 }
 
-// Depth bias (shadow-map practice: constant plus slope-scaled), world units along the axis:
-// biasConstant + biasSlope * (one texel's footprint at depth d) * (the receiver plane's depth
-// slope in the view from `eye`: view depth gained per world unit of lateral image-plane offset,
-// |n_lateral| / |n . ray| with the ray scaled to unit depth, capped at 100 for grazing
-// receivers). Returns the biased receiver depth for o (view depth d > 0, normal n).
+// Depth bias. Receiver-plane depth (Isidoro 2006): every tap compares with the depth, along the
+// tap's own ray, of the receiver's plane (the G-buffer's face normal), not with the receiver's
+// depth at its own texel, so a planar receiver meets itself exactly in a rasterised map at any
+// slope (no acne) and needs no large offset (no peter-panning). What remains: biasConstant
+// (world units) plus biasSlope texels of the plane's depth slope, for depths stored off the texel
+// centre (vwss's points, pcss's bilinear taps); the slope is the view depth gained per world unit
+// of lateral image-plane offset, |n_lateral| / |n . ray| with the ray at unit depth, capped at
+// 100 for grazing receivers.
 uniform float biasConstant;
 uniform float biasSlope;
-float biasedDepth(vec3 o, vec3 n, vec3 eye, float d) {
+float depthBias(vec3 o, vec3 n, vec3 eye, float d) {
   vec3 ray = (o - eye) / d;
   float slope = min(length(n - mapAxis * dot(n, mapAxis)) / max(abs(dot(n, ray)), 1e-4), 100.0);
-  return d - (biasConstant + biasSlope * slope * d * 2.0 * mapTanHalf / float(mapSize));
+  return biasConstant + biasSlope * slope * d * 2.0 * mapTanHalf / float(mapSize);
+}
+// The view depth of the plane through o (normal n) along the ray of the view from `eye` through
+// normalised device coordinates ndc; `d` (o's own depth) where that ray runs (nearly) along the
+// plane, and at most a factor 2 from d.
+float planeDepth(vec3 o, vec3 n, vec3 eye, vec2 ndc, float d) {
+  vec3 ray = mapAxis + mapTanHalf * (ndc.x * mapRight + ndc.y * mapUp);
+  float den = dot(n, ray);
+  float t = dot(n, o - eye) / den;
+  return abs(den) > 1e-6 && t > 0.0 ? clamp(t, 0.5 * d, 2.0 * d) : d;
 }
 
 // True for a float whose exponent is all ones (Inf or NaN), tested on its bits so that no

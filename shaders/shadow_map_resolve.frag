@@ -4,8 +4,8 @@
 // point as every technique and the reference (shared.h penumbraShadowOrigin). The per-sample
 // results go to the per-sample array and, weighted by the sample luminance L_i, to the
 // visibility buffer of DCS eq. 2 (textured lights are exact per sample).
-// Depth bias (shadow_map_common.glsl biasedDepth), applied here after the maps are made
-// (fragment reprojection section 3.1.1: bias after reprojection).
+// Depth bias (shadow_map_common.glsl: receiver-plane depth per tap, plus depthBias), applied
+// here after the maps are made (fragment reprojection section 3.1.1: bias after reprojection).
 #include "common_light.glsl"
 #include "shadow_map_common.glsl"
 
@@ -56,27 +56,30 @@ const int TAPS = 1;
 const ivec2 tapOffset[1] = ivec2[](ivec2(0, 0));
 #endif
 
-// Fraction of the taps around o's texel in map `layer` that see o from the sample at x.
+// Fraction of the taps around o's texel in map `layer` that see o from the sample at x; each tap
+// compares with the receiver plane's depth along its own ray (shadow_map_common.glsl).
 float shadowTest(vec3 o, vec3 n, vec3 x, int layer) {
   vec4 c = mapClip(o, x);
   if (!(c.w > mapNear)) return 1.0;  // in or behind the sample's plane: nothing in between
-  float receiver = biasedDepth(o, n, x, c.w);
-  // Lit iff the stored (reversed) depth is at most the receiver's: nothing nearer to the sample.
-  float zReceiver = receiver > 0.0 ? mapNear / receiver : 3.0e38;
+  float bias = depthBias(o, n, x, c.w);
   ivec2 t = viewTexel(c.xy / c.w, mapSize);
   float lit = 0.0;
   for (int i = 0; i < TAPS; ++i) {
     ivec2 q = t + tapOffset[i];
     // Outside the map: nothing was drawn there (the frustum holds every receiver, see
     // shadow_map/maps.h computeMapFrame), lit.
-    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(mapSize)))) lit += 1.0;
-    else {
-      float tap = storedDepth(ivec3(q, layer)) <= zReceiver ? 1.0 : 0.0;
-#ifdef SEMI_OPAQUE
-      if (tap > 0.0) tap *= semiOpaqueTransmittance(ivec3(q, layer), zReceiver);
-#endif
-      lit += tap;
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(mapSize)))) {
+      lit += 1.0;
+      continue;
     }
+    float receiver = planeDepth(o, n, x, viewTexelNdc(q, mapSize), c.w) - bias;
+    // Lit iff the stored (reversed) depth is at most the receiver's: nothing nearer to the sample.
+    float zReceiver = receiver > 0.0 ? mapNear / receiver : 3.0e38;
+    float tap = storedDepth(ivec3(q, layer)) <= zReceiver ? 1.0 : 0.0;
+#ifdef SEMI_OPAQUE
+    if (tap > 0.0) tap *= semiOpaqueTransmittance(ivec3(q, layer), zReceiver);
+#endif
+    lit += tap;
   }
   return lit / float(TAPS);
 }

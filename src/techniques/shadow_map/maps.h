@@ -29,7 +29,7 @@ namespace penumbra::shadow_map {
 struct MapOptions {
   int size = 1024;            // map resolution (square), as the VWSS paper's 1024^2
   double biasConstant = -1.0; // world units along the view axis; < 0: 4 x Scene::surfaceOffset()
-  double biasSlope = 1.5;     // texels of receiver slope (taps reach one texel away)
+  double biasSlope = 1.0;     // texels of the receiver plane's depth slope (shadow_map_common.glsl)
   double maxHalfAngle = 80.0; // degrees: receivers needing a wider frustum are left unshadowed
 };
 // Reads map, bias, slope-bias, max-angle from --param.
