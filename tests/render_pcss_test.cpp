@@ -176,3 +176,27 @@ TEST(Pcss, ThinBladeMissedByTheBlockerSearch) {
 
 }  // namespace
 }  // namespace penumbra::test
+
+namespace penumbra::test {
+namespace {
+
+// vssm (first part: exact SAT, eq. 2-4, uniform subdivision; no HSM, adaptive quad-tree or
+// contact fallback yet): on the parallel-planes case it beats pcss (measured RMSE 0.015 against
+// pcss's 0.019 at N = 16); occluder fusion fails as for every single-view method.
+TEST(Vssm, ParallelPlanesCaseAndFusionFailure) {
+  Scene square = loadScene(scenePath("scenes/hard/23-analytic-square.json"));
+  Comparison r = renderAndCompare(square, "vssm", settings(128, 16));
+  RecordProperty("rmse_vssm", std::to_string(r.errors.visibility.rmse));
+  EXPECT_LE(r.errors.visibility.rmse, 0.02);
+  EXPECT_EQ(statistic(r.frame, "exact sat"), 1.0);
+  EXPECT_EQ(statistic(r.frame, "blocker sub-kernels"), 25.0);
+  EXPECT_GT(statistic(r.frame, "sat bytes"), 0.0);
+  Scene plates = loadScene(scenePath("scenes/hard/15-two-plates.json"));
+  double vssm = renderAndCompare(plates, "vssm", settings(128, 16)).errors.visibility.rmse;
+  double mvr = renderAndCompare(plates, "mvr", settings(128, 16)).errors.visibility.rmse;
+  RecordProperty("rmse_two_plates_vssm", std::to_string(vssm));
+  EXPECT_GE(vssm, 2.5 * mvr);
+}
+
+}  // namespace
+}  // namespace penumbra::test

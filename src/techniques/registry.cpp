@@ -13,6 +13,7 @@
 #include "techniques/pcss/pcss.h"
 #include "techniques/raytrace/raytrace.h"
 #include "techniques/reproject/reproject.h"
+#include "techniques/vssm/vssm.h"
 #include "techniques/vwss/vwss.h"
 
 namespace penumbra {
@@ -68,6 +69,14 @@ const std::vector<TechniqueInfo>& techniqueTable() {
        [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::MinFilter, false, false)); }},
       {"pcss-checker", "pcss computed on a checkerboard (half the pixels), depth-aware upsampling",
        [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::Regular, false, true)); }},
+      {"vssm", "variance soft shadow mapping: exact summed-area table of depth moments, uniform kernel subdivision (5x5 blocker, 8x8 shadow)",
+       [](const TechniqueParams& p) { return makeVarianceSoftShadowMapping(p, {}); }},
+      {"vssm-fp32", "vssm on a plain fp32 summed-area table (fails at large maps: hard case 17)",
+       [](const TechniqueParams& p) {
+         VssmOptions o;
+         o.exactSat = false;
+         return makeVarianceSoftShadowMapping(p, o);
+       }},
       {"raytrace", "Embree reference with the same light samples as every technique (per sample)",
        [](const TechniqueParams&) { return makeRaytraceSameSamples(); }},
       {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility only)",

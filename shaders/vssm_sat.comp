@@ -1,0 +1,44 @@
+// vssm (src/techniques/vssm): the summed-area table of the depth moments (x, x^2) of the light
+// centre's map (VSSM Algorithm 1, L3), x the view depth normalised to [0, 1] over [depthMin,
+// depthMax] (empty texels: 1).
+//  * EXACT: x as a 15-bit integer and every sum in doubles, which hold integers exactly below
+//    2^53 (2048^2 texels of 32767^2 stay below): the table is exact.
+//  * otherwise fp32 (the common implementation): at 1024^2-2048^2 the corner sums swamp a box's
+//    variance (hard case 17).
+// PASS 0: moments into the table; PASS 1: prefix sums along rows; PASS 2: along columns (a
+// thread a row / column).
+#ifdef EXACT
+#define SAT_T dvec2
+#else
+#define SAT_T vec2
+#endif
+layout(local_size_x = PENUMBRA_MAP_LOCAL_SIZE) in;
+layout(std430, binding = PENUMBRA_SSBO_VSSM_SAT) buffer Sat { SAT_T sat[]; };
+layout(binding = PENUMBRA_UNIT_PCSS_DEPTH) uniform sampler2D depthRaw;
+uniform int satSize;
+uniform int pass;
+uniform float mapNear;
+uniform float depthMin, depthMax;
+
+void main() {
+  int i = int(gl_GlobalInvocationID.x);
+  if (pass == 0) {
+    if (i >= satSize * satSize) return;
+    float z = texelFetch(depthRaw, ivec2(i % satSize, i / satSize), 0).r;
+    float x = z > 0.0 ? clamp((mapNear / z - depthMin) / (depthMax - depthMin), 0.0, 1.0) : 1.0;
+#ifdef EXACT
+    double q = double(round(x * PENUMBRA_VSSM_FIXED_ONE));
+    sat[i] = dvec2(q, q * q);
+#else
+    sat[i] = vec2(x, x * x);
+#endif
+    return;
+  }
+  if (i >= satSize) return;
+  SAT_T sum = SAT_T(0);
+  for (int j = 0; j < satSize; ++j) {
+    int k = pass == 1 ? i * satSize + j : j * satSize + i;
+    sum += sat[k];
+    sat[k] = sum;
+  }
+}

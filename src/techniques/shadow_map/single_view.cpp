@@ -1,0 +1,108 @@
+#include "techniques/shadow_map/single_view.h"
+
+#include <cmath>
+
+#include "gl/context.h"
+#include "pipeline/renderer.h"
+#include "sampling/shared.hpp"
+
+namespace penumbra::shadow_map {
+namespace {
+
+// Half the side of the square of the light's area (rect, disk) or of the disc a sphere shows:
+// the light "size" of the parallel-planes estimate.
+float halfSizeOf(const Light& light) {
+  switch (light.shape) {
+    case LightShape::Rect:
+    case LightShape::Disk: return 0.5f * std::sqrt(light.area());
+    case LightShape::Sphere: return 0.5f * std::sqrt(float(M_PI)) * light.size.x;
+    default: return 0.0f;
+  }
+}
+
+}  // namespace
+
+void SingleViewTechnique::prepare(const Scene& scene, GpuScene&) {
+  semiOpaque_ = semiOpaqueTriangles(scene);
+  nearest_ = {};
+}
+
+void SingleViewTechnique::renderVisibility(LightPass& pass) {
+  frame_ = pass.timer.time(name_ + " views", [&] {
+    return computeMapFrame(pass.scene, pass.light, pass.samples, pass.cpuGBuffer(), map_);
+  });
+  searchNear_ = nearest_.get(pass.scene, pass.lightIndex, pass.light.position, frame_);
+  halfSize_ = halfSizeOf(pass.light);
+  if (!vao_) {
+    vao_ = gl::VertexArray::create();
+    raw_ = gl::Sampler::make(false, 0.0f);
+    compare_ = gl::Sampler::make(true, 0.0f, GL_GEQUAL);  // lit where the receiver is nearer or level
+  }
+  pass.timer.time(name_ + " shadow map", [&] {
+    if (depth_.width() != frame_.size) {
+      depthFbo_ = gl::Framebuffer();
+      depth_ = gl::Texture::make2D(GL_DEPTH_COMPONENT32F, frame_.size, frame_.size);
+      depthFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &depth_);
+    }
+    renderDepthView(pass, frame_, pass.light.position, depthFbo_,
+                    program("depth", {"mvr_depth.vert", "depth_only.frag"}, {"CENTRAL"}), true);
+  });
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  bindMap();
+  renderShadow(pass);
+  gl::Sampler::unbind(PENUMBRA_UNIT_PCSS_DEPTH);
+  gl::Sampler::unbind(PENUMBRA_UNIT_PCSS_COMPARE);
+  gl::Context::checkErrors(name_.c_str());
+}
+
+void SingleViewTechnique::bindMap() const {
+  depth_.bind(PENUMBRA_UNIT_PCSS_DEPTH);
+  depth_.bind(PENUMBRA_UNIT_PCSS_COMPARE);
+  raw_.bind(PENUMBRA_UNIT_PCSS_DEPTH);
+  compare_.bind(PENUMBRA_UNIT_PCSS_COMPARE);
+}
+
+void SingleViewTechnique::setUniforms(const gl::Program& p, const LightPass& pass, int blockerSamples, int pcfSamples,
+                                      double kernelScale) const {
+  setMapUniforms(p, frame_);
+  setBiasUniforms(p, map_, pass.scene);
+  setLightUniforms(p, pass.light, pass.samples);
+  p.set("eyePosition", pass.gpu.cameraPosition());
+  p.set("surfaceOffset", pass.scene.surfaceOffset());
+  p.set("lightHalfSize", halfSize_);
+  p.set("searchNear", searchNear_);
+  p.set("blockerSamples", blockerSamples);
+  p.set("pcfSamples", pcfSamples);
+  p.set("kernelScale", float(kernelScale));
+}
+
+const gl::Program& SingleViewTechnique::program(const std::string& key, const std::vector<std::string>& files,
+                                                const std::vector<std::string>& defines) {
+  auto it = programs_.find(key);
+  if (it == programs_.end()) it = programs_.emplace(key, gl::Program(files, defines)).first;
+  return it->second;
+}
+
+void SingleViewTechnique::drawFullscreen(const gl::Framebuffer& fbo, const gl::Program& p) const {
+  fbo.bind();
+  p.use();
+  vao_.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+std::vector<std::pair<std::string, double>> SingleViewTechnique::statistics() const {
+  std::vector<std::pair<std::string, double>> s = {
+      {"map size", frame_.size},
+      {"frustum half-angle deg", glm::degrees(std::atan(frame_.tanHalf))},
+      {"pixels outside maps", double(frame_.outsidePixels)},
+      {"search near", searchNear_},
+      {"light half size", halfSize_},
+      {"map bytes", double(depth_.bytes())},
+      {"semi-opaque triangles as opaque", double(semiOpaque_)}};
+  addStatistics(s);
+  return s;
+}
+
+}  // namespace penumbra::shadow_map

@@ -1,0 +1,62 @@
+// What the single-view shadow-map techniques share (pcss, vssm): one depth map from the light
+// centre (the frustum and bias of maps.h), the raw and comparison samplers of it, the uniforms of
+// shaders/pcss_common.glsl, and a cache of programs. Each technique adds its passes in
+// renderShadow().
+#pragma once
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gl/objects.h"
+#include "pipeline/technique.h"
+#include "techniques/shadow_map/maps.h"
+
+namespace penumbra::shadow_map {
+
+class SingleViewTechnique : public Technique {
+ public:
+  SingleViewTechnique(std::string name, const MapOptions& map) : name_(std::move(name)), map_(map) {}
+  void prepare(const Scene& scene, GpuScene& gpu) override;
+  // Views, the map ("<name> shadow map"), then renderShadow().
+  void renderVisibility(LightPass& pass) override;
+  std::size_t memoryBytes() const override { return depth_.bytes() + extraBytes(); }
+  std::vector<std::pair<std::string, double>> statistics() const override;
+
+ protected:
+  virtual void renderShadow(LightPass& pass) = 0;
+  virtual std::size_t extraBytes() const { return 0; }
+  virtual void addStatistics(std::vector<std::pair<std::string, double>>& out) const {}
+
+  const std::string& name() const { return name_; }
+  const MapFrame& frame() const { return frame_; }
+  const gl::Texture& depth() const { return depth_; }
+  float searchNear() const { return searchNear_; }       // nearest occluder's view depth
+  float lightHalfSize() const { return halfSize_; }      // the parallel-planes light size
+  // Binds the map raw (PENUMBRA_UNIT_PCSS_DEPTH) and through the comparison sampler
+  // (PENUMBRA_UNIT_PCSS_COMPARE).
+  void bindMap() const;
+  // The uniforms of shaders/pcss_common.glsl (and the light's).
+  void setUniforms(const gl::Program& p, const LightPass& pass, int blockerSamples, int pcfSamples,
+                   double kernelScale) const;
+  const gl::Program& program(const std::string& key, const std::vector<std::string>& files,
+                             const std::vector<std::string>& defines);
+  // A full-screen triangle into `fbo` (bound) with `p`.
+  void drawFullscreen(const gl::Framebuffer& fbo, const gl::Program& p) const;
+
+ private:
+  std::string name_;
+  MapOptions map_;
+  MapFrame frame_;
+  NearestOccluder nearest_;
+  gl::Texture depth_;
+  gl::Framebuffer depthFbo_;
+  gl::Sampler raw_, compare_;
+  gl::VertexArray vao_;
+  std::map<std::string, gl::Program> programs_;
+  std::size_t semiOpaque_ = 0;
+  float searchNear_ = 0.0f, halfSize_ = 0.0f;
+};
+
+}  // namespace penumbra::shadow_map
