@@ -5,6 +5,7 @@
 #include "common_light.glsl"
 #include "shadow_map_common.glsl"
 #include "shadow_map_splat.glsl"
+#include "compute_index.glsl"
 layout(local_size_x = PENUMBRA_MAP_LOCAL_SIZE) in;
 uniform int firstLayer;
 uniform int layerCount;
@@ -17,8 +18,7 @@ uniform int centralSize;
 #endif
 
 void main() {
-  // Large dispatches are split over y (splatMaps): groups beyond the x limit continue there.
-  uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
+  uint i = globalIndex();
 #ifdef FROM_DEPTH_MAP
   if (i >= uint(centralSize * centralSize)) return;
   ivec2 t = ivec2(int(i) % centralSize, int(i) / centralSize);

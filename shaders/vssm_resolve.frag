@@ -1,17 +1,21 @@
 // vssm shadow pass (src/techniques/vssm): variance soft shadow mapping (Yang et al. 2010) on the
-// summed-area table of vssm_sat.comp, in the PCSS framework of pcss_common.glsl.
-//  1. Blocker search over the same region as pcss, split into blockerDiv x blockerDiv sub-kernels
-//     (uniform subdivision, section 5.2). A sub-kernel whose mean depth is below the receiver's
-//     is "normal": its moments join the normal group, whose average blocker depth is eq. 4 with
-//     z_unocc = t and P(x >= t) from Chebyshev (eq. 1). One whose mean is not below is a
-//     "non-planarity" sub-kernel: fully lit if its variance is below `threshold`, else 2 x 2
-//     point samples decide (section 5.1, option 2).
-//  2. Penumbra by parallel planes (as pcss).
-//  3. Visibility over the penumbra kernel split into shadowDiv x shadowDiv sub-kernels the same
-//     way: Chebyshev's bound for the normal group, 1 for lit sub-kernels, 2 x 2 samples for the
-//     rest, weighted by area (Algorithm 2, L29-L32).
-// Where we diverge (for now): no min-max hierarchical shadow map, no adaptive quad-tree, no
-// contact-shadow fallback (issue 6 continues).
+// summed-area table of vssm_sat.comp, in the PCSS framework of pcss_common.glsl (Algorithm 1).
+//  0. The min-max hierarchical shadow map (vssm_hsm.comp) over the blocker-search region: a
+//     receiver nearer than every texel there is lit, one farther than every texel is in umbra
+//     (L8-L10).
+//  1. Blocker search over the same region as pcss, split into sub-kernels: a sub-kernel whose
+//     mean depth is below the receiver's is "normal": its moments join the normal group, whose
+//     average blocker depth is eq. 4 with z_unocc = t and P(x >= t) from Chebyshev (eq. 1, 5). One
+//     whose mean is not below is a "non-planarity" sub-kernel: fully lit if its variance is below
+//     `threshold` (1e-4 r), else 2 x 2 point samples decide (section 5.1, option 2).
+//  2. Penumbra by parallel planes (as pcss). Contact fallback: a blocker within `contactEpsilon`
+//     (0.01 r) of the receiver gives a contact shadow that the moments blur: 3 x 3 jittered PCF
+//     instead.
+//  3. Visibility over the penumbra kernel the same way, weighted by area (Algorithm 2, L29-L32).
+// Subdivision (section 5): uniform m x m (blockerDiv / shadowDiv) or, with blockerLevels /
+// shadowLevels > 0, the adaptive quad-tree of that height traversed linearly with child / next
+// links (Algorithm 2; the paper's mixed default: uniform m = 5 for the blocker, H = 3 for the
+// shadow).
 #include "pcss_common.glsl"
 #ifdef EXACT
 #define SAT_T dvec2
@@ -21,10 +25,13 @@
 #define SAT_SCALE 1.0
 #endif
 layout(std430, binding = PENUMBRA_SSBO_VSSM_SAT) readonly buffer Sat { SAT_T sat[]; };
+layout(std430, binding = PENUMBRA_SSBO_VSSM_HSM) readonly buffer Hsm { vec2 hsm[]; };
 uniform float depthMin, depthMax;
-uniform int blockerDiv;
-uniform int shadowDiv;
-uniform float threshold;  // variance (normalised depth^2) below which a sub-kernel is flat
+uniform int blockerDiv, shadowDiv;        // uniform subdivision (when the levels are 0)
+uniform int blockerLevels, shadowLevels;  // adaptive quad-tree height H (0: uniform)
+uniform float threshold;       // variance (normalised depth^2) below which a sub-kernel is flat
+uniform float contactEpsilon;  // view depth: blocker-receiver gap of a contact shadow
+uniform int hsmLevels;
 
 out vec4 outVisibility;
 
@@ -52,57 +59,137 @@ float chebyshev(float mu, float var, float t) {
   return var / (var + (t - mu) * (t - mu));
 }
 
-// Over the texel box of the kernel around uv of half-size radius (uv), split div x div:
-// returns (lit area, blocked area, blocker depth sum weighted by blocked area, total area).
-vec4 kernel(Receiver r, float t, float radius, int div) {
+// Accumulates over the kernels' sub-kernels (Algorithm 2's areas): the normal group's moment
+// sums, lit area, 2 x 2-sampled area and its blocked part and blocker depths.
+struct Accum {
+  float normalSum, normalSq, normalArea, lit, blocked, blockerSum, total;
+};
+
+// Classifies one sub-kernel box; returns true when it is a non-planarity box that is neither flat
+// nor a leaf-level decision (the adaptive traversal then descends instead of sampling).
+bool visit(inout Accum acc, ivec2 a, ivec2 b, float t, bool canDescend) {
+  Box box = boxMoments(a, b);
+  if (box.mean < t) {
+    acc.normalSum += box.mean * box.area;
+    acc.normalSq += box.meanSq * box.area;
+    acc.normalArea += box.area;
+  } else if (box.meanSq - box.mean * box.mean < threshold) {
+    acc.lit += box.area;
+  } else if (canDescend) {
+    return true;
+  } else {
+    // 2 x 2 point samples at the sub-kernel's quarter points.
+    float hits = 0.0, depthSum = 0.0;
+    for (int s = 0; s < 4; ++s) {
+      vec2 f = vec2(float(s & 1) * 0.5 + 0.25, float(s >> 1) * 0.5 + 0.25);
+      ivec2 q = a + ivec2(vec2(b - a + 1) * f);
+      float z = texelFetch(depthRaw, q, 0).r;
+      float x = z > 0.0 ? normalisedDepth(mapNear / z) : 1.0;
+      if (x < t) { hits += 1.0; depthSum += x; }
+    }
+    acc.lit += box.area * (4.0 - hits) / 4.0;
+    acc.blocked += box.area * hits / 4.0;
+    acc.blockerSum += box.area * depthSum / 4.0;
+  }
+  acc.total += box.area;
+  return false;
+}
+
+// The texel box [lo, hi] of a kernel around uv of half-size radius (uv units).
+void kernelBox(Receiver r, float radius, out ivec2 lo, out ivec2 hi) {
   vec2 c = r.uv * float(mapSize);
   float extent = max(radius * float(mapSize), 0.5);
-  ivec2 lo = clamp(ivec2(floor(c - extent)), ivec2(0), ivec2(mapSize - 1));
-  ivec2 hi = clamp(ivec2(floor(c + extent)), ivec2(0), ivec2(mapSize - 1));
+  lo = clamp(ivec2(floor(c - extent)), ivec2(0), ivec2(mapSize - 1));
+  hi = clamp(ivec2(floor(c + extent)), ivec2(0), ivec2(mapSize - 1));
+}
+
+// Cell (x, y) of `cells` x `cells` of the box [lo, hi]; false if empty.
+bool cellBox(ivec2 lo, ivec2 hi, int cells, ivec2 cell, out ivec2 a, out ivec2 b) {
   ivec2 span = hi - lo + 1;
-  float normalSum = 0.0, normalSq = 0.0, normalArea = 0.0;
-  float lit = 0.0, blocked = 0.0, blockerSum = 0.0, total = 0.0;
-  for (int j = 0; j < div; ++j)
-    for (int i = 0; i < div; ++i) {
-      ivec2 a = lo + (span * ivec2(i, j)) / div;
-      ivec2 b = lo + (span * ivec2(i + 1, j + 1)) / div - 1;
-      if (any(lessThan(b, a))) continue;
-      Box box = boxMoments(a, b);
-      total += box.area;
-      if (box.mean < t) {
-        normalSum += box.mean * box.area;
-        normalSq += box.meanSq * box.area;
-        normalArea += box.area;
-      } else if (box.meanSq - box.mean * box.mean < threshold) {
-        lit += box.area;
-      } else {
-        // 2 x 2 point samples at the sub-kernel's quarter points.
-        float hits = 0.0, depthSum = 0.0;
-        for (int s = 0; s < 4; ++s) {
-          vec2 f = vec2(float(s & 1) * 0.5 + 0.25, float(s >> 1) * 0.5 + 0.25);
-          ivec2 q = a + ivec2(vec2(b - a + 1) * f);
-          float z = texelFetch(depthRaw, q, 0).r;
-          float x = z > 0.0 ? normalisedDepth(mapNear / z) : 1.0;
-          if (x < t) { hits += 1.0; depthSum += x; }
-        }
-        lit += box.area * (4.0 - hits) / 4.0;
-        blocked += box.area * hits / 4.0;
-        blockerSum += hits > 0.0 ? box.area * depthSum / 4.0 : 0.0;
+  a = lo + (span * cell) / cells;
+  b = lo + (span * (cell + 1)) / cells - 1;
+  return all(greaterThanEqual(b, a));
+}
+
+// Returns (lit area, blocked area, blocker depth sum, total area) over the kernel.
+vec4 kernel(Receiver r, float t, float radius, int div, int levels) {
+  ivec2 lo, hi;
+  kernelBox(r, radius, lo, hi);
+  Accum acc = Accum(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+  if (levels <= 0) {
+    for (int j = 0; j < div; ++j)
+      for (int i = 0; i < div; ++i) {
+        ivec2 a, b;
+        if (cellBox(lo, hi, div, ivec2(i, j), a, b)) visit(acc, a, b, t, false);
       }
-    }
-  if (normalArea > 0.0) {
-    float mu = normalSum / normalArea, var = normalSq / normalArea - mu * mu;
-    float p = chebyshev(mu, var, t);
-    lit += p * normalArea;
-    // Eq. 4 with z_unocc = t: the blockers' mean depth in the normal group.
-    float occluded = (1.0 - p) * normalArea;
-    if (occluded > 0.0) {
-      float zOcc = (mu - p * t) / max(1.0 - p, 1e-6);
-      blocked += occluded;
-      blockerSum += occluded * clamp(zOcc, 0.0, t);
+  } else {
+    // Linear quad-tree traversal (Algorithm 2): node (level, cell); child = first child one
+    // level down; next = the next sibling, or the parent's next once the last child is done.
+    int level = 0;
+    ivec2 cell = ivec2(0);
+    for (int guard = 0; guard < 4096; ++guard) {
+      ivec2 a, b;
+      bool descend = false;
+      if (cellBox(lo, hi, 1 << level, cell, a, b)) descend = visit(acc, a, b, t, level < levels);
+      if (descend) {
+        ++level;
+        cell *= 2;
+        continue;
+      }
+      // next
+      while (level > 0 && (cell.x & 1) == 1 && (cell.y & 1) == 1) {
+        --level;
+        cell /= 2;
+      }
+      if (level == 0) break;
+      int c = (cell.y & 1) * 2 + (cell.x & 1) + 1;
+      cell = (cell & ~1) + ivec2(c & 1, c >> 1);
     }
   }
-  return vec4(lit, blocked, blockerSum, total);
+  if (acc.normalArea > 0.0) {
+    float mu = acc.normalSum / acc.normalArea, var = acc.normalSq / acc.normalArea - mu * mu;
+    float p = chebyshev(mu, var, t);
+    acc.lit += p * acc.normalArea;
+    // Eq. 4 with z_unocc = t: the blockers' mean depth in the normal group.
+    float occluded = (1.0 - p) * acc.normalArea;
+    if (occluded > 0.0) {
+      acc.blocked += occluded;
+      acc.blockerSum += occluded * clamp((mu - p * t) / max(1.0 - p, 1e-6), 0.0, t);
+    }
+  }
+  return vec4(acc.lit, acc.blocked, acc.blockerSum, acc.total);
+}
+
+// Min and max normalised depth over (a superset of) the box [lo, hi]: the HSM level at which it
+// spans at most 2 x 2 texels.
+vec2 hsmRange(ivec2 lo, ivec2 hi) {
+  int level = 0, offset = 0;
+  while (level + 1 < hsmLevels && max(hi.x - lo.x, hi.y - lo.y) >= 1) {
+    offset += (mapSize >> level) * (mapSize >> level);
+    ++level;
+    lo /= 2;
+    hi /= 2;
+  }
+  int size = mapSize >> level;
+  vec2 range = vec2(1.0, 0.0);
+  for (int y = lo.y; y <= hi.y; ++y)
+    for (int x = lo.x; x <= hi.x; ++x) {
+      vec2 v = hsm[offset + y * size + x];
+      range = vec2(min(range.x, v.x), max(range.y, v.y));
+    }
+  return range;
+}
+
+// 3 x 3 jittered PCF around the receiver (the contact fallback), of half-size radius (uv).
+float contactPcf(Receiver r, float radius, float phi) {
+  float lit = 0.0;
+  for (int j = -1; j <= 1; ++j)
+    for (int i = -1; i <= 1; ++i) {
+      vec2 jitter = 0.35 * vec2(cos(phi + float(3 * j + i)), sin(phi + float(3 * j + i)));
+      vec2 uv = r.uv + radius * (vec2(i, j) + jitter);
+      lit += texture(depthCmp, vec3(uv, tapZ(r, uv)));
+    }
+  return lit / 9.0;
 }
 
 void main() {
@@ -114,11 +201,24 @@ void main() {
   float s = 1.0;
   if (luminance != vec3(0.0) && r.inView) {
     float t = normalisedDepth(r.depth);
-    vec4 search = kernel(r, t, searchRadius(r), blockerDiv);
-    if (search.y > 0.0) {
-      float blocker = viewDepth(search.z / search.y);
-      vec4 k = kernel(r, t, penumbraRadius(r, max(blocker, mapNear)), shadowDiv);
-      s = k.w > 0.0 ? k.x / k.w : 1.0;
+    float radius = searchRadius(r);
+    ivec2 lo, hi;
+    kernelBox(r, radius, lo, hi);
+    vec2 range = hsmRange(lo, hi);
+    if (t > range.y) {
+      s = 0.0;  // every texel of the region blocks: umbra
+    } else if (t > range.x) {  // else lit: nothing in the region is nearer
+      vec4 search = kernel(r, t, radius, blockerDiv, blockerLevels);
+      if (search.y > 0.0) {
+        float blocker = viewDepth(search.z / search.y);
+        float phi = TWO_PI * interleavedGradientNoise(vec2(px) + 0.5);
+        if (r.depth - blocker < contactEpsilon) {
+          s = contactPcf(r, penumbraRadius(r, max(blocker, mapNear)), phi);
+        } else {
+          vec4 k = kernel(r, t, penumbraRadius(r, max(blocker, mapNear)), shadowDiv, shadowLevels);
+          s = k.w > 0.0 ? k.x / k.w : 1.0;
+        }
+      }
     }
   }
   outVisibility = vec4(luminance * s, 1.0);

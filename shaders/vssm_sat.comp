@@ -12,6 +12,7 @@
 #else
 #define SAT_T vec2
 #endif
+#include "compute_index.glsl"
 layout(local_size_x = PENUMBRA_MAP_LOCAL_SIZE) in;
 layout(std430, binding = PENUMBRA_SSBO_VSSM_SAT) buffer Sat { SAT_T sat[]; };
 layout(binding = PENUMBRA_UNIT_PCSS_DEPTH) uniform sampler2D depthRaw;
@@ -21,7 +22,7 @@ uniform float mapNear;
 uniform float depthMin, depthMax;
 
 void main() {
-  int i = int(gl_GlobalInvocationID.x);
+  int i = int(globalIndex());
   if (pass == 0) {
     if (i >= satSize * satSize) return;
     float z = texelFetch(depthRaw, ivec2(i % satSize, i / satSize), 0).r;

@@ -69,8 +69,14 @@ const std::vector<TechniqueInfo>& techniqueTable() {
        [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::MinFilter, false, false)); }},
       {"pcss-checker", "pcss computed on a checkerboard (half the pixels), depth-aware upsampling",
        [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::Regular, false, true)); }},
-      {"vssm", "variance soft shadow mapping: exact summed-area table of depth moments, uniform kernel subdivision (5x5 blocker, 8x8 shadow)",
+      {"vssm", "variance soft shadow mapping: exact summed-area table of depth moments, min-max HSM, 5x5 uniform blocker / H=3 adaptive shadow subdivision, contact fallback",
        [](const TechniqueParams& p) { return makeVarianceSoftShadowMapping(p, {}); }},
+      {"vssm-uniform", "vssm with uniform subdivision for both kernels (5x5 blocker, 8x8 shadow)",
+       [](const TechniqueParams& p) {
+         VssmOptions o;
+         o.shadowLevels = 0;
+         return makeVarianceSoftShadowMapping(p, o);
+       }},
       {"vssm-fp32", "vssm on a plain fp32 summed-area table (fails at large maps: hard case 17)",
        [](const TechniqueParams& p) {
          VssmOptions o;

@@ -276,19 +276,23 @@ std::vector<std::pair<std::string, double>> MultiViewTechnique::statistics() con
   return s;
 }
 
+void dispatchThreads(std::size_t threads) {
+  const std::size_t groups = std::max<std::size_t>((threads + PENUMBRA_MAP_LOCAL_SIZE - 1) / PENUMBRA_MAP_LOCAL_SIZE, 1);
+  const GLuint gx = GLuint(std::min<std::size_t>(groups, 65535)), gy = GLuint((groups + gx - 1) / gx);
+  glDispatchCompute(gx, gy, 1);
+}
+
 int splatMaps(const gl::Program& program, const gl::Texture& maps, std::size_t threads, int layers,
               const SplatOptions& options) {
   if (threads == 0 || layers == 0) return 0;
   maps.bindImage(PENUMBRA_IMAGE_SHADOW_MAPS, GL_READ_WRITE);
   program.use();
   const int per = options.mapsPerThread <= 0 ? layers : std::min(options.mapsPerThread, layers);
-  const std::size_t groups = (threads + PENUMBRA_MAP_LOCAL_SIZE - 1) / PENUMBRA_MAP_LOCAL_SIZE;
-  const GLuint gx = GLuint(std::min<std::size_t>(groups, 65535)), gy = GLuint((groups + gx - 1) / gx);
   int dispatches = 0;
   for (int first = 0; first < layers; first += per) {
     program.set("firstLayer", first);
     program.set("layerCount", std::min(per, layers - first));
-    glDispatchCompute(gx, gy, 1);
+    dispatchThreads(threads);
     ++dispatches;
   }
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);

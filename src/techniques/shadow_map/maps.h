@@ -128,6 +128,10 @@ class MultiViewTechnique : public Technique {
 // Reads pcf (taps per map: 1, 5 or 9; default 5) from --param.
 int readPcfTaps(const TechniqueParams& params);
 
+// Dispatches the bound compute program over `threads` invocations of PENUMBRA_MAP_LOCAL_SIZE-wide
+// groups, split over y beyond 65535 groups (shaders/compute_index.glsl globalIndex).
+void dispatchThreads(std::size_t threads);
+
 // Point rendering into an R32UI map array with compute (shaders/shadow_map_reproject.comp):
 // `mapsPerThread` maps per traversal of the points (1: serial, 0 or >= layers: fully parallel).
 struct SplatOptions {

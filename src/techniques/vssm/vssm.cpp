@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
 #include "techniques/shadow_map/single_view.h"
@@ -28,9 +29,14 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
     }
     depthMin_ = std::min(searchNear(), far);
     depthMax_ = std::max(far, depthMin_ * 1.001f + 1e-6f);
-    // Threshold = 1e-4 r (section 6), r the scene's bounding radius, in normalised depth.
+    // Threshold = 1e-4 r (section 6), r the scene's bounding radius, as a variance of the
+    // normalised depth; the contact fallback's epsilon = 0.01 r.
     const float radius = 0.5f * glm::length(hi - lo);
     threshold_ = float(std::pow(1e-4 * radius / (depthMax_ - depthMin_), 2.0));
+    contactEpsilon_ = 0.01f * radius;
+    if (f.size & (f.size - 1))
+      throw Error(name(), "map size " + std::to_string(f.size) + " is not a power of two (the min-max hierarchy halves it)",
+                  ExitCode::Usage);
 
     pass.timer.time(name() + " sat", [&] {
       const std::size_t texels = std::size_t(f.size) * std::size_t(f.size);
@@ -46,8 +52,25 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
       p.use();
       for (int pass3 = 0; pass3 < 3; ++pass3) {
         p.set("pass", pass3);
-        std::size_t threads = pass3 == 0 ? texels : std::size_t(f.size);
-        glDispatchCompute(GLuint((threads + PENUMBRA_MAP_LOCAL_SIZE - 1) / PENUMBRA_MAP_LOCAL_SIZE), 1, 1);
+        shadow_map::dispatchThreads(pass3 == 0 ? texels : std::size_t(f.size));
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      }
+    });
+    pass.timer.time(name() + " hsm", [&] {
+      hsmLevels_ = 0;
+      std::size_t texels = 0;
+      for (int s = f.size; s >= 1; s /= 2) texels += std::size_t(s) * std::size_t(s), ++hsmLevels_;
+      if (hsm_.size() != texels * 8) hsm_ = gl::Buffer(texels * 8, nullptr);
+      hsm_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_HSM);
+      const gl::Program& p = program("hsm", {"vssm_hsm.comp"}, {});
+      p.set("satSize", f.size);
+      p.set("mapNear", f.zNear);
+      p.set("depthMin", depthMin_);
+      p.set("depthMax", depthMax_);
+      p.use();
+      for (int level = 0; level < hsmLevels_; ++level) {
+        p.set("level", level);
+        shadow_map::dispatchThreads(std::size_t(f.size >> level) * std::size_t(f.size >> level));
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
       }
     });
@@ -60,18 +83,28 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
       p.set("blockerDiv", o_.blockerDiv);
       p.set("shadowDiv", o_.shadowDiv);
       p.set("threshold", threshold_);
+      p.set("blockerLevels", o_.blockerLevels);
+      p.set("shadowLevels", o_.shadowLevels);
+      p.set("contactEpsilon", contactEpsilon_);
+      p.set("hsmLevels", hsmLevels_);
       sat_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_SAT);
+      hsm_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_HSM);
       bindMap();
       resolveVisibility(pass, p);
     });
   }
 
-  std::size_t extraBytes() const override { return sat_.size(); }
+  std::size_t extraBytes() const override { return sat_.size() + hsm_.size(); }
 
   void addStatistics(std::vector<std::pair<std::string, double>>& out) const override {
     out.emplace_back("exact sat", o_.exactSat ? 1.0 : 0.0);
-    out.emplace_back("blocker sub-kernels", double(o_.blockerDiv * o_.blockerDiv));
-    out.emplace_back("shadow sub-kernels", double(o_.shadowDiv * o_.shadowDiv));
+    out.emplace_back("blocker sub-kernels", o_.blockerLevels > 0 ? double(1 << (2 * o_.blockerLevels))
+                                                                 : double(o_.blockerDiv * o_.blockerDiv));
+    out.emplace_back("shadow sub-kernels", o_.shadowLevels > 0 ? double(1 << (2 * o_.shadowLevels))
+                                                               : double(o_.shadowDiv * o_.shadowDiv));
+    out.emplace_back("adaptive shadow levels", double(o_.shadowLevels));
+    out.emplace_back("hsm levels", double(hsmLevels_));
+    out.emplace_back("hsm bytes", double(hsm_.size()));
     out.emplace_back("depth min", depthMin_);
     out.emplace_back("depth max", depthMax_);
     out.emplace_back("sat bytes", double(sat_.size()));
@@ -79,8 +112,9 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
 
  private:
   VssmOptions o_;
-  gl::Buffer sat_;
-  float depthMin_ = 0.0f, depthMax_ = 1.0f, threshold_ = 0.0f;
+  gl::Buffer sat_, hsm_;
+  int hsmLevels_ = 0;
+  float depthMin_ = 0.0f, depthMax_ = 1.0f, threshold_ = 0.0f, contactEpsilon_ = 0.0f;
 };
 
 }  // namespace
@@ -88,6 +122,8 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
 std::unique_ptr<Technique> makeVarianceSoftShadowMapping(const TechniqueParams& params, VssmOptions o) {
   o.blockerDiv = params.getInt("blocker-div", o.blockerDiv, 1, 16);
   o.shadowDiv = params.getInt("shadow-div", o.shadowDiv, 1, 16);
+  o.blockerLevels = params.getInt("blocker-levels", o.blockerLevels, 0, 5);
+  o.shadowLevels = params.getInt("shadow-levels", o.shadowLevels, 0, 5);
   return std::make_unique<VarianceSoftShadowMapping>(shadow_map::readMapOptions(params), o);
 }
 

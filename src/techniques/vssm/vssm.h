@@ -13,11 +13,14 @@ namespace penumbra {
 
 struct VssmOptions {
   bool exactSat = true;  // 15-bit integer depths summed in doubles; false: the fp32 table
-  int blockerDiv = 5;    // m x m sub-kernels for the blocker search (the paper's mixed default m = 5)
-  int shadowDiv = 8;     // n x n sub-kernels for the visibility (the paper: adaptive, H = 3 -> 8 x 8)
+  int blockerDiv = 5;    // m x m uniform sub-kernels for the blocker search (the paper's m = 5)
+  int shadowDiv = 8;     // n x n uniform sub-kernels for the visibility (when shadowLevels = 0)
+  int blockerLevels = 0; // adaptive quad-tree height for the blocker search (0: uniform)
+  int shadowLevels = 3;  // adaptive quad-tree height H for the visibility (the paper's H = 3)
 };
 
-// Parameters (besides the map ones): blocker-div, shadow-div.
+// Parameters (besides the map ones): blocker-div, shadow-div, blocker-levels, shadow-levels.
+// The map size must be a power of two (the min-max hierarchy halves it).
 std::unique_ptr<Technique> makeVarianceSoftShadowMapping(const TechniqueParams& params, VssmOptions options);
 
 }  // namespace penumbra
