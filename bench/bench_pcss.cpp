@@ -1,9 +1,13 @@
-// Benchmark (not a test) of the pcss studies of issue 6 in one run on one machine: Sterna's
-// Table 1 (2018): the shadow-mask passes of regular soft shadows (fixed kernel), regular
-// contact-hardening (per-pixel blocker search), the penumbra mask + shadow mask, the min filter,
-// and checkerboarding of both, with their RMSE against the same-sample reference. Sterna: the
-// penumbra mask + shadow mask about 2.3x faster than regular contact-hardening (0.74 against
-// 1.72 ms on a GTX 660, 1080p, 2048^2 map, 16 shadow samples, 32 mask samples).
+// Benchmark (not a test) of the single-map studies of issue 6 in one run on one machine:
+//  1. Sterna's Table 1 (2018): the shadow-mask passes of regular soft shadows (fixed kernel),
+//     regular contact-hardening (per-pixel blocker search), the penumbra mask + shadow mask, the
+//     min filter, and checkerboarding of both, with their RMSE against the same-sample reference.
+//     Sterna: the penumbra mask + shadow mask about 2.3x faster than regular contact-hardening
+//     (0.74 against 1.72 ms on a GTX 660, 1080p, 2048^2 map, 16 shadow samples, 32 mask samples).
+//  2. VSSM against PCSS as the light grows (VSSM paper: at least an order of magnitude faster
+//     than PCSS for large penumbrae, where PCSS samples the whole kernel).
+//  3. VSSM's stage breakdown (its Tables 1-2: shadow map, HSM, SAT, shadow pass) at 512^2,
+//     1024^2, 2048^2 maps.
 //
 //   penumbra_bench_pcss [SCENE] [-W 512] [-H 512] [--map 2048] [--samples 16] [--frames 5]
 //                       [--warmup 1] [--backend egl]
@@ -80,8 +84,55 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
     std::printf("(x CHSS: regular CHSS's passes over the row's; the shadow map itself, %d^2, is left out as in Sterna's "
-                "table)\n",
+                "table)\n\n",
                 map);
+
+    std::printf("2. VSSM against PCSS as the light grows (light side x1..x8, 1024^2 map): shadow-stage ms (map "
+                "excluded) and RMSE; 'pcss 256' samples 256 + 256 taps, the closest to Fernando's dense kernel\n");
+    std::printf("%7s | %17s | %17s | %17s | %17s | %17s\n", "light x", "pcss 32/16", "pcss-ultra 64/96", "pcss 256/256",
+                "vssm", "vssm-uniform");
+    for (float k : {1.0f, 2.0f, 4.0f, 8.0f}) {
+      Scene grown = scene;
+      for (auto& l : grown.lights) l.size *= k;
+      Renderer r(*ctx, grown, s);
+      auto rt = makeTechnique("raytrace");
+      FrameResult gref = r.render(*rt);
+      std::printf("%7.0f |", k);
+      struct Col {
+        const char* name;
+        std::vector<std::string> params;
+        const char* stage;
+      };
+      const Col cols[] = {{"pcss", {}, "pcss shadow mask"},
+                          {"pcss-ultra", {}, "pcss shadow mask"},
+                          {"pcss", {"blocker-samples=256", "pcf-samples=256"}, "pcss shadow mask"},
+                          {"vssm", {}, ""},
+                          {"vssm-uniform", {}, ""}};
+      for (const Col& c : cols) {
+        std::vector<std::string> p = c.params;
+        p.push_back("map=1024");
+        auto t = makeTechnique(c.name, TechniqueParams(p));
+        bench::Timing tm = bench::timeFrames(r, *t, frames, warmup);
+        std::string n = c.name;
+        double ms = *c.stage ? tm.stage(c.stage)
+                             : tm.stage(n + " hsm") + tm.stage(n + " sat") + tm.stage(n + " shadow pass");
+        std::printf(" %8.2f %8.4f |", ms, measureErrors(tm.last, gref).visibility.rmse);
+        std::fflush(stdout);
+      }
+      std::printf("\n");
+    }
+    std::printf("\n3. VSSM stage breakdown (VSSM Tables 1-2 shape), light x1, ms\n");
+    std::printf("%6s %10s %8s %8s %12s %8s %10s\n", "map", "shadow map", "HSM", "SAT", "shadow pass", "total",
+                "MiB");
+    for (int m : {512, 1024, 2048}) {
+      auto t = makeTechnique("vssm", TechniqueParams({"map=" + std::to_string(m)}));
+      bench::Timing tm = bench::timeFrames(renderer, *t, frames, warmup);
+      double total = tm.stage("vssm shadow map") + tm.stage("vssm hsm") + tm.stage("vssm sat") + tm.stage("vssm shadow pass");
+      std::printf("%6d %10.2f %8.2f %8.2f %12.2f %8.2f %10.1f\n", m, tm.stage("vssm shadow map"), tm.stage("vssm hsm"),
+                  tm.stage("vssm sat"), tm.stage("vssm shadow pass"), total,
+                  double(tm.last.memoryBytes) / (1024.0 * 1024.0));
+      std::fflush(stdout);
+    }
     return 0;
   } catch (const Error& e) {
     std::fprintf(stderr, "penumbra_bench_pcss: %s\n", e.what());

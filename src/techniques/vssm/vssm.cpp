@@ -14,7 +14,7 @@ namespace {
 class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
  public:
   VarianceSoftShadowMapping(const shadow_map::MapOptions& m, const VssmOptions& o)
-      : SingleViewTechnique(o.exactSat ? "vssm" : "vssm-fp32", m), o_(o) {}
+      : SingleViewTechnique(!o.exactSat ? "vssm-fp32" : o.shadowLevels > 0 ? "vssm" : "vssm-uniform", m), o_(o) {}
 
  protected:
   void renderShadow(LightPass& pass) override {
