@@ -62,17 +62,27 @@ float chebyshev(float mu, float var, float t) {
 // Accumulates over the kernels' sub-kernels (Algorithm 2's areas): the normal group's moment
 // sums, lit area, 2 x 2-sampled area and its blocked part and blocker depths.
 struct Accum {
-  float normalSum, normalSq, normalArea, lit, blocked, blockerSum, total;
+  float normalSum, normalSq, normalArea, normalT, lit, blocked, blockerSum, total;
 };
+
+// The receiver's normalised depth where its plane crosses the ray through texel coordinate c
+// (receiver-plane depth, as every shadow-map technique here: a tilted receiver compares each
+// sub-kernel with its own plane's depth there, not with the depth at its centre).
+float receiverAt(Receiver r, vec2 c) {
+  vec2 uv = c / float(mapSize);
+  return normalisedDepth(planeDepth(r.o, r.n, lightPosition, vec2(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0), r.d) - r.bias);
+}
 
 // Classifies one sub-kernel box; returns true when it is a non-planarity box that is neither flat
 // nor a leaf-level decision (the adaptive traversal then descends instead of sampling).
-bool visit(inout Accum acc, ivec2 a, ivec2 b, float t, bool canDescend) {
+bool visit(inout Accum acc, Receiver r, ivec2 a, ivec2 b, bool canDescend) {
   Box box = boxMoments(a, b);
+  float t = receiverAt(r, 0.5 * vec2(a + b + 1));
   if (box.mean < t) {
     acc.normalSum += box.mean * box.area;
     acc.normalSq += box.meanSq * box.area;
     acc.normalArea += box.area;
+    acc.normalT += t * box.area;
   } else if (box.meanSq - box.mean * box.mean < threshold) {
     acc.lit += box.area;
   } else if (canDescend) {
@@ -85,7 +95,7 @@ bool visit(inout Accum acc, ivec2 a, ivec2 b, float t, bool canDescend) {
       ivec2 q = a + ivec2(vec2(b - a + 1) * f);
       float z = texelFetch(depthRaw, q, 0).r;
       float x = z > 0.0 ? normalisedDepth(mapNear / z) : 1.0;
-      if (x < t) { hits += 1.0; depthSum += x; }
+      if (x < receiverAt(r, vec2(q) + 0.5)) { hits += 1.0; depthSum += x; }
     }
     acc.lit += box.area * (4.0 - hits) / 4.0;
     acc.blocked += box.area * hits / 4.0;
@@ -112,15 +122,15 @@ bool cellBox(ivec2 lo, ivec2 hi, int cells, ivec2 cell, out ivec2 a, out ivec2 b
 }
 
 // Returns (lit area, blocked area, blocker depth sum, total area) over the kernel.
-vec4 kernel(Receiver r, float t, float radius, int div, int levels) {
+vec4 kernel(Receiver r, float radius, int div, int levels) {
   ivec2 lo, hi;
   kernelBox(r, radius, lo, hi);
-  Accum acc = Accum(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+  Accum acc = Accum(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
   if (levels <= 0) {
     for (int j = 0; j < div; ++j)
       for (int i = 0; i < div; ++i) {
         ivec2 a, b;
-        if (cellBox(lo, hi, div, ivec2(i, j), a, b)) visit(acc, a, b, t, false);
+        if (cellBox(lo, hi, div, ivec2(i, j), a, b)) visit(acc, r, a, b, false);
       }
   } else {
     // Linear quad-tree traversal (Algorithm 2): node (level, cell); child = first child one
@@ -130,7 +140,7 @@ vec4 kernel(Receiver r, float t, float radius, int div, int levels) {
     for (int guard = 0; guard < 4096; ++guard) {
       ivec2 a, b;
       bool descend = false;
-      if (cellBox(lo, hi, 1 << level, cell, a, b)) descend = visit(acc, a, b, t, level < levels);
+      if (cellBox(lo, hi, 1 << level, cell, a, b)) descend = visit(acc, r, a, b, level < levels);
       if (descend) {
         ++level;
         cell *= 2;
@@ -148,6 +158,7 @@ vec4 kernel(Receiver r, float t, float radius, int div, int levels) {
   }
   if (acc.normalArea > 0.0) {
     float mu = acc.normalSum / acc.normalArea, var = acc.normalSq / acc.normalArea - mu * mu;
+    float t = acc.normalT / acc.normalArea;  // the receiver plane's mean depth over the group
     float p = chebyshev(mu, var, t);
     acc.lit += p * acc.normalArea;
     // Eq. 4 with z_unocc = t: the blockers' mean depth in the normal group.
@@ -208,14 +219,14 @@ void main() {
     if (t > range.y) {
       s = 0.0;  // every texel of the region blocks: umbra
     } else if (t > range.x) {  // else lit: nothing in the region is nearer
-      vec4 search = kernel(r, t, radius, blockerDiv, blockerLevels);
+      vec4 search = kernel(r, radius, blockerDiv, blockerLevels);
       if (search.y > 0.0) {
         float blocker = viewDepth(search.z / search.y);
         float phi = TWO_PI * interleavedGradientNoise(vec2(px) + 0.5);
         if (r.depth - blocker < contactEpsilon) {
           s = contactPcf(r, penumbraRadius(r, max(blocker, mapNear)), phi);
         } else {
-          vec4 k = kernel(r, t, penumbraRadius(r, max(blocker, mapNear)), shadowDiv, shadowLevels);
+          vec4 k = kernel(r, penumbraRadius(r, max(blocker, mapNear)), shadowDiv, shadowLevels);
           s = k.w > 0.0 ? k.x / k.w : 1.0;
         }
       }

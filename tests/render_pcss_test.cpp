@@ -149,7 +149,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DepthBias,
                          ::testing::Values(BiasCase{"scenes/hard/16-contact.json", "mvr"},
                                            BiasCase{"scenes/hard/16-contact.json", "pcss"},
                                            BiasCase{"scenes/hard/18-grazing-receiver.json", "mvr"},
-                                           BiasCase{"scenes/hard/18-grazing-receiver.json", "pcss"}),
+                                           BiasCase{"scenes/hard/18-grazing-receiver.json", "pcss"},
+                                           BiasCase{"scenes/hard/16-contact.json", "vssm"},
+                                           BiasCase{"scenes/hard/18-grazing-receiver.json", "vssm"}),
                          [](const auto& info) {
                            return sceneTestName(info.param.scene) + "_" + info.param.technique;
                          });
