@@ -6,8 +6,6 @@
 namespace penumbra::test {
 namespace {
 
-TechniqueParams params(std::vector<std::string> kv) { return TechniqueParams(kv); }
-
 // Hard case 23 (square occluder parallel under a square light): the parallel-planes estimate
 // holds; the filtered result is within 0.02 RMSE of ray tracing (measured 0.019 / 0.017 at N =
 // 16, 0.012 for Ultra at N = 64).
@@ -77,11 +75,6 @@ TEST(Pcss, SampleCountsAndSemiOpaqueAreReported) {
   EXPECT_GT(statistic(r.frame, "semi-opaque triangles as opaque"), 0.0);
 }
 
-}  // namespace
-}  // namespace penumbra::test
-
-namespace penumbra::test {
-namespace {
 
 // Sterna's cheaper penumbra estimates stay close to the per-pixel blocker search on the parallel
 // planes case (measured RMSE 0.018-0.024 against the reference at N = 16).
@@ -105,11 +98,6 @@ TEST(PcssVariants, MaskMinFilterAndCheckerboardStayClose) {
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }
 
-}  // namespace
-}  // namespace penumbra::test
-
-namespace penumbra::test {
-namespace {
 
 // Hard cases 16 (contact) and 18 (receiver grazed at 1 degree): the slope-scaled bias
 // (shadow_map_common.glsl biasedDepth) keeps lit surfaces lit (acne: decisions differing from
@@ -156,11 +144,6 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DepthBias,
                            return sceneTestName(info.param.scene) + "_" + info.param.technique;
                          });
 
-}  // namespace
-}  // namespace penumbra::test
-
-namespace penumbra::test {
-namespace {
 
 // Thin geometry missed by the blocker search (VWSS paper Fig. 10): a 1 cm blade high under a
 // large light. Its texels fall between the search's taps at many pixels, so pcss leaves holes and
@@ -176,15 +159,9 @@ TEST(Pcss, ThinBladeMissedByTheBlockerSearch) {
   EXPECT_LE(pcss, 0.04);
 }
 
-}  // namespace
-}  // namespace penumbra::test
 
-namespace penumbra::test {
-namespace {
-
-// vssm (first part: exact SAT, eq. 2-4, uniform subdivision; no HSM, adaptive quad-tree or
-// contact fallback yet): on the parallel-planes case it beats pcss (measured RMSE 0.015 against
-// pcss's 0.019 at N = 16); occluder fusion fails as for every single-view method.
+// vssm on the parallel-planes case beats pcss (measured RMSE 0.015 against pcss's 0.019 at
+// N = 16); occluder fusion fails as for every single-view method.
 TEST(Vssm, ParallelPlanesCaseAndFusionFailure) {
   Scene square = loadScene(scenePath("scenes/hard/23-analytic-square.json"));
   Comparison r = renderAndCompare(square, "vssm", settings(128, 16));
@@ -200,11 +177,6 @@ TEST(Vssm, ParallelPlanesCaseAndFusionFailure) {
   EXPECT_GE(vssm, 2.5 * mvr);
 }
 
-}  // namespace
-}  // namespace penumbra::test
-
-namespace penumbra::test {
-namespace {
 
 // Hard case 17: a small occluder at the far corner of a 2048^2 map, where an fp32 summed-area
 // table's corner sums (millions of depths) leave no precision for a box's variance: its penumbra

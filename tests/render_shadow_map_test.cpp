@@ -15,8 +15,6 @@
 namespace penumbra::test {
 namespace {
 
-TechniqueParams params(std::vector<std::string> kv) { return TechniqueParams(kv); }
-
 double maxPerSampleDifference(const FrameResult& a, const FrameResult& b) {
   EXPECT_EQ(a.lights[0].perSample.size(), b.lights[0].perSample.size());
   double d = 0.0;

@@ -50,6 +50,8 @@ inline Comparison renderAndCompare(const Scene& scene, const std::string& techni
   return c;
 }
 
+inline TechniqueParams params(const std::vector<std::string>& keyValues) { return TechniqueParams(keyValues); }
+
 // A Technique::statistics() value of a frame (fails the test if absent).
 inline double statistic(const FrameResult& f, const std::string& key) {
   for (auto& [k, v] : f.statistics)
