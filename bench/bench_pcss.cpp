@@ -8,6 +8,8 @@
 //     than PCSS for large penumbrae, where PCSS samples the whole kernel).
 //  3. VSSM's stage breakdown (its Tables 1-2: shadow map, HSM, SAT, shadow pass) at 512^2,
 //     1024^2, 2048^2 maps.
+//  4. Errors against the same-sample and the converged reference on the shipped scenes and the
+//     hard cases of the single-view methods (15-18, 23), mvr next to them.
 //
 //   penumbra_bench_pcss [SCENE] [-W 512] [-H 512] [--map 2048] [--samples 16] [--frames 5]
 //                       [--warmup 1] [--backend egl]
@@ -32,7 +34,7 @@ int main(int argc, char** argv) {
   setLogLevel("error");
   CLI::App app{"the pcss studies of issue 6 in one run"};
   std::string scenePath = "scenes/stained-glass.json", backend = "egl";
-  int width = 512, height = 512, map = 2048, samples = 16, frames = 5, warmup = 1;
+  int width = 512, height = 512, map = 2048, samples = 16, frames = 5, warmup = 1, errorSize = 256;
   app.add_option("scene", scenePath);
   app.add_option("-W", width);
   app.add_option("-H", height);
@@ -41,6 +43,7 @@ int main(int argc, char** argv) {
   app.add_option("--frames", frames);
   app.add_option("--warmup", warmup);
   app.add_option("--backend", backend);
+  app.add_option("--error-size", errorSize, "image size of study 4");
   CLI11_PARSE(app, argc, argv);
   try {
     auto ctx = gl::Context::create(gl::parseBackend(backend));
@@ -132,6 +135,33 @@ int main(int argc, char** argv) {
                   tm.stage("vssm sat"), tm.stage("vssm shadow pass"), total,
                   double(tm.last.memoryBytes) / (1024.0 * 1024.0));
       std::fflush(stdout);
+    }
+
+    std::printf("\n4. Visibility RMSE against raytrace with the same %d samples / against raytrace-converged (1024 a "
+                "pixel), %dx%d, 1024^2 maps\n", samples, errorSize, errorSize);
+    std::printf("%-24s | %15s | %15s | %15s | %15s\n", "scene", "mvr", "pcss", "pcss-ultra", "vssm");
+    for (const char* path : {"scenes/hard/23-analytic-square.json", "scenes/hard/15-two-plates.json",
+                             "scenes/hard/15-thin-blade.json", "scenes/hard/15-sphere-grid.json",
+                             "scenes/hard/16-contact.json", "scenes/hard/17-far-corner.json",
+                             "scenes/hard/18-grazing-receiver.json", "scenes/stained-glass.json", "scenes/engine.json"}) {
+      Scene sc = loadScene(path);
+      RenderSettings es = s;
+      es.width = es.height = errorSize;
+      Renderer r(*ctx, sc, es);
+      auto same = makeTechnique("raytrace");
+      auto conv = makeTechnique("raytrace-converged");
+      FrameResult sameRef = r.render(*same), convRef = r.render(*conv);
+      std::string name = path;
+      name = name.substr(name.rfind('/') + 1);
+      std::printf("%-24s |", name.substr(0, name.size() - 5).c_str());
+      for (const char* t : {"mvr", "pcss", "pcss-ultra", "vssm"}) {
+        auto tech = makeTechnique(t);
+        FrameResult f = r.render(*tech);
+        std::printf("  %6.4f / %6.4f |", measureErrors(f, sameRef).visibility.rmse,
+                    measureErrors(f, convRef).visibility.rmse);
+        std::fflush(stdout);
+      }
+      std::printf("\n");
     }
     return 0;
   } catch (const Error& e) {
