@@ -147,8 +147,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DepthBias,
 
 // Thin geometry missed by the blocker search (VWSS paper Fig. 10): a 1 cm blade high under a
 // large light. Its texels fall between the search's taps at many pixels, so pcss leaves holes and
-// noise where the reference has the blade's 16 thin hard shadows (measured RMSE 0.019 against
-// mvr's 0.008, 2026-12-01).
+// noise where the same-sample reference has the blade's 16 thin hard shadows (measured RMSE 0.019
+// against mvr's 0.008, 2026-12-01; against the converged reference, which has no 16-sample
+// banding either, both are 0.012: README "pcss and vssm").
 TEST(Pcss, ThinBladeMissedByTheBlockerSearch) {
   Scene scene = loadScene(scenePath("scenes/hard/15-thin-blade.json"));
   double pcss = renderAndCompare(scene, "pcss", settings(128, 16)).errors.visibility.rmse;
