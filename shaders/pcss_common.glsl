@@ -108,6 +108,44 @@ float percentageCloser(Receiver r, float radius, float phi) {
   return lit / float(pcfSamples);
 }
 
+// Fernando's dense kernels: every texel of the square of half-size `radius` (uv) around the
+// receiver, thinned to at most DENSE_MAX x DENSE_MAX taps (evenly spaced) for huge kernels.
+#define DENSE_MAX 32
+void denseGrid(Receiver r, float radius, out vec2 origin, out vec2 step, out int count) {
+  float texels = max(2.0 * radius * float(mapSize), 1.0);
+  count = int(min(ceil(texels), float(DENSE_MAX)));
+  step = vec2(2.0 * radius / float(count));
+  origin = r.uv - vec2(radius) + 0.5 * step;
+}
+float averageBlockerDepthDense(Receiver r) {
+  vec2 origin, step;
+  int count;
+  denseGrid(r, searchRadius(r), origin, step, count);
+  float sum = 0.0, blockers = 0.0;
+  for (int j = 0; j < count; ++j)
+    for (int i = 0; i < count; ++i) {
+      vec2 uv = origin + step * vec2(i, j);
+      float z = texture(depthRaw, uv).r;
+      if (z > tapZ(r, uv)) {
+        sum += mapNear / z;
+        blockers += 1.0;
+      }
+    }
+  return blockers > 0.0 ? sum / blockers : -1.0;
+}
+float percentageCloserDense(Receiver r, float radius) {
+  vec2 origin, step;
+  int count;
+  denseGrid(r, radius, origin, step, count);
+  float lit = 0.0;
+  for (int j = 0; j < count; ++j)
+    for (int i = 0; i < count; ++i) {
+      vec2 uv = origin + step * vec2(i, j);
+      lit += texture(depthCmp, vec3(uv, tapZ(r, uv)));
+    }
+  return lit / float(count * count);
+}
+
 // Mean luminance L_k of the samples above the receiver's horizon over N: a single view gives
 // every sample the same shadow factor (textured lights modulate by their mean luminance).
 vec3 horizonLuminance(ivec2 px, vec3 p, vec3 n) {

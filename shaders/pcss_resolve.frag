@@ -4,7 +4,9 @@
 //  * PENUMBRA_MASK: the quarter-resolution, blurred penumbra mask (Sterna 2.2),
 //  * MIN_FILTER: the blurred min-filtered map as the blocker depth (Sterna 2.3),
 //  * FIXED: the blocker-search radius itself, no search (Sterna's non-contact-hardening
-//    "regular shadow mask", for timing).
+//    "regular shadow mask", for timing),
+//  * DENSE: Fernando's original, every texel of the search and filter kernels (at most 32 x 32),
+//    the PCSS the VSSM paper compares with.
 // CHECKERBOARD (Sterna 3): this pass covers every other pixel (a half-width target); the
 // upsample pass (pcss_checker.frag) fills in the rest.
 #include "pcss_common.glsl"
@@ -30,12 +32,18 @@ float shadowFactor(ivec2 px, Receiver r) {
   float radius = penumbraRadius(r, mapNear / z);
 #elif defined(FIXED)
   float radius = searchRadius(r);
+#elif defined(DENSE)
+  float blocker = averageBlockerDepthDense(r);
+  if (blocker < 0.0) return 1.0;
+  return percentageCloserDense(r, penumbraRadius(r, blocker));
 #else
   float blocker = averageBlockerDepth(r, phi);
   if (blocker < 0.0) return 1.0;
   float radius = penumbraRadius(r, blocker);
 #endif
+#ifndef DENSE
   return percentageCloser(r, radius, phi);
+#endif
 }
 
 void main() {

@@ -83,7 +83,7 @@ TEST(PcssVariants, MaskMinFilterAndCheckerboardStayClose) {
   Renderer renderer(context(), scene, settings(128, 16));
   auto ref = makeTechnique("raytrace");
   FrameResult reference = renderer.render(*ref);
-  for (const char* name : {"pcss-mask", "pcss-minfilter", "pcss-checker"}) {
+  for (const char* name : {"pcss-mask", "pcss-minfilter", "pcss-checker", "pcss-dense"}) {
     auto t = makeTechnique(name);
     FrameResult f = renderer.render(*t);
     double rmse = measureErrors(f, reference).visibility.rmse;

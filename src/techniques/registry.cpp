@@ -67,6 +67,8 @@ const std::vector<TechniqueInfo>& techniqueTable() {
        [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::PenumbraMask, false, false)); }},
       {"pcss-minfilter", "pcss with Sterna's min filter: blocker depth from the separable nearest-depth filter of the map, blurred",
        [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::MinFilter, false, false)); }},
+      {"pcss-dense", "pcss as Fernando's original: every texel of the blocker-search and filter kernels (at most 32x32)",
+       [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::Dense, false, false)); }},
       {"pcss-checker", "pcss computed on a checkerboard (half the pixels), depth-aware upsampling",
        [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::Regular, false, true)); }},
       {"vssm", "variance soft shadow mapping: exact summed-area table of depth moments, min-max HSM, 5x5 uniform blocker / H=3 adaptive shadow subdivision, contact fallback",

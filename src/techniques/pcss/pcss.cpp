@@ -70,6 +70,7 @@ class PercentageCloserSoftShadows final : public shadow_map::SingleViewTechnique
       if (o_.mode == PcssMode::PenumbraMask) defs.push_back("PENUMBRA_MASK");
       if (o_.mode == PcssMode::MinFilter) defs.push_back("MIN_FILTER");
       if (o_.mode == PcssMode::Fixed) defs.push_back("FIXED");
+      if (o_.mode == PcssMode::Dense) defs.push_back("DENSE");
       if (o_.checkerboard) defs.push_back("CHECKERBOARD");
       std::string key = "resolve";
       for (auto& d : defs) key += " " + d;

@@ -17,6 +17,7 @@ enum class PcssMode {
   PenumbraMask,  // blocker search at quarter resolution, blurred, read by the shadow pass
   MinFilter,     // blocker depth from the separable min (nearest) filter of the map, blurred
   Fixed,         // no blocker search: the search radius as the kernel (not contact-hardening)
+  Dense,         // Fernando's original: every texel of both kernels (at most 32 x 32)
 };
 
 struct PcssOptions {
