@@ -144,8 +144,10 @@ int main(int argc, char** argv) {
     for (const char* path : {"scenes/hard/23-analytic-square.json", "scenes/hard/15-two-plates.json",
                              "scenes/hard/15-thin-blade.json", "scenes/hard/15-sphere-grid.json",
                              "scenes/hard/16-contact.json", "scenes/hard/17-far-corner.json",
-                             "scenes/hard/18-grazing-receiver.json", "scenes/stained-glass.json", "scenes/engine.json"}) {
-      Scene sc = loadScene(path);
+                             "scenes/hard/18-grazing-receiver.json", "default", "scenes/stained-glass.json",
+                             "scenes/example.json", "scenes/semi-opaque.json", "scenes/glass-layers.json",
+                             "scenes/dcs-silhouettes.json", "scenes/engine.json"}) {
+      Scene sc = std::string(path) == "default" ? defaultScene() : loadScene(path);
       RenderSettings es = s;
       es.width = es.height = errorSize;
       Renderer r(*ctx, sc, es);
@@ -154,7 +156,8 @@ int main(int argc, char** argv) {
       FrameResult sameRef = r.render(*same), convRef = r.render(*conv);
       std::string name = path;
       name = name.substr(name.rfind('/') + 1);
-      std::printf("%-24s |", name.substr(0, name.size() - 5).c_str());
+      if (name.size() > 5 && name.compare(name.size() - 5, 5, ".json") == 0) name = name.substr(0, name.size() - 5);
+      std::printf("%-24s |", name.c_str());
       for (const char* t : {"mvr", "pcss", "pcss-ultra", "vssm"}) {
         auto tech = makeTechnique(t);
         FrameResult f = r.render(*tech);
