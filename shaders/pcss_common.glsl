@@ -78,17 +78,18 @@ float searchRadius(Receiver r) {
   float near = min(searchNear, r.depth);
   return min(kernelScale * lightHalfSize * (r.depth - near) / r.depth / worldPerUv(near), 0.5);
 }
+// One blocker-search tap: a texel nearer than the receiver plane there adds its view depth.
+void blockerTap(Receiver r, vec2 uv, inout float sum, inout float count) {
+  float z = texture(depthRaw, uv).r;
+  if (z > tapZ(r, uv)) {
+    sum += mapNear / z;
+    count += 1.0;
+  }
+}
 float averageBlockerDepth(Receiver r, float phi) {
   float radius = searchRadius(r);
   float sum = 0.0, count = 0.0;
-  for (int i = 0; i < blockerSamples; ++i) {
-    vec2 uv = r.uv + radius * vogelDisk(i, blockerSamples, phi);
-    float z = texture(depthRaw, uv).r;
-    if (z > tapZ(r, uv)) {
-      sum += mapNear / z;
-      count += 1.0;
-    }
-  }
+  for (int i = 0; i < blockerSamples; ++i) blockerTap(r, r.uv + radius * vogelDisk(i, blockerSamples, phi), sum, count);
   return count > 0.0 ? sum / count : -1.0;
 }
 
@@ -99,12 +100,10 @@ float penumbraRadius(Receiver r, float blocker) {
 }
 
 // Step 3: PCF with the comparison sampler (4 texels a tap, bilinear).
+float litTap(Receiver r, vec2 uv) { return texture(depthCmp, vec3(uv, tapZ(r, uv))); }
 float percentageCloser(Receiver r, float radius, float phi) {
   float lit = 0.0;
-  for (int i = 0; i < pcfSamples; ++i) {
-    vec2 uv = r.uv + radius * vogelDisk(i, pcfSamples, phi);
-    lit += texture(depthCmp, vec3(uv, tapZ(r, uv)));
-  }
+  for (int i = 0; i < pcfSamples; ++i) lit += litTap(r, r.uv + radius * vogelDisk(i, pcfSamples, phi));
   return lit / float(pcfSamples);
 }
 
@@ -123,14 +122,7 @@ float averageBlockerDepthDense(Receiver r) {
   denseGrid(r, searchRadius(r), origin, step, count);
   float sum = 0.0, blockers = 0.0;
   for (int j = 0; j < count; ++j)
-    for (int i = 0; i < count; ++i) {
-      vec2 uv = origin + step * vec2(i, j);
-      float z = texture(depthRaw, uv).r;
-      if (z > tapZ(r, uv)) {
-        sum += mapNear / z;
-        blockers += 1.0;
-      }
-    }
+    for (int i = 0; i < count; ++i) blockerTap(r, origin + step * vec2(i, j), sum, blockers);
   return blockers > 0.0 ? sum / blockers : -1.0;
 }
 float percentageCloserDense(Receiver r, float radius) {
@@ -139,10 +131,7 @@ float percentageCloserDense(Receiver r, float radius) {
   denseGrid(r, radius, origin, step, count);
   float lit = 0.0;
   for (int j = 0; j < count; ++j)
-    for (int i = 0; i < count; ++i) {
-      vec2 uv = origin + step * vec2(i, j);
-      lit += texture(depthCmp, vec3(uv, tapZ(r, uv)));
-    }
+    for (int i = 0; i < count; ++i) lit += litTap(r, origin + step * vec2(i, j));
   return lit / float(count * count);
 }
 

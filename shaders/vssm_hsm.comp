@@ -8,7 +8,7 @@ layout(binding = PENUMBRA_UNIT_PCSS_DEPTH) uniform sampler2D depthRaw;
 uniform int satSize;  // level 0 size (a power of two)
 uniform int level;
 uniform float mapNear;
-uniform float depthMin, depthMax;
+#include "vssm_common.glsl"
 
 int levelOffset(int l) {
   int offset = 0;
@@ -23,7 +23,7 @@ void main() {
   ivec2 t = ivec2(i % size, i / size);
   if (level == 0) {
     float z = texelFetch(depthRaw, t, 0).r;
-    float x = z > 0.0 ? clamp((mapNear / z - depthMin) / (depthMax - depthMin), 0.0, 1.0) : 1.0;
+    float x = normalisedMapDepth(z, mapNear);
     hsm[i] = vec2(x);
     return;
   }

@@ -26,7 +26,7 @@
 #endif
 layout(std430, binding = PENUMBRA_SSBO_VSSM_SAT) readonly buffer Sat { SAT_T sat[]; };
 layout(std430, binding = PENUMBRA_SSBO_VSSM_HSM) readonly buffer Hsm { vec2 hsm[]; };
-uniform float depthMin, depthMax;
+#include "vssm_common.glsl"
 uniform int blockerDiv, shadowDiv;        // uniform subdivision (when the levels are 0)
 uniform int blockerLevels, shadowLevels;  // adaptive quad-tree height H (0: uniform)
 uniform float threshold;       // variance (normalised depth^2) below which a sub-kernel is flat
@@ -50,8 +50,6 @@ Box boxMoments(ivec2 lo, ivec2 hi) {
   return b;
 }
 
-float normalisedDepth(float d) { return clamp((d - depthMin) / (depthMax - depthMin), 0.0, 1.0); }
-float viewDepth(float x) { return depthMin + x * (depthMax - depthMin); }
 
 // Chebyshev's one-tailed bound (eq. 1): P(x >= t) for mean mu < t, variance var.
 float chebyshev(float mu, float var, float t) {
@@ -94,7 +92,7 @@ bool visit(inout Accum acc, Receiver r, ivec2 a, ivec2 b, bool canDescend) {
       vec2 f = vec2(float(s & 1) * 0.5 + 0.25, float(s >> 1) * 0.5 + 0.25);
       ivec2 q = a + ivec2(vec2(b - a + 1) * f);
       float z = texelFetch(depthRaw, q, 0).r;
-      float x = z > 0.0 ? normalisedDepth(mapNear / z) : 1.0;
+      float x = normalisedMapDepth(z, mapNear);
       if (x < receiverAt(r, vec2(q) + 0.5)) { hits += 1.0; depthSum += x; }
     }
     acc.lit += box.area * (4.0 - hits) / 4.0;
@@ -198,7 +196,7 @@ float contactPcf(Receiver r, float radius, float phi) {
     for (int i = -1; i <= 1; ++i) {
       vec2 jitter = 0.35 * vec2(cos(phi + float(3 * j + i)), sin(phi + float(3 * j + i)));
       vec2 uv = r.uv + radius * (vec2(i, j) + jitter);
-      lit += texture(depthCmp, vec3(uv, tapZ(r, uv)));
+      lit += litTap(r, uv);
     }
   return lit / 9.0;
 }

@@ -19,14 +19,14 @@ layout(binding = PENUMBRA_UNIT_PCSS_DEPTH) uniform sampler2D depthRaw;
 uniform int satSize;
 uniform int pass;
 uniform float mapNear;
-uniform float depthMin, depthMax;
+#include "vssm_common.glsl"
 
 void main() {
   int i = int(globalIndex());
   if (pass == 0) {
     if (i >= satSize * satSize) return;
     float z = texelFetch(depthRaw, ivec2(i % satSize, i / satSize), 0).r;
-    float x = z > 0.0 ? clamp((mapNear / z - depthMin) / (depthMax - depthMin), 0.0, 1.0) : 1.0;
+    float x = normalisedMapDepth(z, mapNear);
 #ifdef EXACT
     double q = double(round(x * PENUMBRA_VSSM_FIXED_ONE));
     sat[i] = dvec2(q, q * q);

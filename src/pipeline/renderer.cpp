@@ -102,7 +102,7 @@ GpuScene::GpuScene(const Scene& scene, int width, int height)
     if (d.count > 0) draws_.push_back(d);
   }
   vertexCount_ = GLsizei(verts.size());
-  for (auto& d : draws_) allOccluders_ = allOccluders_ && scene.materials[std::size_t(d.material)].opacity > 0.0f;
+  for (auto& d : draws_) allOpaque_ = allOpaque_ && scene.materials[std::size_t(d.material)].opacity >= 1.0f;
   vertices_ = gl::Buffer(verts);
   vao_ = gl::VertexArray::create();
   vao_.vertexBuffer(vertices_, sizeof(GVertex))
@@ -151,7 +151,7 @@ void GpuScene::drawGBuffer(const gl::Program& program) const {
 
 void GpuScene::drawTriangles(GLsizei instances, Occluders which, const gl::Program* program) const {
   vao_.bind();
-  if (which == Occluders::Opaque && !scene_.hasSemiOpaque() && allOccluders_) {
+  if (which == Occluders::Opaque && allOpaque_) {
     if (vertexCount_ > 0) glDrawArraysInstanced(GL_TRIANGLES, 0, vertexCount_, instances);
     return;
   }

@@ -100,7 +100,7 @@ class GpuScene {
   gl::VertexArray vao_;
   std::vector<Draw> draws_;
   GLsizei vertexCount_ = 0;
-  bool allOccluders_ = true;  // no material of opacity 0: one draw covers every occluder
+  bool allOpaque_ = true;  // every material of opacity 1: one draw covers every (opaque) occluder
   std::vector<gl::Texture> materialTextures_;  // parallel to scene.textures
   gl::Texture position_, normal_, albedo_, depth_;
   gl::Framebuffer fbo_;
