@@ -3,62 +3,12 @@
 // queries are not meaningful on llvmpipe).
 #pragma once
 
-#include <algorithm>
-#include <map>
-#include <string>
-#include <vector>
-
-#include "pipeline/renderer.h"
+#include "pipeline/timing.h"
 
 namespace penumbra::bench {
-
-struct Spread {
-  double median = 0, min = 0, max = 0;
-};
-
-inline Spread spread(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  std::size_t n = v.size();
-  if (n == 0) return {};
-  double med = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-  return {med, v.front(), v.back()};
-}
-
-struct Timing {
-  std::map<std::string, Spread> stages;  // "prepare" (once per scene) left out
-  Spread total;
-  FrameResult last;  // the last timed frame
-  double stage(const std::string& name) const {
-    auto it = stages.find(name);
-    return it == stages.end() ? 0.0 : it->second.median;
-  }
-};
-
-// A Technique::statistics() value of a frame, 0 if the technique does not report it.
-inline double statistic(const FrameResult& f, const std::string& key) {
-  for (auto& [k, v] : f.statistics)
-    if (k == key) return v;
-  return 0.0;
-}
-
-inline Timing timeFrames(Renderer& renderer, Technique& technique, int frames, int warmup) {
-  std::map<std::string, std::vector<double>> stages;
-  std::vector<double> total;
-  Timing t;
-  for (int f = 0; f < warmup + frames; ++f) {
-    t.last = renderer.render(technique);
-    if (f < warmup) continue;
-    double sum = 0;
-    for (auto& st : t.last.timer.stages()) {
-      if (st.stage == "prepare") continue;
-      stages[st.stage].push_back(st.ms);
-      sum += st.ms;
-    }
-    total.push_back(sum);
-  }
-  for (auto& [name, v] : stages) t.stages[name] = spread(v);
-  t.total = spread(total);
-  return t;
-}
-
+using penumbra::Spread;
+using penumbra::spread;
+inline double statistic(const FrameResult& f, const std::string& key) { return frameStatistic(f, key); }
+using penumbra::Timing;
+using penumbra::timeFrames;
 }  // namespace penumbra::bench

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_common.h"
+#include "studies.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "core/metrics.h"
@@ -30,7 +31,9 @@ double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace penumbra::bench {
+
+int dcsStudies(int argc, char** argv, std::FILE* out) {
   setLogLevel("warn");
   CLI::App app{"the DCS studies of issue 4 in one run"};
   std::string scenePath = "scenes/stained-glass.json", semiPath = "scenes/semi-opaque.json", backend = "egl", jsonOut;
@@ -47,11 +50,11 @@ int main(int argc, char** argv) {
   try {
     auto ctx = gl::Context::create(gl::parseBackend(backend));
     Scene scene = loadScene(scenePath);
-    nlohmann::json out;
-    out["renderer"] = ctx->renderer();
-    out["scene"] = scenePath;
-    out["width"] = width, out["height"] = height, out["frames"] = frames, out["warmup"] = warmup;
-    std::printf("DCS studies: %s (%zu triangles), %dx%d, median of %d frames after %d warm-up, renderer %s\n",
+    nlohmann::json results;
+    results["renderer"] = ctx->renderer();
+    results["scene"] = scenePath;
+    results["width"] = width, results["height"] = height, results["frames"] = frames, results["warmup"] = warmup;
+    std::fprintf(out, "DCS studies: %s (%zu triangles), %dx%d, median of %d frames after %d warm-up, renderer %s\n",
                 scenePath.c_str(), scene.triangleCount(), width, height, frames, warmup, ctx->renderer().c_str());
     auto settingsFor = [&](int n) {
       RenderSettings s;
@@ -65,27 +68,27 @@ int main(int argc, char** argv) {
       return bench::timeFrames(r, *t, frames, warmup);
     };
 
-    std::printf("\n1. Covered-sample modes and sample counts (total ms, wedge stage ms)\n");
-    std::printf("  %-10s %12s %12s %12s %12s\n", "technique", "N=16 total", "wedges", "N=64 total", "wedges");
+    std::fprintf(out, "\n1. Covered-sample modes and sample counts (total ms, wedge stage ms)\n");
+    std::fprintf(out, "  %-10s %12s %12s %12s %12s\n", "technique", "N=16 total", "wedges", "N=64 total", "wedges");
     std::map<std::string, std::map<int, double>> totals;
     for (const char* name : {"dcs", "dcs-naive", "dcs-lut"}) {
-      std::printf("  %-10s", name);
+      std::fprintf(out, "  %-10s", name);
       for (int n : {16, 64}) {
         bench::Timing t = run(scene, settingsFor(n), name);
         totals[name][n] = t.total.median;
-        std::printf(" %12.1f %12.1f", t.total.median, t.stage("dcs wedges"));
-        out["modes"][name][std::to_string(n)] = {{"totalMs", t.total.median}, {"wedgesMs", t.stage("dcs wedges")},
+        std::fprintf(out, " %12.1f %12.1f", t.total.median, t.stage("dcs wedges"));
+        results["modes"][name][std::to_string(n)] = {{"totalMs", t.total.median}, {"wedgesMs", t.stage("dcs wedges")},
                                                  {"minMs", t.total.min}, {"maxMs", t.total.max}};
       }
-      std::printf("\n");
+      std::fprintf(out, "\n");
     }
     for (int n : {16, 64})
-      std::printf("  N=%d: lut / naive time %.2f (paper: 0.67-0.75), lut / exact %.2f\n", n,
+      std::fprintf(out, "  N=%d: lut / naive time %.2f (paper: 0.67-0.75), lut / exact %.2f\n", n,
                   totals["dcs-lut"][n] / totals["dcs-naive"][n], totals["dcs-lut"][n] / totals["dcs"][n]);
-    std::printf("  exact: N=64 / N=16 time %.2f (paper: DCS16 about 5x faster than DCS64)\n",
+    std::fprintf(out, "  exact: N=64 / N=16 time %.2f (paper: DCS16 about 5x faster than DCS64)\n",
                 totals["dcs"][64] / totals["dcs"][16]);
 
-    std::printf("\n2. Direct illumination: eq. 3 (modulate) against eq. 6 (per sample), dcs\n");
+    std::fprintf(out, "\n2. Direct illumination: eq. 3 (modulate) against eq. 6 (per sample), dcs\n");
     for (int n : {16, 64}) {
       RenderSettings s3 = settingsFor(n), s6 = settingsFor(n);
       s6.shading = ShadingMode::PerSample;
@@ -94,40 +97,40 @@ int main(int argc, char** argv) {
       for (float v : t6.last.color.data) mean += v;
       mean /= double(t6.last.color.data.size());
       double diff = compareImages(t3.last.color, t6.last.color, {}, t6.last.gbuffer.valid).rmse / mean;
-      std::printf("  N=%-3d eq. 3 %8.1f ms (shading %5.1f)  eq. 6 %8.1f ms (shading %5.1f)  +%.1f%%  image RMSE %.3f x mean\n",
+      std::fprintf(out, "  N=%-3d eq. 3 %8.1f ms (shading %5.1f)  eq. 6 %8.1f ms (shading %5.1f)  +%.1f%%  image RMSE %.3f x mean\n",
                   n, t3.total.median, t3.stage("shading"), t6.total.median, t6.stage("shading"),
                   100.0 * (t6.total.median / t3.total.median - 1.0), diff);
-      out["shading"][std::to_string(n)] = {{"eq3Ms", t3.total.median}, {"eq6Ms", t6.total.median},
+      results["shading"][std::to_string(n)] = {{"eq3Ms", t3.total.median}, {"eq6Ms", t6.total.median},
                                            {"relativeImageRmse", diff}};
     }
 
-    std::printf("\n3. Interleaved sampling (4 x 4 sets) and its filter, dcs\n");
+    std::fprintf(out, "\n3. Interleaved sampling (4 x 4 sets) and its filter, dcs\n");
     for (int n : {16, 64}) {
       RenderSettings si = settingsFor(n);
       si.sampling.pattern = PixelPattern::Interleaved;
       bench::Timing tc = run(scene, settingsFor(n), "dcs"), ti = run(scene, si, "dcs");
-      std::printf("  N=%-3d correlated %8.1f ms  interleaved %8.1f ms (filter %.1f ms, %.1f%% of the frame)\n", n,
+      std::fprintf(out, "  N=%-3d correlated %8.1f ms  interleaved %8.1f ms (filter %.1f ms, %.1f%% of the frame)\n", n,
                   tc.total.median, ti.total.median, ti.stage("interleave filter"),
                   100.0 * ti.stage("interleave filter") / ti.total.median);
-      out["interleaving"][std::to_string(n)] = {{"correlatedMs", tc.total.median}, {"interleavedMs", ti.total.median},
+      results["interleaving"][std::to_string(n)] = {{"correlatedMs", tc.total.median}, {"interleavedMs", ti.total.median},
                                                 {"filterMs", ti.stage("interleave filter")}};
     }
 
-    std::printf("\n4. Semi-opaque occluders: %s against its opaque twin\n", semiPath.c_str());
+    std::fprintf(out, "\n4. Semi-opaque occluders: %s against its opaque twin\n", semiPath.c_str());
     Scene semi = loadScene(semiPath), opaque = semi;
     for (auto& m : opaque.materials) m.opacity = 1.0f;
     for (int n : {16, 64}) {
       bench::Timing to = run(opaque, settingsFor(n), "dcs"), tp = run(semi, settingsFor(n), "dcs"),
                     ts = run(semi, settingsFor(n), "dcs-sum");
-      std::printf("  N=%-3d opaque %8.1f ms (base %g)  product %8.1f ms (base %g, %+.1f%%)  sum %8.1f ms (base %g, %+.1f%%)\n",
+      std::fprintf(out, "  N=%-3d opaque %8.1f ms (base %g)  product %8.1f ms (base %g, %+.1f%%)  sum %8.1f ms (base %g, %+.1f%%)\n",
                   n, to.total.median, statistic(to.last, "counterBase"), tp.total.median,
                   statistic(tp.last, "counterBase"), 100.0 * (tp.total.median / to.total.median - 1.0), ts.total.median,
                   statistic(ts.last, "counterBase"), 100.0 * (ts.total.median / to.total.median - 1.0));
-      out["semiOpaque"][std::to_string(n)] = {{"opaqueMs", to.total.median}, {"productMs", tp.total.median},
+      results["semiOpaque"][std::to_string(n)] = {{"opaqueMs", to.total.median}, {"productMs", tp.total.median},
                                               {"sumMs", ts.total.median}};
     }
 
-    std::printf("\n5. Memory at 1024 x 1024 (the paper's Table 1), dcs-lut with interleaving, one frame each\n");
+    std::fprintf(out, "\n5. Memory at 1024 x 1024 (the paper's Table 1), dcs-lut with interleaving, one frame each\n");
     for (int n : {16, 64}) {
       RenderSettings s = settingsFor(n);
       s.width = s.height = 1024;
@@ -157,20 +160,22 @@ int main(int argc, char** argv) {
           {"(k) DC-buffers", std::to_string(int(targets)) + " x RGBA32F", mib(16 * px * targets),
            n == 16 ? "16 MB (1 x RGBA32F)" : "32 MB (2 x RGBA32F)"},
           {"    D(c), checksum, bound", "R32F + RG32F + R32F", mib(16 * px), "(in the stencil)"}};
-      std::printf("  N=%d (counter base %g, %g targets): measured total %.1f MiB\n", n, statistic(f, "counterBase"),
+      std::fprintf(out, "  N=%d (counter base %g, %g targets): measured total %.1f MiB\n", n, statistic(f, "counterBase"),
                   targets, mib(double(f.memoryBytes)));
-      std::printf("    %-26s %-44s %10s   %s\n", "buffer", "here", "MiB", "paper");
+      std::fprintf(out, "    %-26s %-44s %10s   %s\n", "buffer", "here", "MiB", "paper");
       for (auto& row : rows) {
-        if (row.oursMiB < 0) std::printf("    %-26s %-44s %10s   %s\n", row.what, row.ours.c_str(), "scene", row.paper);
-        else std::printf("    %-26s %-44s %10.3f   %s\n", row.what, row.ours.c_str(), row.oursMiB, row.paper);
-        out["memory"][std::to_string(n)][row.what] = row.oursMiB;
+        if (row.oursMiB < 0) std::fprintf(out, "    %-26s %-44s %10s   %s\n", row.what, row.ours.c_str(), "scene", row.paper);
+        else std::fprintf(out, "    %-26s %-44s %10.3f   %s\n", row.what, row.ours.c_str(), row.oursMiB, row.paper);
+        results["memory"][std::to_string(n)][row.what] = row.oursMiB;
       }
-      out["memory"][std::to_string(n)]["measuredTotalMiB"] = mib(double(f.memoryBytes));
+      results["memory"][std::to_string(n)]["measuredTotalMiB"] = mib(double(f.memoryBytes));
     }
-    if (!jsonOut.empty()) std::ofstream(jsonOut) << out.dump(2) << "\n";
+    if (!jsonOut.empty()) std::ofstream(jsonOut) << results.dump(2) << "\n";
   } catch (const Error& e) {
     std::fprintf(stderr, "penumbra_bench_dcs: %s\n", e.what());
     return int(e.exitCode());
   }
   return 0;
 }
+
+}  // namespace penumbra::bench

@@ -21,6 +21,7 @@
 #include <set>
 
 #include "bench_common.h"
+#include "studies.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/context.h"
@@ -105,7 +106,9 @@ std::vector<int> parseList(const std::string& s) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace penumbra::bench {
+
+int multiviewStudies(int argc, char** argv, std::FILE* out) {
   setLogLevel("error");
   CLI::App app{"the multi-view shadow-map studies of issue 5 in one run"};
   std::string scenePath = "scenes/engine.json", backend = "egl", copiesArg = "1,2,5,6", mapsArg = "24,128",
@@ -131,18 +134,18 @@ int main(int argc, char** argv) {
     const std::string mapParam = "map=" + std::to_string(map);
     std::set<int> studies;
     for (int s : parseList(studyArg)) studies.insert(s);
-    std::printf("Multi-view shadow-map studies (issue 5): %s, %dx%d image, %d^2 maps, median of %d frames after %d "
+    std::fprintf(out, "Multi-view shadow-map studies (issue 5): %s, %dx%d image, %d^2 maps, median of %d frames after %d "
                 "warm-up, times in ms (glFinish + steady clock), renderer %s\n\n",
                 scenePath.c_str(), width, height, map, frames, warmup, ctx->renderer().c_str());
 
     if (studies.count(1)) {
-      std::printf("1. VWSS Tables 1-2 shape: mvr (a draw per map), mvr-layered, vwss (buffered, compute, k=8), "
+      std::fprintf(out, "1. VWSS Tables 1-2 shape: mvr (a draw per map), mvr-layered, vwss (buffered, compute, k=8), "
                   "reproject, and the single-map pcss-ultra (64-sample blocker search, 96-sample PCF, as the paper's "
                   "PCSS rows; its 'maps' column is its one map, 'points' its shadow pass); RMSE of the visibility "
                   "buffer against raytrace with the same samples\n");
       for (int n : parseList(mapsArg)) {
-        std::printf("\n%d maps of %d^2 (%d PCF taps per map: %d depth samples per pixel)\n", n, map, 5, 5 * n);
-        std::printf("%-9s %8s %-12s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s %9s\n", "triangles", "points", "technique",
+        std::fprintf(out, "\n%d maps of %d^2 (%d PCF taps per map: %d depth samples per pixel)\n", n, map, 5, 5 * n);
+        std::fprintf(out, "%-9s %8s %-12s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s %9s\n", "triangles", "points", "technique",
                     "G-buffer", "points", "maps", "lighting", "total", "range", "x maps", "x total", "RMSE", "map MiB",
                     "point MiB");
         std::vector<double> tris;
@@ -164,61 +167,61 @@ int main(int argc, char** argv) {
                               t.stage(stage + " views");
             if (name == "mvr") mvrMaps = maps, mvrTotal = t.total.median;
             depthTimes[name].push_back(maps);
-            std::printf("%-9zu %8.0f %-12s %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %7.2f %7.4f %8.0f %9.1f\n",
+            std::fprintf(out, "%-9zu %8.0f %-12s %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %7.2f %7.4f %8.0f %9.1f\n",
                         scene.triangleCount(), statistic(t.last, "points"), name.c_str(), t.stage("gbuffer"), points,
                         t.stage(stage + " depth maps") + t.stage(stage + " shadow map"), lighting, t.total.median, t.total.max - t.total.min,
                         mvrMaps / std::max(maps, 1e-9), mvrTotal / std::max(t.total.median, 1e-9), r.rmse,
                         mib(statistic(t.last, "map bytes")), mib(statistic(t.last, "point buffer bytes")));
-            std::fflush(stdout);
+            std::fflush(out);
           }
         }
-        std::printf("slope of depth-map time (points + maps) against triangles, ms per 100k triangles:");
-        for (auto& [name, v] : depthTimes) std::printf("  %s %.3f", name.c_str(), 1e5 * slope(tris, v));
-        std::printf("\n");
+        std::fprintf(out, "slope of depth-map time (points + maps) against triangles, ms per 100k triangles:");
+        for (auto& [name, v] : depthTimes) std::fprintf(out, "  %s %.3f", name.c_str(), 1e5 * slope(tris, v));
+        std::fprintf(out, "\n");
       }
-      std::printf("(x maps, x total: mvr's time over the row's; range: max - min of the total over the timed frames)\n\n");
+      std::fprintf(out, "(x maps, x total: mvr's time over the row's; range: max - min of the total over the timed frames)\n\n");
     }
 
     Scene two = instanced(base, 2, spacing);
     if (studies.count(2)) {
-      std::printf("2. VWSS Figure 13 top: buffered (points, then compute splat k=8) against unbuffered (splat in the "
+      std::fprintf(out, "2. VWSS Figure 13 top: buffered (points, then compute splat k=8) against unbuffered (splat in the "
                   "point-generation fragment shader); %zu triangles; depth-map generation ms\n", two.triangleCount());
-      std::printf("%6s %10s %10s %8s\n", "maps", "buffered", "unbuffered", "ratio");
+      std::fprintf(out, "%6s %10s %10s %8s\n", "maps", "buffered", "unbuffered", "ratio");
       for (int n : {8, 16, 32, 64, 128}) {
         RenderSettings s = b.settings(n);
         Run bu = b.run(two, s, "vwss", {mapParam}, nullptr), un = b.run(two, s, "vwss-unbuffered", {mapParam}, nullptr);
         double tb = bu.timing.stage("vwss points") + bu.timing.stage("vwss depth maps");
         double tu = un.timing.stage("vwss-unbuffered points+maps");
-        std::printf("%6d %10.2f %10.2f %8.2f\n", n, tb, tu, tu / std::max(tb, 1e-9));
-        std::fflush(stdout);
+        std::fprintf(out, "%6d %10.2f %10.2f %8.2f\n", n, tb, tu, tu / std::max(tb, 1e-9));
+        std::fflush(out);
       }
-      std::printf("\n");
+      std::fprintf(out, "\n");
     }
 
     if (studies.count(3)) {
-      std::printf("3. VWSS Figure 13 bottom: the same points into the maps by compute (serial k=1, partially parallel "
+      std::fprintf(out, "3. VWSS Figure 13 bottom: the same points into the maps by compute (serial k=1, partially parallel "
                   "k=8, fully parallel k=all) and by the graphics pipeline (GL_POINTS, a draw per map); ms of the "
                   "depth-map stage only\n");
-      std::printf("%6s %10s %10s %10s %10s %10s\n", "maps", "points", "serial", "partial", "full", "graphics");
+      std::fprintf(out, "%6s %10s %10s %10s %10s %10s\n", "maps", "points", "serial", "partial", "full", "graphics");
       for (int n : {24, 128}) {
         RenderSettings s = b.settings(n);
         Run serial = b.run(two, s, "vwss", {mapParam, "k=1"}, nullptr);
         Run partial = b.run(two, s, "vwss", {mapParam, "k=8"}, nullptr);
         Run full = b.run(two, s, "vwss", {mapParam, "k=0"}, nullptr);
         Run graphics = b.run(two, s, "vwss-graphics", {mapParam}, nullptr);
-        std::printf("%6d %10.0f %10.2f %10.2f %10.2f %10.2f\n", n, statistic(serial.timing.last, "points"),
+        std::fprintf(out, "%6d %10.0f %10.2f %10.2f %10.2f %10.2f\n", n, statistic(serial.timing.last, "points"),
                     serial.timing.stage("vwss depth maps"), partial.timing.stage("vwss depth maps"),
                     full.timing.stage("vwss depth maps"), graphics.timing.stage("vwss-graphics depth maps"));
-        std::fflush(stdout);
+        std::fflush(out);
       }
-      std::printf("\n");
+      std::fprintf(out, "\n");
     }
 
     if (studies.count(4)) {
-      std::printf("4. VWSS Figure 8: the light grows at one sample per 1/8 of its first area; RMSE against raytrace "
+      std::fprintf(out, "4. VWSS Figure 8: the light grows at one sample per 1/8 of its first area; RMSE against raytrace "
                   "(same samples) and the fraction of per-sample decisions where vwss and mvr differ, by the "
                   "sample's distance from the centre in units of the first light's half-size\n");
-      std::printf("%6s %7s %9s %9s %9s | %8s %8s %8s %8s %8s\n", "area x", "samples", "mvr RMSE", "vwss RMSE",
+      std::fprintf(out, "%6s %7s %9s %9s %9s | %8s %8s %8s %8s %8s\n", "area x", "samples", "mvr RMSE", "vwss RMSE",
                   "vwss-mvr", "[0,1)", "[1,2)", "[2,3)", "[3,4]", "scale");
       const Light light0 = base.lights.at(0);
       const float half0 = 0.5f * std::max(light0.size.x, light0.size.y);
@@ -251,35 +254,35 @@ int main(int argc, char** argv) {
           double d = mvr.timing.last.lights[0].visibility.data[i] - vwss.timing.last.lights[0].visibility.data[i];
           vsMvr += d * d, n += 1;
         }
-        std::printf("%6d %7d %9.4f %9.4f %9.4f |", f, nS, mvr.rmse, vwss.rmse, std::sqrt(vsMvr / std::max(n, 1.0)));
+        std::fprintf(out, "%6d %7d %9.4f %9.4f %9.4f |", f, nS, mvr.rmse, vwss.rmse, std::sqrt(vsMvr / std::max(n, 1.0)));
         for (int i = 0; i < 4; ++i) {
-          if (count[i] > 0) std::printf(" %8.4f", differ[i] / count[i]);
-          else std::printf(" %8s", "-");
+          if (count[i] > 0) std::fprintf(out, " %8.4f", differ[i] / count[i]);
+          else std::fprintf(out, " %8s", "-");
         }
-        std::printf(" %8.2f\n", statistic(vwss.timing.last, "source resolution") / double(map));
-        std::fflush(stdout);
+        std::fprintf(out, " %8.2f\n", statistic(vwss.timing.last, "source resolution") / double(map));
+        std::fflush(out);
       }
-      std::printf("(vwss-mvr: RMSE between the two visibility buffers over all pixels; scale: vwss's eq. 3 factor)\n\n");
+      std::fprintf(out, "(vwss-mvr: RMSE between the two visibility buffers over all pixels; scale: vwss's eq. 3 factor)\n\n");
     }
 
     if (studies.count(5)) {
-      std::printf("5. Convergence with map resolution, 24 samples, %zu triangles: RMSE against raytrace (same samples), "
+      std::fprintf(out, "5. Convergence with map resolution, 24 samples, %zu triangles: RMSE against raytrace (same samples), "
                   "depth-map ms (points + maps), memory MiB (maps + point buffer / central map)\n",
                   base.triangleCount());
-      std::printf("%6s | %9s %8s %8s | %9s %8s %8s | %9s %8s %8s\n", "map", "mvr RMSE", "ms", "MiB", "vwss RMSE", "ms",
+      std::fprintf(out, "%6s | %9s %8s %8s | %9s %8s %8s | %9s %8s %8s\n", "map", "mvr RMSE", "ms", "MiB", "vwss RMSE", "ms",
                   "MiB", "repr RMSE", "ms", "MiB");
       RenderSettings s = b.settings(24);
       FrameResult ref = b.reference(base, s);
       for (int m : {512, 1024, 2048}) {
-        std::printf("%6d |", m);
+        std::fprintf(out, "%6d |", m);
         for (std::string name : {"mvr", "vwss", "reproject"}) {
           Run r = b.run(base, s, name, {"map=" + std::to_string(m)}, &ref);
           const auto& t = r.timing;
           double ms = t.stage(name + " points") + t.stage(name + " central map") + t.stage(name + " depth maps");
-          std::printf(" %9.4f %8.2f %8.0f |", r.rmse, ms, mib(double(t.last.memoryBytes)));
-          std::fflush(stdout);
+          std::fprintf(out, " %9.4f %8.2f %8.0f |", r.rmse, ms, mib(double(t.last.memoryBytes)));
+          std::fflush(out);
         }
-        std::printf("\n");
+        std::fprintf(out, "\n");
       }
     }
     return 0;
@@ -288,3 +291,5 @@ int main(int argc, char** argv) {
     return int(e.exitCode());
   }
 }
+
+}  // namespace penumbra::bench

@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 
 #include "bench_common.h"
+#include "studies.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/context.h"
@@ -30,7 +31,9 @@
 
 using namespace penumbra;
 
-int main(int argc, char** argv) {
+namespace penumbra::bench {
+
+int singleMapStudies(int argc, char** argv, std::FILE* out) {
   setLogLevel("error");
   CLI::App app{"the pcss studies of issue 6 in one run"};
   std::string scenePath = "scenes/stained-glass.json", backend = "egl";
@@ -55,11 +58,11 @@ int main(int argc, char** argv) {
     Renderer renderer(*ctx, scene, s);
     auto rayTech = makeTechnique("raytrace");
     FrameResult ref = renderer.render(*rayTech);
-    std::printf("pcss studies (issue 6): %s (%zu triangles), %dx%d image, %d^2 map, median of %d frames after %d "
+    std::fprintf(out, "pcss studies (issue 6): %s (%zu triangles), %dx%d image, %d^2 map, median of %d frames after %d "
                 "warm-up, ms (glFinish + steady clock), renderer %s\n\n",
                 scenePath.c_str(), scene.triangleCount(), width, height, map, frames, warmup, ctx->renderer().c_str());
-    std::printf("1. Sterna Table 1 shape: shadow-mask passes, 16 PCF samples, 32 blocker-search samples\n");
-    std::printf("%-40s %9s %9s %9s %9s %9s %8s %8s\n", "configuration", "min filt", "pen mask", "shadow", "upsample",
+    std::fprintf(out, "1. Sterna Table 1 shape: shadow-mask passes, 16 PCF samples, 32 blocker-search samples\n");
+    std::fprintf(out, "%-40s %9s %9s %9s %9s %9s %8s %8s\n", "configuration", "min filt", "pen mask", "shadow", "upsample",
                 "passes", "x CHSS", "RMSE");
     struct Row {
       const char* name;
@@ -81,18 +84,18 @@ int main(int argc, char** argv) {
                       t.stage("pcss checkerboard upsample");
       if (row.mode == PcssMode::Regular && !row.checker) chss = passes;
       double rmse = measureErrors(t.last, ref).visibility.rmse;
-      std::printf("%-40s %9.2f %9.2f %9.2f %9.2f %9.2f %8s %8.4f\n", row.name, t.stage("pcss min filter"),
+      std::fprintf(out, "%-40s %9.2f %9.2f %9.2f %9.2f %9.2f %8s %8.4f\n", row.name, t.stage("pcss min filter"),
                   t.stage("pcss penumbra mask"), t.stage("pcss shadow mask"), t.stage("pcss checkerboard upsample"),
                   passes, chss > 0.0 ? fmt::format("{:.2f}", chss / passes).c_str() : "-", rmse);
-      std::fflush(stdout);
+      std::fflush(out);
     }
-    std::printf("(x CHSS: regular CHSS's passes over the row's; the shadow map itself, %d^2, is left out as in Sterna's "
+    std::fprintf(out, "(x CHSS: regular CHSS's passes over the row's; the shadow map itself, %d^2, is left out as in Sterna's "
                 "table)\n\n",
                 map);
 
-    std::printf("2. VSSM against PCSS as the light grows (light side x1..x8, 1024^2 map): shadow-stage ms (map "
+    std::fprintf(out, "2. VSSM against PCSS as the light grows (light side x1..x8, 1024^2 map): shadow-stage ms (map "
                 "excluded) and RMSE; 'pcss 256' samples 256 + 256 taps; pcss-dense every texel of both kernels (up to 32 x 32)\n");
-    std::printf("%7s | %17s | %17s | %17s | %17s | %17s | %17s\n", "light x", "pcss 32/16", "pcss-ultra 64/96",
+    std::fprintf(out, "%7s | %17s | %17s | %17s | %17s | %17s | %17s\n", "light x", "pcss 32/16", "pcss-ultra 64/96",
                 "pcss 256/256", "pcss-dense", "vssm", "vssm-uniform");
     for (float k : {1.0f, 2.0f, 4.0f, 8.0f}) {
       Scene grown = scene;
@@ -100,7 +103,7 @@ int main(int argc, char** argv) {
       Renderer r(*ctx, grown, s);
       auto rt = makeTechnique("raytrace");
       FrameResult gref = r.render(*rt);
-      std::printf("%7.0f |", k);
+      std::fprintf(out, "%7.0f |", k);
       struct Col {
         const char* name;
         std::vector<std::string> params;
@@ -120,27 +123,27 @@ int main(int argc, char** argv) {
         std::string n = c.name;
         double ms = *c.stage ? tm.stage(c.stage)
                              : tm.stage(n + " hsm") + tm.stage(n + " sat") + tm.stage(n + " shadow pass");
-        std::printf(" %8.2f %8.4f |", ms, measureErrors(tm.last, gref).visibility.rmse);
-        std::fflush(stdout);
+        std::fprintf(out, " %8.2f %8.4f |", ms, measureErrors(tm.last, gref).visibility.rmse);
+        std::fflush(out);
       }
-      std::printf("\n");
+      std::fprintf(out, "\n");
     }
-    std::printf("\n3. VSSM stage breakdown (VSSM Tables 1-2 shape), light x1, ms\n");
-    std::printf("%6s %10s %8s %8s %12s %8s %10s\n", "map", "shadow map", "HSM", "SAT", "shadow pass", "total",
+    std::fprintf(out, "\n3. VSSM stage breakdown (VSSM Tables 1-2 shape), light x1, ms\n");
+    std::fprintf(out, "%6s %10s %8s %8s %12s %8s %10s\n", "map", "shadow map", "HSM", "SAT", "shadow pass", "total",
                 "MiB");
     for (int m : {512, 1024, 2048}) {
       auto t = makeTechnique("vssm", TechniqueParams({"map=" + std::to_string(m)}));
       bench::Timing tm = bench::timeFrames(renderer, *t, frames, warmup);
       double total = tm.stage("vssm shadow map") + tm.stage("vssm hsm") + tm.stage("vssm sat") + tm.stage("vssm shadow pass");
-      std::printf("%6d %10.2f %8.2f %8.2f %12.2f %8.2f %10.1f\n", m, tm.stage("vssm shadow map"), tm.stage("vssm hsm"),
+      std::fprintf(out, "%6d %10.2f %8.2f %8.2f %12.2f %8.2f %10.1f\n", m, tm.stage("vssm shadow map"), tm.stage("vssm hsm"),
                   tm.stage("vssm sat"), tm.stage("vssm shadow pass"), total,
                   double(tm.last.memoryBytes) / (1024.0 * 1024.0));
-      std::fflush(stdout);
+      std::fflush(out);
     }
 
-    std::printf("\n4. Visibility RMSE against raytrace with the same %d samples / against raytrace-converged (1024 a "
+    std::fprintf(out, "\n4. Visibility RMSE against raytrace with the same %d samples / against raytrace-converged (1024 a "
                 "pixel), %dx%d, 1024^2 maps\n", samples, errorSize, errorSize);
-    std::printf("%-24s | %15s | %15s | %15s | %15s\n", "scene", "mvr", "pcss", "pcss-ultra", "vssm");
+    std::fprintf(out, "%-24s | %15s | %15s | %15s | %15s\n", "scene", "mvr", "pcss", "pcss-ultra", "vssm");
     for (const char* path : {"scenes/hard/23-analytic-square.json", "scenes/hard/15-two-plates.json",
                              "scenes/hard/15-thin-blade.json", "scenes/hard/15-sphere-grid.json",
                              "scenes/hard/16-contact.json", "scenes/hard/17-far-corner.json",
@@ -157,15 +160,15 @@ int main(int argc, char** argv) {
       std::string name = path;
       name = name.substr(name.rfind('/') + 1);
       if (name.size() > 5 && name.compare(name.size() - 5, 5, ".json") == 0) name = name.substr(0, name.size() - 5);
-      std::printf("%-24s |", name.c_str());
+      std::fprintf(out, "%-24s |", name.c_str());
       for (const char* t : {"mvr", "pcss", "pcss-ultra", "vssm"}) {
         auto tech = makeTechnique(t);
         FrameResult f = r.render(*tech);
-        std::printf("  %6.4f / %6.4f |", measureErrors(f, sameRef).visibility.rmse,
+        std::fprintf(out, "  %6.4f / %6.4f |", measureErrors(f, sameRef).visibility.rmse,
                     measureErrors(f, convRef).visibility.rmse);
-        std::fflush(stdout);
+        std::fflush(out);
       }
-      std::printf("\n");
+      std::fprintf(out, "\n");
     }
     return 0;
   } catch (const Error& e) {
@@ -173,3 +176,5 @@ int main(int argc, char** argv) {
     return int(e.exitCode());
   }
 }
+
+}  // namespace penumbra::bench

@@ -22,12 +22,15 @@
 #include "pipeline/renderer.h"
 #include "scene/scene.h"
 #include "bench_common.h"
+#include "studies.h"
 
 using namespace penumbra;
 
 using bench::Spread;
 
-int main(int argc, char** argv) {
+namespace penumbra::bench {
+
+int techniqueTimings(int argc, char** argv, std::FILE* out) {
   setLogLevel("warn");
   CLI::App app{"per-stage timing of techniques against raytrace"};
   std::string scenePath = "scenes/engine.json", backend = "egl", jsonOut, pattern = "correlated", shading = "modulate";
@@ -49,16 +52,16 @@ int main(int argc, char** argv) {
   try {
     Scene scene = loadScene(scenePath);
     auto ctx = gl::Context::create(gl::parseBackend(backend));
-    std::printf("scene %s: %zu triangles, %dx%d, pattern %s, shading %s, renderer %s\n", scenePath.c_str(),
+    std::fprintf(out, "scene %s: %zu triangles, %dx%d, pattern %s, shading %s, renderer %s\n", scenePath.c_str(),
                 scene.triangleCount(), width, height, pattern.c_str(), shading.c_str(), ctx->renderer().c_str());
-    nlohmann::json out;
-    out["scene"] = scenePath;
-    out["triangles"] = scene.triangleCount();
-    out["renderer"] = ctx->renderer();
-    out["width"] = width;
-    out["height"] = height;
-    out["pattern"] = pattern;
-    out["shading"] = shading;
+    nlohmann::json results;
+    results["scene"] = scenePath;
+    results["triangles"] = scene.triangleCount();
+    results["renderer"] = ctx->renderer();
+    results["width"] = width;
+    results["height"] = height;
+    results["pattern"] = pattern;
+    results["shading"] = shading;
     for (int samples : sampleCounts) {
       RenderSettings s;
       s.width = width, s.height = height, s.sampling.count = samples;
@@ -74,34 +77,36 @@ int main(int argc, char** argv) {
         bench::Timing timing = bench::timeFrames(renderer, *tech, frames, warmup);
         const FrameResult& last = timing.last;
         std::string key = name + "@" + std::to_string(samples);
-        std::printf("\n%s, %d sample(s) (%d frames after %d warm-up)\n  %-18s %10s %10s %10s\n", name.c_str(),
+        std::fprintf(out, "\n%s, %d sample(s) (%d frames after %d warm-up)\n  %-18s %10s %10s %10s\n", name.c_str(),
                     samples, frames, warmup, "stage", "median ms", "min", "max");
         for (auto& [stage, sp] : timing.stages) {
-          std::printf("  %-18s %10.2f %10.2f %10.2f\n", stage.c_str(), sp.median, sp.min, sp.max);
-          out[key]["stagesMs"][stage] = {{"median", sp.median}, {"min", sp.min}, {"max", sp.max}};
+          std::fprintf(out, "  %-18s %10.2f %10.2f %10.2f\n", stage.c_str(), sp.median, sp.min, sp.max);
+          results[key]["stagesMs"][stage] = {{"median", sp.median}, {"min", sp.min}, {"max", sp.max}};
         }
         Spread sp = timing.total;
-        std::printf("  %-18s %10.2f %10.2f %10.2f\n", "total", sp.median, sp.min, sp.max);
-        out[key]["totalMs"] = {{"median", sp.median}, {"min", sp.min}, {"max", sp.max}};
-        out[key]["memoryBytes"] = last.memoryBytes;
-        std::printf("  render targets + buffers: %.1f MiB\n", double(last.memoryBytes) / (1024.0 * 1024.0));
+        std::fprintf(out, "  %-18s %10.2f %10.2f %10.2f\n", "total", sp.median, sp.min, sp.max);
+        results[key]["totalMs"] = {{"median", sp.median}, {"min", sp.min}, {"max", sp.max}};
+        results[key]["memoryBytes"] = last.memoryBytes;
+        std::fprintf(out, "  render targets + buffers: %.1f MiB\n", double(last.memoryBytes) / (1024.0 * 1024.0));
         for (auto& [k, v] : last.statistics) {
-          std::printf("  %s = %g\n", k.c_str(), v);
-          out[key]["statistics"][k] = v;
+          std::fprintf(out, "  %s = %g\n", k.c_str(), v);
+          results[key]["statistics"][k] = v;
         }
         totals[name] = sp.median;
       }
-      std::printf("\n%d sample(s): total time relative to raytrace:", samples);
+      std::fprintf(out, "\n%d sample(s): total time relative to raytrace:", samples);
       for (auto& [name, t] : totals) {
-        std::printf("  %s %.2fx", name.c_str(), totals["raytrace"] / t);
-        out["speedupOverRaytrace@" + std::to_string(samples)][name] = totals["raytrace"] / t;
+        std::fprintf(out, "  %s %.2fx", name.c_str(), totals["raytrace"] / t);
+        results["speedupOverRaytrace@" + std::to_string(samples)][name] = totals["raytrace"] / t;
       }
-      std::printf("  (> 1: faster than raytrace)\n");
+      std::fprintf(out, "  (> 1: faster than raytrace)\n");
     }
-    if (!jsonOut.empty()) std::ofstream(jsonOut) << out.dump(2) << "\n";
+    if (!jsonOut.empty()) std::ofstream(jsonOut) << results.dump(2) << "\n";
   } catch (const Error& e) {
     std::fprintf(stderr, "penumbra_bench: %s\n", e.what());
     return int(e.exitCode());
   }
   return 0;
 }
+
+}  // namespace penumbra::bench

@@ -2,17 +2,27 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <thread>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
 #include "core/metrics.h"
+#include "core/progress.h"
+#include "studies.h"
 #include "pipeline/compare.h"
+#include "pipeline/report.h"
 #include "sampling/shared.hpp"
 #include "scene/scene.h"
 #include "techniques/dcs/edge_lut.h"
@@ -127,38 +137,161 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   return 0;
 }
 
-int compare(const CommonOptions& o, const std::vector<std::string>& names, const std::string& outDir,
-            double maxError) {
-  std::vector<std::string> techniques;
-  if (names.size() == 1 && names[0] == "all") {
+int compare(const CommonOptions& o, const CompareCliOptions& c) {
+  CompareOptions options;
+  if (c.techniques.size() == 1 && c.techniques[0] == "all") {
     for (auto& t : techniqueTable())
-      if (t.name != "raytrace") techniques.push_back(t.name);
+      if (t.name != "raytrace") options.techniques.push_back(t.name);
   } else {
-    for (auto& n : names) techniques.push_back(findTechnique(n).name);
+    for (auto& n : c.techniques) options.techniques.push_back(findTechnique(n).name);
   }
-  std::error_code ec;
-  fs::create_directories(outDir, ec);
-  checkWritableFolder(outDir, outDir);
+  if (options.techniques.empty()) throw Error("--techniques", "no technique given", ExitCode::Usage);
+  for (auto& s : c.sweeps) options.sweeps.push_back(parseSweep(s));
+  for (auto& s : c.insets) options.insets.push_back(parseInset(s));
+  if (c.timingFrames < 1 || c.timingFrames > 1000) throw Error("--timing-frames", "must be in 1..1000", ExitCode::Usage);
+  if (c.warmup < 0 || c.warmup > 100) throw Error("--warmup", "must be in 0..100", ExitCode::Usage);
+  if (c.frames < 1 || c.frames > 10000) throw Error("--frames", "must be in 1..10000", ExitCode::Usage);
+  if (!(c.fps > 0.0f) || !std::isfinite(c.fps)) throw Error("--fps", "must be positive", ExitCode::Usage);
+  options.params = o.params;
+  options.converged = c.converged;
+  options.timingFrames = c.timingFrames, options.warmup = c.warmup;
+  options.frames = c.frames, options.fps = c.fps;
+
   Scene scene = loadSceneFor(o);
+  options.outDir = c.outDir.empty() ? (fs::path("out") / scene.name).string() : c.outDir;
+  std::error_code ec;
+  fs::create_directories(options.outDir, ec);
+  checkWritableFolder(options.outDir, options.outDir);
   RenderSettings settings = settingsFor(o, scene);
   auto context = gl::Context::create(gl::parseBackend(o.backend));
   PLOG_INFO("renderer: {} ({})", context->renderer(), context->version());
 
-  CompareReport report = compareTechniques(*context, scene, settings, techniques, outDir, TechniqueParams(o.params));
-  json j = report.json;
-  j["backend"] = o.backend;
-  std::ofstream(fs::path(outDir) / "report.json") << j.dump(2) << "\n";
-  std::ofstream(fs::path(outDir) / "table.txt") << report.table;
-  std::fprintf(stderr, "%s", report.table.c_str());
-  if (o.json) std::printf("%s\n", j.dump(2).c_str());
-  if (maxError >= 0.0) {
-    for (auto& [name, rmse] : report.visibilityRmse)
-      if (rmse > maxError) {
-        std::fprintf(stderr, "penumbra: %s: visibility RMSE %.4g exceeds --max-error %.4g\n", name.c_str(), rmse, maxError);
+  CompareResult result = compareTechniques(*context, scene, settings, options);
+  result.info["backend"] = o.backend;
+  writeReport(result, options.outDir);
+  std::fprintf(stderr, "%s", reportTable(result).c_str());
+  PLOG_INFO("report: {}", (fs::path(options.outDir) / "index.html").string());
+  if (o.json) std::printf("%s\n", result.json().dump(2).c_str());
+  if (c.maxError >= 0.0) {
+    for (auto& run : result.runs)
+      if (!run.reference && run.errors.visibility.rmse > c.maxError) {
+        std::fprintf(stderr, "penumbra: %s: visibility RMSE %.4g exceeds --max-error %.4g\n", run.technique.c_str(),
+                     run.errors.visibility.rmse, c.maxError);
         return int(ExitCode::ThresholdExceeded);
       }
   }
   return 0;
+}
+
+namespace {
+
+std::string firstLine(const std::string& path, const std::string& key) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(key, 0) == 0) {
+      auto p = line.find_first_of(":=", key.size());
+      std::string v = p == std::string::npos ? line : line.substr(p + 1);
+      v.erase(0, v.find_first_not_of(" \t\""));
+      while (!v.empty() && (v.back() == '"' || v.back() == ' ')) v.pop_back();
+      return v;
+    }
+  return "unknown";
+}
+
+// "cpu-2core-llvmpipe" for Mesa's CPU rasteriser, else the renderer's first words
+// ("NVIDIA H200/PCIe/SSE2" -> "nvidia-h200").
+std::string machineName(const std::string& renderer) {
+  if (renderer.find("llvmpipe") != std::string::npos)
+    return fmt::format("cpu-{}core-llvmpipe", std::thread::hardware_concurrency());
+  std::string out;
+  int words = 0;
+  for (char c : renderer) {
+    if (std::isalnum(static_cast<unsigned char>(c))) {
+      out += char(std::tolower(static_cast<unsigned char>(c)));
+    } else if (!out.empty() && out.back() != '-') {
+      if (++words == 2) break;
+      out += '-';
+    }
+  }
+  while (!out.empty() && out.back() == '-') out.pop_back();
+  return out.empty() ? "unknown-gpu" : out;
+}
+
+std::string utcNow() {
+  std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  return date;
+}
+
+}  // namespace
+
+int bench(const BenchOptions& b) {
+  const auto& table = bench::studyTable();
+  std::vector<const bench::Study*> run;
+  if (b.studies.empty()) {
+    for (auto& s : table) run.push_back(&s);
+  } else {
+    for (auto& name : b.studies) {
+      auto it = std::find_if(table.begin(), table.end(), [&](auto& s) { return s.name == name; });
+      if (it == table.end()) {
+        std::string known;
+        for (auto& s : table) known += (known.empty() ? "" : ", ") + s.name;
+        throw Error("--studies", "unknown study '" + name + "' (known: " + known + ")", ExitCode::Usage);
+      }
+      run.push_back(&*it);
+    }
+  }
+  std::string renderer, version;
+  {
+    auto context = gl::Context::create(gl::parseBackend(b.backend));
+    renderer = context->renderer(), version = context->version();
+  }
+  const std::string dir = b.outDir.empty() ? (fs::path("bench/results") / machineName(renderer)).string() : b.outDir;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  checkWritableFolder(dir, dir);
+  const std::string machine = fmt::format(
+      "date      {}\ncpu       {}\ncores     {}\nmemory    {}\nos        {}\nrenderer  {}\ngl        {}\nbackend   {}\nsuite     {}\n",
+      utcNow(), firstLine("/proc/cpuinfo", "model name"), std::thread::hardware_concurrency(),
+      firstLine("/proc/meminfo", "MemTotal"), firstLine("/etc/os-release", "PRETTY_NAME"), renderer, version, b.backend,
+      b.quick ? "quick" : "full");
+  std::ofstream(fs::path(dir) / "machine.txt") << machine;
+  PLOG_INFO("bench: {} studies into {} ({})", run.size(), dir, renderer);
+
+  int failed = 0;
+  Progress progress(int(run.size()));
+  for (const bench::Study* study : run) {
+    progress.step(study->name + ": " + study->description);
+    std::vector<std::string> args = {"penumbra-bench-" + study->name};
+    for (auto& a : b.quick ? study->quickArgs : study->fullArgs) args.push_back(a);
+    args.insert(args.end(), {"--backend", b.backend});
+    if (study->name == "speed-error") args.insert(args.end(), {"-o", (fs::path(dir) / "speed-error").string()});
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    std::string command;
+    for (auto& a : args) command += (command.empty() ? "" : " ") + a;
+    fs::path file = fs::path(dir) / (study->name + ".txt");
+    std::FILE* out = std::fopen(file.c_str(), "w");
+    if (!out) throw Error(file.string(), "cannot write");
+    std::fprintf(out, "%s -- %s\nstudy: %s (`penumbra bench%s`: %s)\n\n", utcNow().c_str(), renderer.c_str(),
+                 study->name.c_str(), b.quick ? " --quick" : "", command.c_str());
+    auto t0 = std::chrono::steady_clock::now();
+    int rc = study->run(int(argv.size()), argv.data(), out);
+    double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(out, "\n(study took %.0f s, exit %d)\n", s, rc);
+    std::fclose(out);
+    setLogLevel("info");  // studies quieten the log for their own runs
+    if (rc != 0) {
+      ++failed;
+      PLOG_ERROR("bench: study {} failed (exit {}), see {}", study->name, rc, file.string());
+    } else {
+      PLOG_INFO("bench: {} done in {:.0f} s -> {}", study->name, s, file.string());
+    }
+  }
+  progress.finish();
+  return failed ? int(ExitCode::Error) : 0;
 }
 
 int lut(const CommonOptions& o, const LutOptions& l) {

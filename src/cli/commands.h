@@ -27,8 +27,28 @@ struct CommonOptions {
 int listTechniques(bool json);
 int info(const CommonOptions& o);
 int render(const CommonOptions& o, const std::string& technique, const std::string& output);
-int compare(const CommonOptions& o, const std::vector<std::string>& techniques,
-            const std::string& outDir, double maxError);
+struct CompareCliOptions {
+  std::vector<std::string> techniques;  // names or {"all"}
+  std::string outDir;                   // empty: out/<scene name>
+  double maxError = -1.0;               // exit 3 above it (visibility RMSE, same-sample reference)
+  std::vector<std::string> sweeps, insets;
+  bool converged = false;
+  int timingFrames = 3, warmup = 1, frames = 1;
+  float fps = 30.0f;
+};
+// Renders the references and the techniques (CompareOptions) and writes the report
+// (pipeline/report.h) into the output folder.
+int compare(const CommonOptions& o, const CompareCliOptions& c);
+
+struct BenchOptions {
+  std::vector<std::string> studies;  // empty: all (bench/studies.h)
+  bool quick = false;
+  std::string outDir;  // empty: bench/results/<machine>
+  std::string backend = "egl";
+};
+// Runs the benchmark studies one after another, each writing <outDir>/<study>.txt (the
+// speed-error study also its reports and the headline), and <outDir>/machine.txt.
+int bench(const BenchOptions& b);
 
 struct LutOptions {
   std::string shape = "rect";  // without a scene: the light shape the table is for (rect | disk)

@@ -1,4 +1,4 @@
-// penumbra: headless soft-shadow renderer. Subcommands: list, info, render, compare.
+// penumbra: headless soft-shadow renderer. Subcommands: list, info, render, compare, lut, bench.
 // Exit codes: 0 ok, 1 error, 2 usage, 3 compare --max-error exceeded, 77 no GL context.
 #include <CLI/CLI.hpp>
 
@@ -54,13 +54,27 @@ int main(int argc, char** argv) {
   render->add_option("-t,--technique", technique, "technique (see `penumbra list`)")->capture_default_str();
   render->add_option("-o,--output", output, "output image (.exr: float RGB + visibility layers; .png: sRGB)")->required();
 
-  std::string techniques = "all", outDir = "out";
-  double maxError = -1.0;
-  auto* compare = app.add_subcommand("compare", "render techniques and the raytrace reference with the same samples; write images, heat maps, report.json");
+  std::string techniques = "all";
+  cli::CompareCliOptions cmp;
+  auto* compare = app.add_subcommand("compare", "render techniques and the raytrace reference with the same samples; write index.html, report.json/.csv, plot.svg, images");
   addCommon(compare, o, true);
   compare->add_option("--techniques", techniques, "comma-separated techniques, or 'all'")->capture_default_str();
-  compare->add_option("-o,--output", outDir, "output folder")->capture_default_str();
-  compare->add_option("--max-error", maxError, "exit 3 if a technique's visibility RMSE against the reference exceeds this");
+  compare->add_option("-o,--output", cmp.outDir, "output folder (default: out/<scene name>)");
+  compare->add_option("--max-error", cmp.maxError, "exit 3 if a technique's visibility RMSE against the reference exceeds this");
+  compare->add_option("--sweep", cmp.sweeps, "key=v1,v2,...: samples, resolution or a technique parameter (repeatable; presets are the product)");
+  compare->add_flag("--converged", cmp.converged, "also measure against raytrace-converged (implied by a samples sweep)");
+  compare->add_option("--inset", cmp.insets, "x,y,w,h: a region to zoom in the report (repeatable; default: two chosen)");
+  compare->add_option("--timing-frames", cmp.timingFrames, "timed frames per technique (median and spread)")->capture_default_str();
+  compare->add_option("--warmup", cmp.warmup, "untimed frames first")->capture_default_str();
+  compare->add_option("--frames", cmp.frames, "frames of the scene's animation, for temporal flicker")->capture_default_str();
+  compare->add_option("--fps", cmp.fps, "frames per second of --frames")->capture_default_str();
+
+  cli::BenchOptions benchOptions;
+  auto* bench = app.add_subcommand("bench", "run the benchmark studies; tables, reports and plots into bench/results/<machine>/");
+  bench->add_option("--studies", benchOptions.studies, "comma-separated studies (default: all; see README)")->delimiter(',');
+  bench->add_flag("--quick", benchOptions.quick, "smaller images, maps and frame counts (a smoke run)");
+  bench->add_option("-o,--output", benchOptions.outDir, "output folder (default: bench/results/<machine>)");
+  bench->add_option("--backend", benchOptions.backend, "GL backend: egl | osmesa")->capture_default_str();
 
   cli::LutOptions lutOptions;
   auto* lut = app.add_subcommand("lut", "write the dcs edge LUT of a sample pattern (and textured lights' luminance tables)");
@@ -85,6 +99,7 @@ int main(int argc, char** argv) {
     if (*info) return cli::info(o);
     if (*render) return cli::render(o, technique, output);
     if (*lut) return cli::lut(o, lutOptions);
+    if (*bench) return cli::bench(benchOptions);
     if (*compare) {
       std::vector<std::string> names;
       std::string cur;
@@ -96,7 +111,8 @@ int main(int argc, char** argv) {
           cur += c;
         }
       }
-      return cli::compare(o, names, outDir, maxError);
+      cmp.techniques = names;
+      return cli::compare(o, cmp);
     }
   } catch (const Error& e) {
     std::fprintf(stderr, "penumbra: %s\n", e.what());

@@ -1,13 +1,19 @@
 #include "pipeline/compare.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
+#include <map>
 
 #include <fmt/format.h>
 
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
+#include "core/progress.h"
+#include "sampling/shared.hpp"
 
 namespace penumbra {
 namespace {
@@ -114,30 +120,434 @@ nlohmann::json errorsJson(const TechniqueErrors& e) {
   return j;
 }
 
-CompareReport compareTechniques(gl::Context& context, const Scene& scene, const RenderSettings& settings,
-                                const std::vector<std::string>& techniques, const std::string& outDir,
-                                const TechniqueParams& params) {
-  // Every technique is created (and its parameters checked) before the long renders start.
-  std::vector<std::unique_ptr<Technique>> created;
-  for (auto& name : techniques) created.push_back(makeTechnique(name, params));
-  params.checkConsumed();
-  namespace fs = std::filesystem;
-  Renderer renderer(context, scene, settings);
-  auto write = [&](const std::string& name, const FrameResult& f) {
-    if (outDir.empty()) return;
-    writeFrame((fs::path(outDir) / (name + ".exr")).string(), f);
-    writeFrame((fs::path(outDir) / (name + ".png")).string(), f);
-  };
-  PLOG_INFO("[1/{}] reference: raytrace ({} samples)", techniques.size() + 1, settings.sampling.count);
-  auto refTech = makeTechnique("raytrace");
-  FrameResult ref = renderer.render(*refTech);
-  write("raytrace", ref);
+// ---- sweeps, presets, insets ---------------------------------------------------------------
 
-  CompareReport report;
-  auto& j = report.json;
+namespace {
+
+std::vector<std::string> splitList(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : s + sep) {
+    if (c == sep) {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  return out;
+}
+
+int parsePositive(const std::string& what, const std::string& v, int hi) {
+  std::size_t used = 0;
+  long x = 0;
+  try {
+    x = std::stol(v, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != v.size() || x < 1 || x > hi)
+    throw Error(what, fmt::format("expected an integer in 1..{}, got '{}'", hi, v), ExitCode::Usage);
+  return int(x);
+}
+
+}  // namespace
+
+SweepAxis parseSweep(const std::string& arg) {
+  auto eq = arg.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == arg.size())
+    throw Error("--sweep", "expected key=v1,v2,..., got '" + arg + "'", ExitCode::Usage);
+  SweepAxis axis{arg.substr(0, eq), splitList(arg.substr(eq + 1), ',')};
+  for (auto& v : axis.values)
+    if (v.empty()) throw Error("--sweep", "empty value in '" + arg + "'", ExitCode::Usage);
+  for (std::size_t i = 0; i < axis.values.size(); ++i)
+    for (std::size_t k = 0; k < i; ++k)
+      if (axis.values[i] == axis.values[k])
+        throw Error("--sweep", axis.key + ": value '" + axis.values[i] + "' given twice", ExitCode::Usage);
+  return axis;
+}
+
+Inset parseInset(const std::string& arg) {
+  auto parts = splitList(arg, ',');
+  if (parts.size() != 4) throw Error("--inset", "expected x,y,w,h, got '" + arg + "'", ExitCode::Usage);
+  Inset r;
+  r.x = parts[0] == "0" ? 0 : parsePositive("--inset", parts[0], 1 << 16);
+  r.y = parts[1] == "0" ? 0 : parsePositive("--inset", parts[1], 1 << 16);
+  r.w = parsePositive("--inset", parts[2], 1 << 16);
+  r.h = parsePositive("--inset", parts[3], 1 << 16);
+  return r;
+}
+
+std::vector<Inset> chooseInsets(const FrameResult& ref, int count) {
+  const int W = ref.color.width, H = ref.color.height;
+  const int size = std::max(8, std::min(W, H) / 5);
+  if (size > W || size > H) return {};
+  // Penumbra pixels of any light, then a summed-area table for the window sums.
+  std::vector<std::int64_t> sat(std::size_t(W + 1) * (H + 1), 0);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      int pen = 0;
+      std::size_t i = std::size_t(y) * W + x;
+      if (ref.gbuffer.valid.empty() || ref.gbuffer.valid[i])
+        for (auto& l : ref.lights) {
+          float v = l.visibility.data[i * 3];
+          pen |= v > 0.02f && v < 0.98f;
+        }
+      sat[std::size_t(y + 1) * (W + 1) + x + 1] =
+          pen + sat[std::size_t(y) * (W + 1) + x + 1] + sat[std::size_t(y + 1) * (W + 1) + x] - sat[std::size_t(y) * (W + 1) + x];
+    }
+  auto sum = [&](int x, int y) {
+    auto at = [&](int xx, int yy) { return sat[std::size_t(yy) * (W + 1) + xx]; };
+    return at(x + size, y + size) - at(x, y + size) - at(x + size, y) + at(x, y);
+  };
+  std::vector<Inset> out;
+  const int step = std::max(1, size / 4);
+  for (int n = 0; n < count; ++n) {
+    std::int64_t best = 0;
+    Inset pick;
+    for (int y = 0; y + size <= H; y += step)
+      for (int x = 0; x + size <= W; x += step) {
+        bool overlaps = false;
+        for (auto& o : out) overlaps |= x < o.x + o.w && o.x < x + size && y < o.y + o.h && o.y < y + size;
+        std::int64_t s = overlaps ? -1 : sum(x, y);
+        if (s > best) best = s, pick = {x, y, size, size};
+      }
+    if (best == 0) break;  // no (more) penumbra: no inset rather than an empty one
+    out.push_back(pick);
+  }
+  return out;
+}
+
+std::string ComparePreset::fileSuffix() const {
+  if (values.empty()) return "";
+  std::string s = "_";
+  for (auto& [k, v] : values) {
+    s += "_" + k + "-";
+    for (char c : v) s += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
+  }
+  return s;
+}
+
+bool CompareResult::hasConverged() const {
+  for (auto& r : runs)
+    if (r.converged) return true;
+  return false;
+}
+
+bool CompareResult::hasTemporal() const {
+  for (auto& r : runs)
+    if (r.flicker >= 0.0) return true;
+  return false;
+}
+
+namespace {
+
+nlohmann::json spreadJson(const Spread& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }
+
+// The presets: the cartesian product of the sweep axes, the first axis varying slowest.
+std::vector<ComparePreset> makePresets(const Scene& scene, const RenderSettings& settings, const CompareOptions& o) {
+  std::vector<ComparePreset> presets(1);
+  presets[0].width = settings.width, presets[0].height = settings.height, presets[0].samples = settings.sampling.count;
+  presets[0].params = o.params;
+  std::vector<std::string> seen;
+  for (auto& axis : o.sweeps) {
+    if (std::find(seen.begin(), seen.end(), axis.key) != seen.end())
+      throw Error("--sweep", "key '" + axis.key + "' swept twice", ExitCode::Usage);
+    seen.push_back(axis.key);
+    bool isParam = axis.key != "samples" && axis.key != "resolution";
+    if (isParam)
+      for (auto& p : o.params)
+        if (p.rfind(axis.key + "=", 0) == 0)
+          throw Error("--sweep", "key '" + axis.key + "' is given by --param too", ExitCode::Usage);
+    std::vector<ComparePreset> next;
+    for (auto& base : presets)
+      for (auto& v : axis.values) {
+        ComparePreset p = base;
+        p.values.emplace_back(axis.key, v);
+        if (axis.key == "samples") {
+          p.samples = parsePositive("--sweep samples", v, PENUMBRA_MAX_SAMPLES);
+        } else if (axis.key == "resolution") {
+          p.width = parsePositive("--sweep resolution", v, 16384);
+          p.height = std::max(1, int(std::lround(double(p.width) * settings.height / settings.width)));
+        } else {
+          p.params.push_back(axis.key + "=" + v);
+        }
+        next.push_back(p);
+      }
+    presets = std::move(next);
+  }
+  for (auto& p : presets) {
+    for (auto& [k, v] : p.values) p.label += (p.label.empty() ? "" : " ") + k + "=" + v;
+  }
+  (void)scene;
+  return presets;
+}
+
+// What a technique renders at a preset: presets that differ only in parameters it does not
+// read render the same thing and are measured once.
+std::string renderKey(const ComparePreset& p, const std::vector<std::string>& read) {
+  std::string key = fmt::format("{}x{} n{}", p.width, p.height, p.samples);
+  for (auto& r : read) key += " " + r;
+  return key;
+}
+
+// Visibility of every light stacked, and the surface mask, of one frame (for flicker).
+struct FrameVisibility {
+  std::vector<float> v;
+  std::vector<std::uint8_t> valid;
+};
+FrameVisibility keepVisibility(const FrameResult& f) {
+  FrameVisibility out;
+  for (auto& l : f.lights) out.v.insert(out.v.end(), l.visibility.data.begin(), l.visibility.data.end());
+  out.valid = f.gbuffer.valid;
+  return out;
+}
+
+// RMS over frames f >= 1, surface pixels of both frames, lights and channels of
+// (dA - dB) where d is the change from frame f-1 (dB omitted when `b` is null).
+double temporalRms(const std::vector<FrameVisibility>& a, const std::vector<FrameVisibility>* b) {
+  double sum = 0.0;
+  std::int64_t count = 0;
+  for (std::size_t f = 1; f < a.size(); ++f) {
+    const std::size_t n = a[f].valid.size(), per = n * 3;
+    for (std::size_t i = 0; i < a[f].v.size(); ++i) {
+      std::size_t px = (i % per) / 3;
+      if (!a[f].valid[px] || !a[f - 1].valid[px]) continue;
+      double d = double(a[f].v[i]) - a[f - 1].v[i];
+      if (b) d -= double((*b)[f].v[i]) - (*b)[f - 1].v[i];
+      sum += d * d;
+      ++count;
+    }
+  }
+  return count ? std::sqrt(sum / double(count)) : 0.0;
+}
+
+// A crop of `im` scaled up by `zoom` (nearest), for insets.
+Image crop(const Image& im, const Inset& r, int zoom) {
+  Image out(r.w * zoom, r.h * zoom, im.channels);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < im.channels; ++c) out.at(x, y, c) = im.at(r.x + x / zoom, r.y + y / zoom, c);
+  return out;
+}
+
+}  // namespace
+
+CompareResult compareTechniques(gl::Context& context, const Scene& scene, const RenderSettings& settings,
+                                const CompareOptions& o) {
+  namespace fs = std::filesystem;
+  CompareResult result;
+  result.presets = makePresets(scene, settings, o);
+  const bool converged =
+      o.converged || std::any_of(o.sweeps.begin(), o.sweeps.end(), [](auto& a) { return a.key == "samples"; });
+  if (converged && !o.converged) PLOG_INFO("samples are swept: errors are also measured against raytrace-converged");
+  const int frames = std::max(1, o.frames);
+  const bool animated = scene.isAnimated();
+  if (frames > 1 && !animated && std::all_of(scene.lights.begin(), scene.lights.end(), [](auto& l) { return l.emissionFrames.size() < 2; }))
+    PLOG_WARN("--frames {}: the scene has no animation (no \"spin\", no animated light): every frame is the same", frames);
+
+  // Every technique at every preset is created (and its parameters checked) before the long
+  // renders start; presets that do not change what a technique renders are dropped.
+  struct Job {
+    std::string technique;
+    std::vector<std::string> read;
+  };
+  std::vector<std::vector<Job>> jobs(result.presets.size());
+  {
+    TechniqueParams all(result.presets[0].params);
+    std::vector<std::string> keys;
+    for (std::size_t p = 0; p < result.presets.size(); ++p)
+      for (auto& name : o.techniques) {
+        TechniqueParams params(result.presets[p].params);
+        makeTechnique(name, params);
+        all.noteReads(params);
+        std::string key = name + " " + renderKey(result.presets[p], params.read());
+        if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
+        keys.push_back(key);
+        jobs[p].push_back({name, params.read()});
+      }
+    all.checkConsumed();
+  }
+  if (!o.insets.empty()) {
+    for (auto& r : o.insets)
+      if (r.x + r.w > result.presets[0].width || r.y + r.h > result.presets[0].height)
+        throw Error("--inset", fmt::format("{},{},{},{} is outside the {}x{} image", r.x, r.y, r.w, r.h,
+                                           result.presets[0].width, result.presets[0].height), ExitCode::Usage);
+  }
+  if (!o.outDir.empty() && o.writeImages) fs::create_directories(fs::path(o.outDir) / "insets");
+
+  int steps = 0;
+  for (auto& j : jobs) steps += int(j.size()) + 1 + (converged ? 1 : 0);
+  Progress progress(steps, o.progress);
+
+  // Frame f of a preset: the scene posed at its time (a copy only when something moves).
+  std::vector<Scene> posed;
+  for (int f = 0; f < frames; ++f)
+    if (animated) posed.push_back(scene.posedAt(settings.time + float(f) / o.fps));
+  auto sceneAt = [&](int f) -> const Scene& { return animated ? posed[std::size_t(f)] : scene; };
+
+  std::map<std::string, FrameResult> convergedRefs;  // by "WxH" (independent of the sample count)
+  for (std::size_t pi = 0; pi < result.presets.size(); ++pi) {
+    const ComparePreset& preset = result.presets[pi];
+    RenderSettings s = settings;
+    s.width = preset.width, s.height = preset.height, s.sampling.count = preset.samples;
+    std::vector<std::unique_ptr<Renderer>> renderers;  // per frame
+    for (int f = 0; f < frames; ++f) {
+      RenderSettings sf = s;
+      sf.time = settings.time + float(f) / o.fps;
+      renderers.push_back(std::make_unique<Renderer>(context, sceneAt(f), sf));
+    }
+    const std::string suffix = preset.fileSuffix();
+    const std::string at = preset.label.empty() ? "" : " @ " + preset.label;
+
+    // Renders `tech` at every frame (timed frames at frame 0 for stills, one timed render per
+    // frame otherwise) and fills the timing fields of `run`; returns frame 0 and, for
+    // --frames, every frame's visibility.
+    auto renderRun = [&](Technique& tech, CompareRun& run, ShadingMode shading,
+                         std::vector<FrameVisibility>* keep) -> FrameResult {
+      std::unique_ptr<Renderer> fallback;
+      auto rendererAt = [&](int f) -> Renderer& {
+        if (shading == s.shading) return *renderers[std::size_t(f)];
+        RenderSettings sf = s;
+        sf.shading = shading;
+        sf.time = settings.time + float(f) / o.fps;
+        fallback = std::make_unique<Renderer>(context, sceneAt(f), sf);
+        return *fallback;
+      };
+      run.shading = toString(shading);
+      if (frames == 1) {
+        Timing t = timeFrames(rendererAt(0), tech, o.timingFrames, o.warmup);
+        for (auto& [k, v] : t.stages) run.stages.emplace_back(k, v);
+        run.total = t.total, run.prepareMs = t.prepareMs;
+        run.memoryBytes = t.last.memoryBytes, run.statistics = t.last.statistics;
+        return std::move(t.last);
+      }
+      FrameResult first;
+      std::map<std::string, std::vector<double>> stages;
+      std::vector<double> totals;
+      for (int f = 0; f < frames; ++f) {
+        Renderer& r = rendererAt(f);
+        if (f == 0)
+          for (int w = 0; w < o.warmup; ++w) r.render(tech);
+        FrameResult fr = r.render(tech);
+        double sum = 0.0;
+        for (auto& st : fr.timer.stages()) {
+          if (st.stage == "prepare") {
+            run.prepareMs = std::max(run.prepareMs, st.ms);
+            continue;
+          }
+          stages[st.stage].push_back(st.ms);
+          sum += st.ms;
+        }
+        totals.push_back(sum);
+        if (keep) keep->push_back(keepVisibility(fr));
+        if (f == 0) first = std::move(fr);
+      }
+      for (auto& [k, v] : stages) run.stages.emplace_back(k, spread(v));
+      run.total = spread(totals);
+      run.memoryBytes = first.memoryBytes, run.statistics = first.statistics;
+      return first;
+    };
+
+    // Writes frame 0's images and insets; `against` is the reference of the heat map.
+    auto writeImages = [&](const std::string& base, const FrameResult& f, const FrameResult* against, CompareRun& run) {
+      if (o.outDir.empty()) return;
+      fs::path dir(o.outDir);
+      if (o.writeExr) writeFrame((dir / (base + ".exr")).string(), f);
+      if (!o.writeImages) return;
+      writeFrame((dir / (base + ".png")).string(), f);
+      run.image = base + ".png";
+      if (against) {
+        writePng((dir / (base + "_heat.png")).string(),
+                 errorHeatMap(f.lights[0].visibility, against->lights[0].visibility, 0.25f));
+        run.heat = base + "_heat.png";
+      }
+      if (pi != 0) return;
+      for (std::size_t i = 0; i < result.insets.size(); ++i) {
+        const Inset& r = result.insets[i];
+        int zoom = std::max(1, 160 / std::max(r.w, r.h));
+        std::string name = fmt::format("insets/{}_{}.png", base, i);
+        writePng((dir / name).string(), crop(f.color, r, zoom));
+        run.insetImages.push_back(name);
+      }
+    };
+
+    // References: raytrace with this preset's samples; raytrace-converged once per size.
+    progress.step("reference: raytrace" + at);
+    CompareRun refRun;
+    refRun.technique = "raytrace", refRun.preset = pi, refRun.reference = true;
+    std::vector<FrameVisibility> refFrames;
+    auto refTech = makeTechnique("raytrace");
+    FrameResult ref = renderRun(*refTech, refRun, s.shading, frames > 1 ? &refFrames : nullptr);
+    if (pi == 0) {
+      result.insets = o.insets.empty() ? chooseInsets(ref) : o.insets;
+      result.insetSource = o.insets.empty() ? "chosen" : "given";
+    }
+    const FrameResult* conv = nullptr;
+    if (converged) {
+      std::string key = fmt::format("{}x{}", s.width, s.height);
+      progress.step("reference: raytrace-converged" + at);
+      if (!convergedRefs.count(key)) {
+        auto t = makeTechnique("raytrace-converged");
+        convergedRefs[key] = renderers[0]->render(*t);
+        if (!o.outDir.empty() && o.writeExr)
+          writeFrame((fs::path(o.outDir) / ("raytrace-converged_" + key + ".exr")).string(), convergedRefs[key]);
+      }
+      conv = &convergedRefs[key];
+      refRun.converged = measureErrors(ref, *conv);
+    }
+    refRun.errors = measureErrors(ref, ref);
+    writeImages("raytrace" + suffix, ref, conv, refRun);
+    result.runs.push_back(std::move(refRun));
+
+    for (auto& job : jobs[pi]) {
+      progress.step(job.technique + at);
+      TechniqueParams params(preset.params);
+      auto tech = makeTechnique(job.technique, params);
+      CompareRun run;
+      run.technique = job.technique, run.preset = pi, run.params = job.read;
+      ShadingMode shading = s.shading;
+      if (shading == ShadingMode::PerSample && !tech->providesPerSample()) shading = ShadingMode::Modulate;
+      std::vector<FrameVisibility> kept;
+      FrameResult f = renderRun(*tech, run, shading, frames > 1 ? &kept : nullptr);
+      tech.reset();  // its render targets go before the next technique allocates its own
+      run.errors = measureErrors(f, ref);
+      if (conv) run.converged = measureErrors(f, *conv);
+      if (frames > 1) {
+        run.flicker = temporalRms(kept, &refFrames);
+        run.referenceMotion = temporalRms(refFrames, nullptr);
+        // Mean visibility RMSE over the frames, surface pixels of the reference.
+        double sum = 0.0;
+        for (std::size_t k = 0; k < kept.size(); ++k) {
+          double e = 0.0;
+          std::int64_t n = 0;
+          const std::size_t per = refFrames[k].valid.size() * 3;
+          for (std::size_t i = 0; i < kept[k].v.size(); ++i) {
+            if (!refFrames[k].valid[(i % per) / 3]) continue;
+            double d = double(kept[k].v[i]) - refFrames[k].v[i];
+            e += d * d, ++n;
+          }
+          sum += n ? std::sqrt(e / double(n)) : 0.0;
+        }
+        run.meanFrameRmse = sum / double(kept.size());
+      }
+      writeImages(job.technique + suffix, f, conv ? conv : &ref, run);
+      result.runs.push_back(std::move(run));
+    }
+  }
+  progress.finish();
+
+  auto& j = result.info;
   j["scene"] = scene.sourcePath.empty() ? "default" : scene.sourcePath;
+  j["sceneName"] = scene.name;
   j["renderer"] = context.renderer();
   j["glVersion"] = context.version();
+  {
+    std::time_t now = std::time(nullptr);
+    char date[32];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+    j["date"] = date;
+  }
   j["width"] = settings.width;
   j["height"] = settings.height;
   j["samples"] = settings.sampling.count;
@@ -145,38 +555,64 @@ CompareReport compareTechniques(gl::Context& context, const Scene& scene, const 
   j["pattern"] = toString(settings.sampling.pattern);
   j["seed"] = settings.sampling.seed;
   j["shading"] = toString(settings.shading);
+  j["time"] = settings.time;
   j["triangles"] = scene.triangleCount();
-  j["params"] = params.given();
-  j["reference"] = frameSummary(ref);
-  j["techniques"] = nlohmann::json::array();
-  report.table = fmt::format("{:<20} {:>10} {:>10} {:>10} {:>10} {:>12}\n", "technique", "total ms",
-                             "vis RMSE", "vis max", "img RMSE", "misclass px");
-  report.table += fmt::format("{:<20} {:>10.1f} {:>10} {:>10} {:>10} {:>12}\n", "raytrace (ref)",
-                              ref.timer.total(), "-", "-", "-", "-");
-  for (std::size_t i = 0; i < techniques.size(); ++i) {
-    const auto& name = techniques[i];
-    PLOG_INFO("[{}/{}] {}", i + 2, techniques.size() + 1, name);
-    auto& tech = created[i];
-    RenderSettings s = settings;
-    if (s.shading == ShadingMode::PerSample && !tech->providesPerSample()) s.shading = ShadingMode::Modulate;
-    FrameResult f = (s.shading == settings.shading) ? renderer.render(*tech) : Renderer(context, scene, s).render(*tech);
-    tech.reset();  // its render targets go before the next technique allocates its own
-    TechniqueErrors e = measureErrors(f, ref);
-    write(name, f);
-    if (!outDir.empty()) {
-      Image heat = errorHeatMap(f.lights[0].visibility, ref.lights[0].visibility, 0.25f);
-      writePng((fs::path(outDir) / (name + "_heat.png")).string(), heat);
-    }
-    nlohmann::json t = frameSummary(f);
-    t["name"] = name;
-    t["shading"] = toString(s.shading);
-    t["errors"] = errorsJson(e);
-    j["techniques"].push_back(t);
-    report.visibilityRmse.emplace_back(name, e.visibility.rmse);
-    report.table += fmt::format("{:<20} {:>10.1f} {:>10.4f} {:>10.4f} {:>10.4g} {:>12}\n", name, f.timer.total(),
-                                e.visibility.rmse, e.visibility.maxAbs, e.shaded.rmse, e.misclassifiedPixels);
+  j["lights"] = scene.lights.size();
+  j["params"] = o.params;
+  j["timingFrames"] = o.timingFrames;
+  j["warmupFrames"] = o.warmup;
+  j["frames"] = frames;
+  if (frames > 1) j["fps"] = o.fps;
+  nlohmann::json sweeps = nlohmann::json::array();
+  for (auto& a : o.sweeps) sweeps.push_back({{"key", a.key}, {"values", a.values}});
+  j["sweeps"] = sweeps;
+  j["convergedReference"] = converged;
+  return result;
+}
+
+nlohmann::json CompareResult::json() const {
+  nlohmann::json j = info;
+  nlohmann::json presetsJson = nlohmann::json::array();
+  for (auto& p : presets)
+    presetsJson.push_back({{"label", p.label}, {"width", p.width}, {"height", p.height}, {"samples", p.samples},
+                           {"params", p.params}});
+  j["presets"] = presetsJson;
+  nlohmann::json insetJson = nlohmann::json::array();
+  for (auto& r : insets) insetJson.push_back({r.x, r.y, r.w, r.h});
+  j["insets"] = insetJson;
+  j["insetSource"] = insetSource;
+  nlohmann::json runsJson = nlohmann::json::array();
+  for (auto& r : runs) {
+    nlohmann::json stages = nlohmann::json::object(), spreads = nlohmann::json::object(), stats = nlohmann::json::object();
+    for (auto& [k, v] : r.stages) stages[k] = v.median, spreads[k] = spreadJson(v);
+    for (auto& [k, v] : r.statistics) stats[k] = v;
+    nlohmann::json t{{"name", r.technique},
+                     {"preset", presets[r.preset].label},
+                     {"presetIndex", r.preset},
+                     {"reference", r.reference},
+                     {"params", r.params},
+                     {"samples", presets[r.preset].samples},
+                     {"width", presets[r.preset].width},
+                     {"height", presets[r.preset].height},
+                     {"shading", r.shading},
+                     {"stagesMs", stages},
+                     {"stagesSpreadMs", spreads},
+                     {"totalMs", r.total.median},
+                     {"totalSpreadMs", spreadJson(r.total)},
+                     {"prepareMs", r.prepareMs},
+                     {"memoryBytes", r.memoryBytes},
+                     {"statistics", stats},
+                     {"errors", errorsJson(r.errors)},
+                     {"image", r.image},
+                     {"heat", r.heat},
+                     {"insets", r.insetImages}};
+    if (r.converged) t["convergedErrors"] = errorsJson(*r.converged);
+    if (r.flicker >= 0.0)
+      t["temporal"] = {{"flicker", r.flicker}, {"referenceMotion", r.referenceMotion}, {"meanVisibilityRmse", r.meanFrameRmse}};
+    runsJson.push_back(t);
   }
-  return report;
+  j["runs"] = runsJson;
+  return j;
 }
 
 }  // namespace penumbra

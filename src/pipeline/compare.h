@@ -2,8 +2,15 @@
 // the CLI's `compare` and the tests. Errors are measured on the visibility buffer (per light) and
 // on the shaded image, over pixels with a surface, with and without the 1-pixel band around
 // the reference's shadow edges.
+//
+// A comparison run covers presets (the cartesian product of --sweep axes: samples, resolution,
+// technique parameters), each with its own same-sample reference (and, with `converged`, the
+// converged reference of its resolution); every technique is timed (warm-up, then the median
+// and spread of each stage) and measured at each preset that changes what it renders.
+// src/pipeline/report.h writes the result as JSON, CSV, a table, an SVG plot and an HTML page.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +20,7 @@
 #include "core/metrics.h"
 #include "gl/context.h"
 #include "pipeline/renderer.h"
+#include "pipeline/timing.h"
 
 namespace penumbra {
 
@@ -38,18 +46,89 @@ void writeFrame(const std::string& path, const FrameResult& frame, float exposur
 nlohmann::json frameSummary(const FrameResult& frame);
 nlohmann::json errorsJson(const TechniqueErrors& e);
 
-struct CompareReport {
-  nlohmann::json json;  // report.json
-  std::string table;    // human-readable table
-  std::vector<std::pair<std::string, double>> visibilityRmse;  // per technique
+// One --sweep axis: "key=v1,v2,...". Keys: `samples`, `resolution` (the image width; the
+// height keeps the scene's aspect) or a technique parameter (--param key).
+struct SweepAxis {
+  std::string key;
+  std::vector<std::string> values;
+};
+SweepAxis parseSweep(const std::string& arg);  // throws Error("--sweep") (usage)
+
+// A zoomed region of the first preset's images, in its pixels (x, y from the top left).
+struct Inset {
+  int x = 0, y = 0, w = 0, h = 0;
+};
+Inset parseInset(const std::string& arg);  // "x,y,w,h"; throws Error("--inset") (usage)
+
+// Two square regions where the reference has the most penumbra pixels (visibility strictly
+// between 0 and 1), not overlapping: where techniques differ most.
+std::vector<Inset> chooseInsets(const FrameResult& reference, int count = 2);
+
+struct CompareOptions {
+  std::vector<std::string> techniques;
+  std::vector<std::string> params;  // --param key=value, for every technique
+  std::vector<SweepAxis> sweeps;
+  bool converged = false;          // also measure against raytrace-converged (forced by a samples sweep)
+  int timingFrames = 3, warmup = 1;  // per technique and preset
+  std::vector<Inset> insets;       // empty: chooseInsets on the first preset's reference
+  // Temporal stability: frames rendered at time + f / fps (scene animation, "spin" in the
+  // scene file, and animated light textures); 1 = a still.
+  int frames = 1;
+  float fps = 30.0f;
+  std::string outDir;  // images are written here as they are made; empty: nothing written
+  bool writeImages = true;  // PNG images, heat maps and insets
+  bool writeExr = true;     // float images with the visibility layers
+  int progress = -1;   // Progress's `interactive`: -1 from isatty
 };
 
-// Renders the reference (`raytrace`, same samples) and each technique, writes
-// <outDir>/<technique>.exr/.png, <technique>_heat.png (visibility error, 0..0.25) and returns
-// the report. `outDir` empty: write nothing.
-// `params` (--param) go to every technique; a key none of them reads is refused.
-CompareReport compareTechniques(gl::Context& context, const Scene& scene, const RenderSettings& settings,
-                                const std::vector<std::string>& techniques, const std::string& outDir,
-                                const TechniqueParams& params = {});
+struct ComparePreset {
+  std::string label;  // "samples=32 map=512"; empty without sweeps
+  std::vector<std::pair<std::string, std::string>> values;
+  int width = 0, height = 0, samples = 0;
+  std::vector<std::string> params;  // --param with this preset's technique parameters
+  std::string fileSuffix() const;   // "" or "__samples-32_map-512"
+};
+
+// One technique (or a reference) at one preset.
+struct CompareRun {
+  std::string technique;
+  std::size_t preset = 0;           // index into CompareResult::presets
+  bool reference = false;           // raytrace (same samples) or raytrace-converged
+  std::vector<std::string> params;  // key=value of the given parameters this technique read
+  std::string shading;
+  std::vector<std::pair<std::string, Spread>> stages;  // ms; "prepare" left out
+  Spread total;                     // ms per frame, stages summed
+  double prepareMs = 0.0;           // once per scene
+  std::size_t memoryBytes = 0;
+  std::vector<std::pair<std::string, double>> statistics;
+  TechniqueErrors errors;                    // against the same-sample reference
+  std::optional<TechniqueErrors> converged;  // against raytrace-converged
+  // --frames > 1: RMS over frames and surface pixels of (this frame's change in visibility
+  // - the reference's change), i.e. flicker the reference does not have; the reference's own
+  // RMS change; the mean visibility RMSE over the frames.
+  double flicker = -1.0, referenceMotion = -1.0, meanFrameRmse = -1.0;
+  std::string image, heat;  // file names in the output folder, "" if not written
+  std::vector<std::string> insetImages;
+  // The error the plot uses: visibility RMSE against the converged reference if measured,
+  // else against the same-sample one.
+  double plotError() const { return converged ? converged->visibility.rmse : errors.visibility.rmse; }
+};
+
+struct CompareResult {
+  nlohmann::json info;  // scene, renderer, GL version, settings, parameters, sweeps
+  std::vector<ComparePreset> presets;
+  std::vector<CompareRun> runs;  // in rendering order, references first in each preset
+  std::vector<Inset> insets;
+  std::string insetSource;  // "given" or "chosen"
+  bool hasConverged() const;
+  bool hasTemporal() const;
+  nlohmann::json json() const;  // report.json
+};
+
+// Renders the references and every technique at every preset, writing images (.exr, .png,
+// heat maps, inset crops) into options.outDir as it goes. Parameters are checked (a key no
+// technique reads is refused) before the first render.
+CompareResult compareTechniques(gl::Context& context, const Scene& scene, const RenderSettings& settings,
+                                const CompareOptions& options);
 
 }  // namespace penumbra

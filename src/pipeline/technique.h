@@ -89,6 +89,11 @@ class TechniqueParams {
   void checkConsumed() const;
   // "key=value" of every given key, for reports.
   std::vector<std::string> given() const;
+  // "key=value" of the given keys some technique created with these params read.
+  std::vector<std::string> read() const;
+  // Counts `other`'s reads as reads of these params (one check over techniques created with
+  // separate copies, e.g. one per technique and sweep preset).
+  void noteReads(const TechniqueParams& other);
 
  private:
   const std::string* find(const std::string& key) const;

@@ -36,12 +36,23 @@ struct Material {
   float alphaCutoff = 0.5f;
 };
 
+// A rigid rotation at a constant rate (scene file "spin"), for `compare --frames`: the pose at
+// time t is the rotation by degreesPerSecond * t about `axis` through `pivot`.
+struct Spin {
+  glm::vec3 axis{0.0f, 1.0f, 0.0f};  // unit
+  glm::vec3 pivot{0.0f};
+  float degreesPerSecond = 0.0f;
+  bool active() const { return degreesPerSecond != 0.0f; }
+  glm::mat4 at(float time) const;
+};
+
 // A mesh already transformed to world space (instances are flattened at load time).
 struct SceneMesh {
   std::string name;  // "<file>#<mesh or node>" for messages
   geo::TriangleMesh mesh;
   geo::MeshReport report;
   int material = 0;  // index into Scene::materials
+  Spin spin;         // the mesh as loaded is its pose at time 0
 };
 
 enum class LightShape { Point, Rect, Disk, Sphere };
@@ -65,6 +76,7 @@ struct Light {
   // Animated lights list frames; frame = floor(time * fps) mod frames.size().
   std::vector<int> emissionFrames;  // indices into Scene::textures; empty = untextured
   float fps = 0.0f;
+  Spin spin;  // moves position, normal and tangent; the pose as loaded is time 0
 
   bool isArea() const { return shape != LightShape::Point; }
   float area() const;  // m^2 (rect w*h, disk pi r^2, sphere 4 pi r^2); 0 for points
@@ -100,6 +112,10 @@ struct Scene {
   // (at least 1e-6), enough to leave the surface at any scene scale, small enough to keep
   // contact shadows.
   float surfaceOffset() const;
+  // Any mesh or light with a spin.
+  bool isAnimated() const;
+  // A copy with every spinning mesh and light moved to its pose at `time` (seconds).
+  Scene posedAt(float time) const;
 };
 
 // Loads a scene file: .json (scene description) or a bare geometry file (.gltf, .glb, .obj,

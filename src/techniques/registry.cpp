@@ -183,4 +183,20 @@ std::vector<std::string> TechniqueParams::given() const {
   return out;
 }
 
+std::vector<std::string> TechniqueParams::read() const {
+  std::vector<std::string> out;
+  for (auto& [k, v] : values_)
+    if (std::find(consumed_.begin(), consumed_.end(), k) != consumed_.end()) out.push_back(k + "=" + v);
+  return out;
+}
+
+void TechniqueParams::noteReads(const TechniqueParams& other) {
+  auto merge = [](std::vector<std::string>& into, const std::vector<std::string>& from) {
+    for (auto& k : from)
+      if (std::find(into.begin(), into.end(), k) == into.end()) into.push_back(k);
+  };
+  merge(known_, other.known_);
+  merge(consumed_, other.consumed_);
+}
+
 }  // namespace penumbra

@@ -1,0 +1,161 @@
+// Benchmark (not a test): speed against error on every shipped scene, in one run on one
+// machine. For each scene, `compare` with a samples sweep (the presets of every technique's
+// curve) against the converged reference (raytrace-converged, 1024 stratified samples per
+// pixel); each scene's report (index.html, report.json/.csv, plot.svg, PNG images) goes to
+// DIR/<scene>/. Then the headline: per technique and sample count, the geometric mean over
+// the scenes of the median frame time and of the visibility RMSE against the converged
+// reference, how often the technique is on a scene's Pareto front, and the plot of those means
+// (DIR/headline.svg, DIR/headline.md).
+//
+//   penumbra_bench_speed_error -o DIR [--scenes default,scenes/engine.json,...] [-W 256]
+//       [--samples 8,16,32] [--techniques hard-sv,dcs,...] [--frames 3] [--warmup 1] [--backend egl]
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "bench_common.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "gl/context.h"
+#include "pipeline/compare.h"
+#include "pipeline/report.h"
+#include "scene/scene.h"
+#include "studies.h"
+
+namespace fs = std::filesystem;
+
+namespace penumbra::bench {
+
+int speedErrorStudy(int argc, char** argv, std::FILE* out) {
+  CLI::App app{"speed against error on the shipped scenes"};
+  std::vector<std::string> scenes = {"default",
+                                     "scenes/stained-glass.json",
+                                     "scenes/animated-window.json",
+                                     "scenes/dcs-silhouettes.json",
+                                     "scenes/semi-opaque.json",
+                                     "scenes/glass-layers.json",
+                                     "scenes/spinning-fan.json",
+                                     "scenes/example.json",
+                                     "scenes/engine.json"};
+  std::vector<std::string> techniques = {"hard-sv", "dcs", "dcs-lut", "mvr", "vwss", "reproject",
+                                         "pcss", "pcss-ultra", "pcss-mask", "vssm"};
+  std::string samples = "8,16,32", outDir, backend = "egl";
+  int width = 256, frames = 3, warmup = 1;
+  bool images = true;
+  app.add_option("--scenes", scenes, "scene files ('default': the built-in scene)")->delimiter(',');
+  app.add_option("--techniques", techniques)->delimiter(',');
+  app.add_option("--samples", samples, "the samples sweep (comma-separated)");
+  app.add_option("-W", width, "image width (height: the scene's aspect)");
+  app.add_option("--frames", frames, "timed frames per technique and preset");
+  app.add_option("--warmup", warmup);
+  app.add_option("--images", images, "write each scene's PNG images and insets (0: reports only)");
+  app.add_option("--backend", backend);
+  app.add_option("-o", outDir, "output folder")->required();
+  CLI11_PARSE(app, argc, argv);
+  try {
+    auto ctx = gl::Context::create(gl::parseBackend(backend));
+    fs::create_directories(outDir);
+    std::fprintf(out, "Speed against error (issue 7): %zu scenes, %d px wide, samples %s, median of %d frames after %d warm-up "
+                 "(glFinish + steady clock), visibility RMSE against raytrace-converged (1024 spp); renderer %s\n\n",
+                 scenes.size(), width, samples.c_str(), frames, warmup, ctx->renderer().c_str());
+
+    struct Acc {
+      double logMs = 0, logErr = 0;
+      int n = 0, front = 0;
+    };
+    std::map<std::pair<std::string, int>, Acc> acc;  // (technique, samples)
+    std::vector<std::string> order;
+    std::vector<int> sampleCounts;
+    for (const std::string& path : scenes) {
+      Scene scene = path == "default" ? defaultScene() : loadScene(path);
+      RenderSettings s;
+      s.width = width;
+      s.height = std::max(1, int(std::lround(double(width) * scene.height / scene.width)));
+      CompareOptions o;
+      o.techniques = techniques;
+      o.sweeps = {parseSweep("samples=" + samples)};
+      o.converged = true;
+      o.timingFrames = frames, o.warmup = warmup;
+      o.outDir = (fs::path(outDir) / scene.name).string();
+      o.writeImages = images, o.writeExr = false;
+      o.progress = 0;
+      fs::create_directories(o.outDir);
+      PLOG_WARN("speed-error: {} ({} triangles)", scene.name, scene.triangleCount());
+      CompareResult r = compareTechniques(*ctx, scene, s, o);
+      r.info["backend"] = backend;
+      writeReport(r, o.outDir);
+      std::fprintf(out, "== %s (%s, %zu triangles, %dx%d)\n%s", scene.name.c_str(), path.c_str(), scene.triangleCount(),
+                   s.width, s.height, reportTable(r).c_str());
+
+      auto plotted = plottedRuns(r);
+      std::vector<std::pair<double, double>> pts;
+      for (auto i : plotted) pts.emplace_back(r.runs[i].total.median, r.runs[i].plotError());
+      std::vector<std::size_t> front;
+      for (auto k : paretoFront(pts)) front.push_back(plotted[k]);
+      std::string frontText;
+      for (auto i : front)
+        frontText += fmt::format("{}{} @ {} ({:.1f} ms, {:.4f})", frontText.empty() ? "" : ", ", r.runs[i].technique,
+                                 r.presets[r.runs[i].preset].label, r.runs[i].total.median, r.runs[i].plotError());
+      std::fprintf(out, "Pareto front: %s\n\n", frontText.c_str());
+      std::fflush(out);
+      for (auto i : plotted) {
+        const CompareRun& run = r.runs[i];
+        int n = r.presets[run.preset].samples;
+        if (std::find(sampleCounts.begin(), sampleCounts.end(), n) == sampleCounts.end()) sampleCounts.push_back(n);
+        if (std::find(order.begin(), order.end(), run.technique) == order.end()) order.push_back(run.technique);
+        Acc& a = acc[{run.technique, n}];
+        a.logMs += std::log(run.total.median);
+        a.logErr += std::log(std::max(run.plotError(), 1e-6));
+        a.n += 1;
+        a.front += std::find(front.begin(), front.end(), i) != front.end();
+      }
+    }
+
+    // The headline: geometric means over the scenes, as a table and as a CompareResult for
+    // the same plot as each scene's.
+    CompareResult headline;
+    headline.info = {{"sceneName", fmt::format("geometric mean over {} scenes", scenes.size())}};
+    std::sort(sampleCounts.begin(), sampleCounts.end());
+    for (int n : sampleCounts) {
+      ComparePreset p;
+      p.samples = n, p.label = fmt::format("samples={}", n), p.values = {{"samples", std::to_string(n)}};
+      headline.presets.push_back(p);
+    }
+    std::string md = fmt::format("| technique | samples | ms (geo. mean) | x raytrace time | visibility RMSE vs converged (geo. mean) | on the Pareto front |\n|---|---|---|---|---|---|\n");
+    std::fprintf(out, "Headline: geometric mean over %zu scenes\n%-14s %7s %12s %12s %14s %8s\n", scenes.size(), "technique",
+                 "samples", "ms", "x raytrace", "RMSE vs conv", "front");
+    for (auto& t : order)
+      for (std::size_t pi = 0; pi < headline.presets.size(); ++pi) {
+        int n = headline.presets[pi].samples;
+        auto it = acc.find({t, n});
+        if (it == acc.end() || it->second.n == 0) continue;
+        const Acc& a = it->second;
+        double ms = std::exp(a.logMs / a.n), err = std::exp(a.logErr / a.n);
+        auto ref = acc.find({"raytrace", n});
+        double ratio = ref != acc.end() && ref->second.n ? ms / std::exp(ref->second.logMs / ref->second.n) : 0.0;
+        std::fprintf(out, "%-14s %7d %12.1f %12.2f %14.4f %5d/%zu\n", t.c_str(), n, ms, ratio, err, a.front, scenes.size());
+        md += fmt::format("| {} | {} | {:.1f} | {:.2f} | {:.4f} | {}/{} |\n", t, n, ms, ratio, err, a.front, scenes.size());
+        CompareRun run;
+        run.technique = t, run.preset = pi, run.reference = t == "raytrace";
+        run.total = {ms, ms, ms};
+        TechniqueErrors e;
+        e.visibility.rmse = err;
+        run.converged = e;
+        headline.runs.push_back(run);
+      }
+    std::ofstream(fs::path(outDir) / "headline.md") << md;
+    std::ofstream(fs::path(outDir) / "headline.svg") << speedErrorSvg(headline);
+    return 0;
+  } catch (const Error& e) {
+    std::fprintf(stderr, "penumbra_bench_speed_error: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace penumbra::bench

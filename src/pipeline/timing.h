@@ -1,0 +1,69 @@
+// Timing a technique's frames on one renderer, shared by `compare` and the benchmarks: warm-up
+// frames first, then the median and spread of each stage. Stages are timed with glFinish and
+// a steady clock (StageTimer), as GL timer queries are not meaningful on llvmpipe.
+#pragma once
+
+#include <algorithm>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "pipeline/renderer.h"
+
+namespace penumbra {
+
+struct Spread {
+  double median = 0, min = 0, max = 0;
+};
+
+inline Spread spread(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  std::size_t n = v.size();
+  if (n == 0) return {};
+  double med = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  return {med, v.front(), v.back()};
+}
+
+struct Timing {
+  std::map<std::string, Spread> stages;  // "prepare" (once per scene) left out
+  Spread total;
+  double prepareMs = 0.0;  // the once-per-scene stage, from the first frame
+  FrameResult last;        // the last timed frame
+  double stage(const std::string& name) const {
+    auto it = stages.find(name);
+    return it == stages.end() ? 0.0 : it->second.median;
+  }
+};
+
+// A Technique::statistics() value of a frame, 0 if the technique does not report it.
+inline double frameStatistic(const FrameResult& f, const std::string& key) {
+  for (auto& [k, v] : f.statistics)
+    if (k == key) return v;
+  return 0.0;
+}
+
+// Renders warmup + frames frames (at least one); stage spreads over the timed frames.
+inline Timing timeFrames(Renderer& renderer, Technique& technique, int frames, int warmup) {
+  std::map<std::string, std::vector<double>> stages;
+  std::vector<double> total;
+  Timing t;
+  frames = std::max(frames, 1);
+  for (int f = 0; f < warmup + frames; ++f) {
+    t.last = renderer.render(technique);
+    for (auto& st : t.last.timer.stages())
+      if (st.stage == "prepare") t.prepareMs += st.ms;
+    if (f < warmup) continue;
+    double sum = 0;
+    for (auto& st : t.last.timer.stages()) {
+      if (st.stage == "prepare") continue;
+      stages[st.stage].push_back(st.ms);
+      sum += st.ms;
+    }
+    total.push_back(sum);
+  }
+  for (auto& [name, v] : stages) t.stages[name] = spread(v);
+  t.total = spread(total);
+  return t;
+}
+
+}  // namespace penumbra

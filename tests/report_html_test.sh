@@ -1,0 +1,47 @@
+#!/bin/sh
+# The HTML report in headless Chromium (issue 7): `compare` with a sweep and --frames writes
+# index.html; Chromium loads it from disk (no network), every image loads (the page's own check
+# sets data-images="loaded/total"), the plot has a point per plotted run, and the console stays
+# empty (no script errors). Usage: report_html_test.sh PENUMBRA SRCDIR
+# Exits 77 (skipped) without a GL context or without chromium (setup.sh installs it).
+P="$1"; SRC="$2"; T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
+CHROMIUM=$(command -v chromium || command -v chromium-browser || true)
+[ -n "$CHROMIUM" ] || { echo "chromium not installed (setup.sh installs it): skipped"; exit 77; }
+fail=0
+"$P" compare "$SRC/scenes/spinning-fan.json" -W 64 -H 64 --techniques hard-sv,mvr,pcss \
+  --sweep samples=4,8 --param map=128 --frames 2 --timing-frames 1 --warmup 0 -o "$T/out" 2>"$T/err"
+rc=$?
+if [ "$rc" -eq 77 ] || grep -q "no GL context\|cannot create.*context" "$T/err"; then cat "$T/err"; exit 77; fi
+[ "$rc" -eq 0 ] || { echo "FAIL: compare exit $rc"; cat "$T/err"; exit 1; }
+for f in index.html report.json report.csv table.txt plot.svg raytrace__samples-4.png mvr__samples-8_heat.png; do
+  test -s "$T/out/$f" || { echo "FAIL: compare did not write $f"; fail=1; }
+done
+# 2 presets x (raytrace + 3 techniques) = 8 runs, all plotted (the converged reference gives
+# the same-sample references an error too).
+rows=$(($(wc -l < "$T/out/report.csv") - 1))
+[ "$rows" -eq 8 ] || { echo "FAIL: report.csv has $rows runs, want 8"; fail=1; }
+grep -q '"flicker"' "$T/out/report.json" || { echo "FAIL: report.json lacks flicker"; fail=1; }
+imgs=$(grep -o '<img src=' "$T/out/index.html" | wc -l)
+
+# --virtual-time-budget lets the load handler run before the DOM is dumped.
+HOME="$T" timeout 120 "$CHROMIUM" --headless=new --no-sandbox --disable-gpu --no-first-run --disable-extensions \
+  --user-data-dir="$T/profile" --enable-logging=stderr --v=0 --virtual-time-budget=10000 \
+  --dump-dom "file://$T/out/index.html" >"$T/dom.html" 2>"$T/chromium.err"
+rc=$?
+[ "$rc" -eq 0 ] || { echo "FAIL: chromium exit $rc"; tail -20 "$T/chromium.err"; exit 1; }
+loaded=$(sed -n 's/.*data-images="\([0-9]*\/[0-9]*\)".*/\1/p' "$T/dom.html" | head -1)
+points=$(sed -n 's/.*data-plot-points="\([0-9]*\)".*/\1/p' "$T/dom.html" | head -1)
+echo "chromium: images loaded $loaded (page has $imgs), plot points $points"
+[ "$loaded" = "$imgs/$imgs" ] && [ "$imgs" -gt 0 ] || { echo "FAIL: not every image loaded: $loaded"; fail=1; }
+[ "$points" = 8 ] || { echo "FAIL: plot shows $points points, want 8"; fail=1; }
+if grep -q ':CONSOLE' "$T/chromium.err"; then
+  echo "FAIL: console messages:"; grep ':CONSOLE' "$T/chromium.err"; fail=1
+fi
+# A broken page must be caught: the check is not vacuous.
+rm "$T/out/pcss__samples-4.png"
+HOME="$T" timeout 120 "$CHROMIUM" --headless=new --no-sandbox --disable-gpu --no-first-run --disable-extensions \
+  --user-data-dir="$T/profile" --virtual-time-budget=10000 --dump-dom "file://$T/out/index.html" >"$T/dom2.html" 2>/dev/null
+broken=$(sed -n 's/.*data-images="\([0-9]*\/[0-9]*\)".*/\1/p' "$T/dom2.html" | head -1)
+[ "$broken" = "$((imgs - 1))/$imgs" ] || { echo "FAIL: a missing image was not detected ($broken)"; fail=1; }
+[ "$fail" -eq 0 ] && echo "ok: report loads in chromium"
+exit "$fail"

@@ -1,0 +1,146 @@
+// The comparison report without GL (issue 7): the Pareto front, sweep and inset parsing, inset
+// choice, and what report.csv / plot.svg / index.html contain for a hand-made result.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <sstream>
+
+#include "core/error.h"
+#include "pipeline/report.h"
+
+namespace penumbra {
+namespace {
+
+std::size_t count(const std::string& s, const std::string& what) {
+  std::size_t n = 0;
+  for (auto p = s.find(what); p != std::string::npos; p = s.find(what, p + what.size())) ++n;
+  return n;
+}
+
+TEST(Report, ParetoFrontKeepsOnlyUndominatedPoints) {
+  // (time, error): 1 and 3 dominate 2 (slower and worse than 1) and 4 (slower than 3, equal error).
+  std::vector<std::pair<double, double>> pts = {{10, 0.5}, {5, 0.2}, {7, 0.3}, {20, 0.01}, {25, 0.01}, {30, 0.001}};
+  auto front = paretoFront(pts);
+  EXPECT_EQ(front, (std::vector<std::size_t>{1, 3, 5}));
+  EXPECT_TRUE(paretoFront({}).empty());
+  EXPECT_EQ(paretoFront({{1, 1}}), (std::vector<std::size_t>{0}));
+  // Equal times: only the more accurate one.
+  EXPECT_EQ(paretoFront({{2, 0.5}, {2, 0.1}}), (std::vector<std::size_t>{1}));
+}
+
+TEST(Report, SweepAndInsetParsing) {
+  SweepAxis a = parseSweep("samples=16,32,64");
+  EXPECT_EQ(a.key, "samples");
+  EXPECT_EQ(a.values, (std::vector<std::string>{"16", "32", "64"}));
+  EXPECT_EQ(parseSweep("map=512").values.size(), 1u);
+  for (const char* bad : {"samples", "=1,2", "samples=", "samples=1,,2", "samples=4,4"})
+    EXPECT_THROW(parseSweep(bad), Error) << bad;
+  Inset r = parseInset("0,8,16,24");
+  EXPECT_EQ(r.x, 0);
+  EXPECT_EQ(r.y, 8);
+  EXPECT_EQ(r.w, 16);
+  EXPECT_EQ(r.h, 24);
+  for (const char* bad : {"1,2,3", "1,2,3,4,5", "-1,0,4,4", "0,0,0,4", "a,0,4,4"}) EXPECT_THROW(parseInset(bad), Error) << bad;
+}
+
+TEST(Report, InsetsGoWhereThePenumbraIs) {
+  FrameResult ref;
+  const int W = 100, H = 80;
+  ref.color = Image(W, H, 3);
+  ref.gbuffer.valid.assign(std::size_t(W) * H, 1);
+  LightResult l;
+  l.visibility = Image(W, H, 3, 1.0f);
+  // A penumbra block at (60..79, 10..29) and a smaller one at (5..14, 50..59).
+  for (int y = 10; y < 30; ++y)
+    for (int x = 60; x < 80; ++x)
+      for (int c = 0; c < 3; ++c) l.visibility.at(x, y, c) = 0.5f;
+  for (int y = 50; y < 60; ++y)
+    for (int x = 5; x < 15; ++x)
+      for (int c = 0; c < 3; ++c) l.visibility.at(x, y, c) = 0.3f;
+  ref.lights.push_back(l);
+  auto insets = chooseInsets(ref, 2);
+  ASSERT_EQ(insets.size(), 2u);
+  EXPECT_EQ(insets[0].w, 16);  // min(W, H) / 5
+  EXPECT_TRUE(insets[0].x >= 56 && insets[0].x + insets[0].w <= 84 && insets[0].y >= 6 && insets[0].y + insets[0].h <= 34)
+      << insets[0].x << "," << insets[0].y;
+  EXPECT_TRUE(insets[1].x <= 14 && insets[1].x + insets[1].w >= 5 && insets[1].y <= 59 && insets[1].y + insets[1].h >= 50)
+      << insets[1].x << "," << insets[1].y;
+  // No penumbra at all: no inset.
+  for (auto& v : ref.lights[0].visibility.data) v = 1.0f;
+  EXPECT_TRUE(chooseInsets(ref, 2).empty());
+}
+
+CompareResult handMade() {
+  CompareResult r;
+  r.info = {{"sceneName", "s<&>"}, {"scene", "x.json"}, {"width", 8}, {"height", 8}, {"samples", 4}};
+  ComparePreset p0, p1;
+  p0.width = p0.height = p1.width = p1.height = 8;
+  p0.samples = 4, p1.samples = 8;
+  p0.label = "samples=4", p1.label = "samples=8";
+  p0.values = {{"samples", "4"}}, p1.values = {{"samples", "8"}};
+  r.presets = {p0, p1};
+  auto run = [](const std::string& name, std::size_t preset, bool ref, double ms, double err, double conv) {
+    CompareRun c;
+    c.technique = name, c.preset = preset, c.reference = ref;
+    c.total = {ms, ms * 0.9, ms * 1.2};
+    c.stages = {{"a", {ms / 2, ms / 2, ms / 2}}, {"b, c", {ms / 2, ms / 2, ms / 2}}};
+    c.errors.visibility.rmse = err;
+    TechniqueErrors e;
+    e.visibility.rmse = conv;
+    c.converged = e;
+    c.image = name + ".png";
+    return c;
+  };
+  r.runs = {run("raytrace", 0, true, 5, 0, 0.05), run("fast", 0, false, 1, 0.2, 0.21), run("slow", 0, false, 50, 1e-9, 0.049),
+            run("raytrace", 1, true, 9, 0, 0.03), run("fast", 1, false, 1.5, 0.1, 0.12), run("slow", 1, false, 90, 1e-9, 0.029)};
+  return r;
+}
+
+TEST(Report, CsvHasOneRowPerRunAndFixedColumns) {
+  CompareResult r = handMade();
+  std::istringstream csv(reportCsv(r));
+  std::string line;
+  std::getline(csv, line);
+  // Columns outside quotes.
+  auto columns = [](const std::string& l) {
+    std::size_t n = 1;
+    bool quoted = false;
+    for (char c : l) {
+      if (c == '"') quoted = !quoted;
+      n += !quoted && c == ',';
+    }
+    return n;
+  };
+  const std::size_t header = columns(line);
+  EXPECT_GT(header, 25u);
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    EXPECT_EQ(columns(line), header) << line;
+  }
+  EXPECT_EQ(rows, 6);
+  EXPECT_NE(reportCsv(r).find("\"a=0.500;b, c=0.500\""), std::string::npos) << "a field with a comma is quoted";
+}
+
+TEST(Report, PlotAndPageShowEveryRun) {
+  CompareResult r = handMade();
+  ASSERT_TRUE(r.hasConverged());
+  EXPECT_EQ(plottedRuns(r).size(), 6u);  // references have an error against the converged one
+  std::string svg = speedErrorSvg(r);
+  EXPECT_EQ(count(svg, "class=\"point\""), 6u);
+  EXPECT_EQ(count(svg, "class=\"pareto\""), 1u);
+  EXPECT_NE(svg.find("vs converged reference"), std::string::npos);
+  EXPECT_EQ(svg.find("s<&>"), std::string::npos) << "names are escaped";
+  std::string html = reportHtml(r);
+  EXPECT_EQ(count(html, "<img src=\"fast.png\""), 2u);  // one gallery per preset
+  EXPECT_EQ(count(html, "<tr class="), 6u);
+  EXPECT_NE(html.find("<svg"), std::string::npos);
+  for (const char* remote : {"src=\"http", "href=\"http", "src=\"//", "url("})
+    EXPECT_EQ(html.find(remote), std::string::npos) << "nothing loaded from the network: " << remote;
+  std::string table = reportTable(r);
+  EXPECT_EQ(count(table, "\n"), 7u);
+  EXPECT_NE(table.find("conv RMSE"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace penumbra
