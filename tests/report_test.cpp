@@ -26,6 +26,8 @@ TEST(Report, ParetoFrontKeepsOnlyUndominatedPoints) {
   EXPECT_EQ(paretoFront({{1, 1}}), (std::vector<std::size_t>{0}));
   // Equal times: only the more accurate one.
   EXPECT_EQ(paretoFront({{2, 0.5}, {2, 0.1}}), (std::vector<std::size_t>{1}));
+  // Equal errors up to rounding: the faster one only.
+  EXPECT_EQ(paretoFront({{2, 0.0376}, {9, 0.0376 * (1 - 1e-7)}}), (std::vector<std::size_t>{0}));
 }
 
 TEST(Report, SweepAndInsetParsing) {

@@ -1,5 +1,7 @@
 #include "core/log.h"
 
+#include <unistd.h>
+
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 namespace penumbra {
@@ -7,7 +9,9 @@ namespace penumbra {
 void setLogLevel(const std::string& level) {
   static bool once = [] {
     auto logger = spdlog::stderr_color_mt("penumbra");
-    logger->set_pattern("[%^%l%$] %v");
+    // On a terminal a line starts by clearing the line, so a message printed while a progress
+    // bar (core/progress.h) is drawn replaces the bar instead of running on after it.
+    logger->set_pattern(::isatty(STDERR_FILENO) ? "\r\x1b[K[%^%l%$] %v" : "[%^%l%$] %v");
     spdlog::set_default_logger(logger);
     return true;
   }();

@@ -65,12 +65,15 @@ std::vector<std::string> techniqueOrder(const CompareResult& r, const std::vecto
   return names;
 }
 
-// Decade ticks of [lo, hi] (log10 values), with 2 and 5 in between when the range is short.
+// Decade ticks of [lo, hi] (log10 values), with 2 and 5 (or every digit) in between when the
+// range is short.
 std::vector<double> logTicks(double lo, double hi) {
   std::vector<double> ticks;
-  const bool fine = hi - lo < 2.5;
+  const std::vector<double> mantissas = hi - lo < 1.2   ? std::vector<double>{1, 2, 3, 4, 5, 6, 7, 8, 9}
+                                        : hi - lo < 2.5 ? std::vector<double>{1, 2, 5}
+                                                        : std::vector<double>{1};
   for (int e = int(std::floor(lo)); e <= int(std::ceil(hi)); ++e)
-    for (double m : fine ? std::vector<double>{1, 2, 5} : std::vector<double>{1}) {
+    for (double m : mantissas) {
       double t = e + std::log10(m);
       if (t >= lo - 1e-9 && t <= hi + 1e-9) ticks.push_back(t);
     }
@@ -92,10 +95,14 @@ std::vector<std::size_t> paretoFront(const std::vector<std::pair<double, double>
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return pts[a].first != pts[b].first ? pts[a].first < pts[b].first : pts[a].second < pts[b].second;
   });
+  // A point joins the front when it is more accurate than everything at least as fast by more
+  // than kTie (relative): dcs equals the same-sample reference up to float rounding, and being
+  // 1e-9 "better" must not put the slower of two equal results on the front.
+  constexpr double kTie = 1e-3;
   std::vector<std::size_t> front;
   double best = INFINITY;
   for (std::size_t i : order)
-    if (pts[i].second < best) {  // strictly more accurate than everything at least as fast
+    if (pts[i].second < best * (1.0 - kTie)) {
       front.push_back(i);
       best = pts[i].second;
     }

@@ -12,8 +12,8 @@
 namespace penumbra {
 
 // Indices of the points on the Pareto front of (time, error), both to be minimised: a point is
-// on it when no other point is at least as fast and at least as accurate and better in one.
-// Sorted by time.
+// on it when every point at least as fast is less accurate (by more than 0.1%, so that results
+// equal up to float rounding count as ties and the faster one wins). Sorted by time.
 std::vector<std::size_t> paretoFront(const std::vector<std::pair<double, double>>& timeError);
 
 // The plotted runs: every technique run, plus the same-sample reference when the converged
