@@ -55,4 +55,10 @@ expect 2 "pcf: must be 1, 5 or 9" -- "$P" render -t mvr -W 32 -H 32 --param pcf=
 expect 2 "expected key=value" -- "$P" render -t mvr -W 32 -H 32 --param map -o "$T/p.png"
 expect 2 "given twice" -- "$P" render -t mvr -W 32 -H 32 --param map=64 --param map=128 -o "$T/p.png"
 expect 2 "expected a number" -- "$P" render -t vwss -W 32 -H 32 --param scale=big -o "$T/p.png"
+# GL limits and out-of-memory (issue 7): one-line errors, never a crash or a GL error.
+noglerr() { if grep -q 'GL error\|GL: ' "$T/err"; then echo "FAIL: GL error logged"; cat "$T/err"; fail=1; fi; }
+expect 2 "map: 100000 is outside" -- "$P" render -t mvr -W 32 -H 32 --param map=100000 -o "$T/p.png"; noglerr
+expect 2 "image size 100000x32" -- "$P" render -W 100000 -H 32 -o "$T/p.png"; noglerr
+expect 1 "out of GPU memory for 64 depth maps of 16384" -- "$P" render -t mvr -W 32 -H 32 --samples 64 --param map=16384 -o "$T/p.png"; noglerr
+expect 1 "out of memory allocating a 16384 x 16384 RGBA32F texture" -- "$P" render -W 16384 -H 16384 -o "$T/p.png"; noglerr
 exit $fail

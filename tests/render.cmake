@@ -24,3 +24,12 @@ penumbra_add_test(test_dcs_opacity ${CMAKE_CURRENT_SOURCE_DIR}/dcs_opacity_test.
 
 # DCS edge LUT files: no GL needed.
 penumbra_add_test(test_dcs_edge_lut ${CMAKE_CURRENT_SOURCE_DIR}/dcs_edge_lut_test.cpp LIBS penumbra_render)
+
+# Resource hygiene: repeated renders leak no GL objects or memory; GL limits and out-of-memory
+# are one-line errors (issue 7).
+add_executable(test_render_resources ${CMAKE_CURRENT_SOURCE_DIR}/gl_test_main.cpp
+               ${CMAKE_CURRENT_SOURCE_DIR}/render_resources_test.cpp)
+target_link_libraries(test_render_resources PRIVATE penumbra_render penumbra_scene GTest::gtest penumbra_warnings)
+target_compile_definitions(test_render_resources PRIVATE PENUMBRA_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+gtest_discover_tests(test_render_resources PROPERTIES SKIP_RETURN_CODE 77 DISCOVERY_TIMEOUT 60
+                     ENVIRONMENT "LP_NUM_THREADS=2")

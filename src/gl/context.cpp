@@ -5,11 +5,14 @@
 #include <GL/osmesa.h>
 
 #include <atomic>
+#include <cctype>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/gl.h"
+#include "gl/objects.h"
 
 namespace penumbra {
 #define X(type, name) type name = nullptr;
@@ -21,9 +24,23 @@ namespace penumbra::gl {
 namespace {
 
 std::atomic<int> gErrorCount{0};
+// Inside Context::tryAllocate: out-of-memory debug messages are the caller's to report.
+thread_local bool gTrapOutOfMemory = false;
+thread_local bool gSawOutOfMemory = false;
+
+bool isOutOfMemoryMessage(const GLchar* message) {
+  std::string m(message ? message : "");
+  for (auto& c : m) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return m.find("out_of_memory") != std::string::npos || m.find("out of memory") != std::string::npos;
+}
 
 void GLAPIENTRY debugCallback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei,
                               const GLchar* message, const void*) {
+  if (gTrapOutOfMemory && type == GL_DEBUG_TYPE_ERROR && isOutOfMemoryMessage(message)) {
+    gSawOutOfMemory = true;
+    PLOG_DEBUG("GL: {}", message);
+    return;
+  }
   if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) {
     ++gErrorCount;
     PLOG_ERROR("GL: {}", message);
@@ -142,6 +159,7 @@ void Context::loadEntryPoints(void* (*getProc)(const char*)) {
 #include "gl/functions.inl"
 #undef X
   if (!missing.empty()) noContext("missing GL entry point " + missing.front());
+  detail::invalidateLimits();
   auto str = [](GLenum e) {
     const GLubyte* s = glGetString(e);
     return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
@@ -172,6 +190,29 @@ void Context::checkErrors(const char* where) {
     ++gErrorCount;
     PLOG_ERROR("GL error 0x{:x} at {}", e, where);
   }
+}
+
+bool Context::tryAllocate(const std::function<void()>& allocate, const char* where) {
+  checkErrors(where);  // earlier errors are not this allocation's
+  gTrapOutOfMemory = true;
+  gSawOutOfMemory = false;
+  try {
+    allocate();
+  } catch (...) {
+    gTrapOutOfMemory = false;
+    throw;
+  }
+  gTrapOutOfMemory = false;
+  bool ok = !gSawOutOfMemory;
+  for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) {
+    if (e == GL_OUT_OF_MEMORY) {
+      ok = false;
+      continue;
+    }
+    ++gErrorCount;
+    PLOG_ERROR("GL error 0x{:x} at {}", e, where);
+  }
+  return ok;
 }
 
 }  // namespace penumbra::gl

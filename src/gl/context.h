@@ -2,6 +2,7 @@
 // Both backends are in one binary; the active one supplies every GL entry point.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -32,6 +33,10 @@ class Context {
   static int takeErrorCount();
   // Drains glGetError; counts and logs each error with `where`.
   static void checkErrors(const char* where);
+  // Runs `allocate` (one GL allocation: a texture or buffer store) and returns false when the GL
+  // ran out of memory for it (GL_OUT_OF_MEMORY), which is then neither logged nor counted as a
+  // GL error: the caller reports it as a penumbra::Error. Other GL errors count as usual.
+  static bool tryAllocate(const std::function<void()>& allocate, const char* where);
 
  protected:
   explicit Context(Backend b) : backend_(b) {}

@@ -3,6 +3,7 @@
 // link-time symbols would dispatch to the wrong library). X(type, name).
 X(PFNGLGETSTRINGPROC, glGetString)
 X(PFNGLGETINTEGERVPROC, glGetIntegerv)
+X(PFNGLGETINTEGER64VPROC, glGetInteger64v)
 X(PFNGLGETERRORPROC, glGetError)
 X(PFNGLENABLEPROC, glEnable)
 X(PFNGLDISABLEPROC, glDisable)

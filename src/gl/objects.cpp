@@ -1,11 +1,17 @@
 #include "gl/objects.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <map>
 #include <sstream>
 
+#include <unistd.h>
+
+#include <fmt/format.h>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/error.h"
@@ -16,24 +22,100 @@ namespace penumbra::gl {
 // Generated at build time from shaders/ (see shaders/CMakeLists.txt).
 const std::map<std::string, std::string>& embeddedShaders();
 
-void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
-void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
-void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
-void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
-void deleteProgram(GLuint id) { glDeleteProgram(id); }
-void deleteSampler(GLuint id) { glDeleteSamplers(1, &id); }
+// ---- Live-object counts and limits ----------------------------------------------------------
+
+namespace {
+std::atomic<long> gLive[int(Kind::Count)];
+std::atomic<unsigned> gLimitsGeneration{1};
+
+double mib(double bytes) { return bytes / 1048576.0; }
+
+// A GL allocation that may run out of memory: GL_OUT_OF_MEMORY becomes a one-line Error.
+void allocateOrThrow(const std::string& what, double bytes, const std::function<void()>& allocate) {
+  if (limits().maxAllocationBytes > 0 && bytes > limits().maxAllocationBytes)
+    throw Error("GPU memory", fmt::format("out of memory allocating {} ({:.0f} MiB): more than this software "
+                                          "renderer's {:.0f} MiB of system memory", what, mib(bytes),
+                                          mib(limits().maxAllocationBytes)));
+  if (!Context::tryAllocate(allocate, what.c_str()))
+    throw Error("GPU memory", fmt::format("out of memory allocating {} ({:.0f} MiB)", what, mib(bytes)));
+}
+}  // namespace
+
+const char* toString(Kind k) {
+  static const char* const names[] = {"buffer", "texture", "framebuffer", "vertex array", "program", "sampler", "shader"};
+  return names[int(k)];
+}
+
+long liveObjectCount(Kind k) { return gLive[int(k)].load(); }
+long liveObjectCount() {
+  long n = 0;
+  for (auto& c : gLive) n += c.load();
+  return n;
+}
+
+namespace detail {
+void objectCreated(Kind k) { ++gLive[int(k)]; }
+void deleteObject(Kind k, GLuint id) {
+  switch (k) {
+    case Kind::Buffer: glDeleteBuffers(1, &id); break;
+    case Kind::Texture: glDeleteTextures(1, &id); break;
+    case Kind::Framebuffer: glDeleteFramebuffers(1, &id); break;
+    case Kind::VertexArray: glDeleteVertexArrays(1, &id); break;
+    case Kind::Program: glDeleteProgram(id); break;
+    case Kind::Sampler: glDeleteSamplers(1, &id); break;
+    case Kind::Shader: glDeleteShader(id); break;
+    case Kind::Count: return;
+  }
+  --gLive[int(k)];
+}
+void invalidateLimits() { ++gLimitsGeneration; }
+}  // namespace detail
+
+const Limits& limits() {
+  static thread_local Limits l;
+  static thread_local unsigned generation = 0;
+  if (generation != gLimitsGeneration.load()) {
+    l = Limits{};
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &l.maxTextureSize);
+    glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &l.maxCubeMapSize);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &l.maxArrayLayers);
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &l.maxRenderbufferSize);
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, l.maxViewport);
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &l.maxFramebufferWidth);
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &l.maxFramebufferHeight);
+    glGetIntegerv(GL_MAX_FRAMEBUFFER_LAYERS, &l.maxFramebufferLayers);
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &l.maxStorageBlockSize);
+    const GLubyte* r = glGetString(GL_RENDERER);
+    const std::string renderer = r ? reinterpret_cast<const char*>(r) : "";
+    if (renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos)
+      l.maxAllocationBytes = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+    generation = gLimitsGeneration.load();
+  }
+  return l;
+}
 
 // ---- Buffer ----------------------------------------------------------------------------------
 
 Buffer::Buffer(std::size_t bytes, const void* data) : size_(bytes) {
+  if (bytes > std::size_t(std::numeric_limits<GLsizeiptr>::max()))
+    throw Error("GPU memory", fmt::format("a buffer of {} bytes is too large", bytes));
   GLuint id = 0;
   glCreateBuffers(1, &id);
+  static_cast<Object&>(*this) = Object(id);  // owned before anything can throw
   // GL rejects zero-size stores; keep a 16-byte buffer so binding an empty list is valid.
-  glNamedBufferData(id, GLsizeiptr(bytes ? bytes : 16), bytes ? data : nullptr, GL_STATIC_DRAW);
-  static_cast<Object&>(*this) = Object(id);
+  allocateOrThrow("a buffer", double(bytes), [&] {
+    glNamedBufferData(id, GLsizeiptr(bytes ? bytes : 16), bytes ? data : nullptr, GL_STATIC_DRAW);
+  });
 }
 
-void Buffer::bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, id()); }
+void Buffer::bindBase(GLenum target, GLuint index) const {
+  if (target == GL_SHADER_STORAGE_BUFFER && limits().maxStorageBlockSize > 0 &&
+      GLint64(size_) > limits().maxStorageBlockSize)
+    throw Error("GPU memory", fmt::format("a storage buffer of {:.0f} MiB exceeds this GL's "
+                                          "GL_MAX_SHADER_STORAGE_BLOCK_SIZE ({:.0f} MiB); use a smaller image or --param map",
+                                          mib(double(size_)), mib(double(limits().maxStorageBlockSize))));
+  glBindBufferBase(target, index, id());
+}
 
 void Buffer::write(const void* data, std::size_t bytes, std::size_t offset) const {
   PENUMBRA_CHECK(offset + bytes <= size_, "buffer write out of range");
@@ -80,35 +162,69 @@ void setSampling(GLuint id) {
 }
 }  // namespace
 
-Texture Texture::make2D(GLenum internalFormat, int width, int height) {
+namespace {
+const char* formatName(GLenum f) {
+  switch (f) {
+    case GL_R32F: return "R32F";
+    case GL_R16F: return "R16F";
+    case GL_RG32F: return "RG32F";
+    case GL_RGBA32F: return "RGBA32F";
+    case GL_RGBA16F: return "RGBA16F";
+    case GL_RGBA8: return "RGBA8";
+    case GL_DEPTH_COMPONENT32F: return "DEPTH32F";
+    case GL_R32UI: return "R32UI";
+    case GL_RGBA32UI: return "RGBA32UI";
+    default: return "?";
+  }
+}
+
+// Checks a texture's size against the GL's limits (a one-line Error instead of a GL error),
+// then creates it and allocates its storage (GL_OUT_OF_MEMORY: a one-line Error). layers 0: 2D.
+GLuint createTexture(GLenum target, GLenum fmt, int w, int h, int layers, Texture& owner,
+                     std::function<void(GLuint)> storage) {
+  std::string what = layers > 0 ? fmt::format("a {} x {} x {} {} texture array", w, h, layers, formatName(fmt))
+                                : fmt::format("a {} x {} {} texture", w, h, formatName(fmt));
+  const Limits& l = limits();
+  const int maxSize = target == GL_TEXTURE_CUBE_MAP_ARRAY ? l.maxCubeMapSize : l.maxTextureSize;
+  if (w <= 0 || h <= 0 || (layers == 0 && target != GL_TEXTURE_2D) || layers < 0)
+    throw Error("GPU memory", "cannot allocate " + what + " (empty)");
+  if (w > maxSize || h > maxSize)
+    throw Error("GPU memory", fmt::format("{} exceeds this GL's {} ({}); use a smaller -W/-H or --param map", what,
+                                          target == GL_TEXTURE_CUBE_MAP_ARRAY ? "GL_MAX_CUBE_MAP_TEXTURE_SIZE"
+                                                                             : "GL_MAX_TEXTURE_SIZE",
+                                          maxSize));
+  if (layers > l.maxArrayLayers)
+    throw Error("GPU memory", fmt::format("{} exceeds this GL's GL_MAX_ARRAY_TEXTURE_LAYERS ({})", what, l.maxArrayLayers));
   GLuint id = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &id);
-  glTextureStorage2D(id, 1, internalFormat, width, height);
+  glCreateTextures(target, 1, &id);
+  static_cast<Object<Kind::Texture>&>(owner) = Object<Kind::Texture>(id);  // deleted if storage fails
+  const double bytes = double(w) * h * std::max(layers, 1) * formatInfo(fmt).bytesPerTexel;
+  allocateOrThrow(what, bytes, [&] { storage(id); });
   setSampling(id);
+  return id;
+}
+}  // namespace
+
+Texture Texture::make2D(GLenum internalFormat, int width, int height) {
   Texture t;
-  static_cast<Object&>(t) = Object(id);
+  createTexture(GL_TEXTURE_2D, internalFormat, width, height, 0, t,
+                [&](GLuint id) { glTextureStorage2D(id, 1, internalFormat, width, height); });
   t.w_ = width, t.h_ = height, t.layers_ = 0, t.fmt_ = internalFormat;
   return t;
 }
 
 Texture Texture::make2DArray(GLenum internalFormat, int width, int height, int layers) {
-  GLuint id = 0;
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
-  glTextureStorage3D(id, 1, internalFormat, width, height, layers);
-  setSampling(id);
   Texture t;
-  static_cast<Object&>(t) = Object(id);
+  createTexture(GL_TEXTURE_2D_ARRAY, internalFormat, width, height, layers, t,
+                [&](GLuint id) { glTextureStorage3D(id, 1, internalFormat, width, height, layers); });
   t.w_ = width, t.h_ = height, t.layers_ = layers, t.fmt_ = internalFormat;
   return t;
 }
 
 Texture Texture::makeCubeArray(GLenum internalFormat, int size, int cubes) {
-  GLuint id = 0;
-  glCreateTextures(GL_TEXTURE_CUBE_MAP_ARRAY, 1, &id);
-  glTextureStorage3D(id, 1, internalFormat, size, size, 6 * cubes);
-  setSampling(id);
   Texture t;
-  static_cast<Object&>(t) = Object(id);
+  createTexture(GL_TEXTURE_CUBE_MAP_ARRAY, internalFormat, size, size, 6 * cubes, t,
+                [&](GLuint id) { glTextureStorage3D(id, 1, internalFormat, size, size, 6 * cubes); });
   t.w_ = t.h_ = size, t.layers_ = 6 * cubes, t.fmt_ = internalFormat;
   return t;
 }
@@ -202,6 +318,10 @@ Framebuffer::Framebuffer(const std::vector<Attachment>& colors, const Texture* d
     else glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth->id(), 0);
     w_ = depth->width(), h_ = depth->height();
   }
+  const Limits& l = limits();
+  if (w_ > l.maxViewport[0] || h_ > l.maxViewport[1])
+    throw Error("GPU memory", fmt::format("a {} x {} render target exceeds this GL's GL_MAX_VIEWPORT_DIMS ({} x {})", w_,
+                                          h_, l.maxViewport[0], l.maxViewport[1]));
   PENUMBRA_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
                  "framebuffer incomplete");
 }
@@ -218,6 +338,13 @@ Framebuffer::Framebuffer(const std::vector<const Texture*>& colors, const Textur
     : Framebuffer(wholeTextures(colors), depth) {}
 
 Framebuffer Framebuffer::empty(int width, int height, int layers) {
+  const Limits& l = limits();
+  if (width <= 0 || height <= 0 || width > l.maxFramebufferWidth || height > l.maxFramebufferHeight ||
+      width > l.maxViewport[0] || height > l.maxViewport[1] || layers > l.maxFramebufferLayers)
+    throw Error("GPU memory", fmt::format("a {} x {} x {} framebuffer without attachments exceeds this GL's "
+                                          "GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT/LAYERS ({} x {} x {}); use a smaller -W/-H or --param map",
+                                          width, height, layers, l.maxFramebufferWidth, l.maxFramebufferHeight,
+                                          l.maxFramebufferLayers));
   GLuint id = 0;
   glCreateFramebuffers(1, &id);
   Framebuffer f;
@@ -350,13 +477,21 @@ GLenum stageOf(const std::string& file) {
 Program::Program(const std::vector<std::string>& files, const std::vector<std::string>& defines) {
   GLuint prog = glCreateProgram();
   static_cast<Object&>(*this) = Object(prog);
-  std::vector<GLuint> shaders;
+  // Compiled stages are deleted however this constructor leaves (a later stage may throw).
+  struct Stages {
+    std::vector<GLuint> ids;
+    ~Stages() {
+      for (GLuint sh : ids) detail::deleteObject(Kind::Shader, sh);
+    }
+  } stages;
+  std::vector<GLuint>& shaders = stages.ids;
   for (auto& file : files) {
     std::string header = "#version 450 core\n";
     for (auto& d : defines) header += "#define " + d + "\n";
     std::vector<std::string> seen{"shared.h"};
     std::string src = header + shaderSource("shared.h") + "#line 1\n" + resolveIncludes(shaderSource(file), seen);
     GLuint sh = glCreateShader(stageOf(file));
+    detail::objectCreated(Kind::Shader);
     const char* p = src.c_str();
     glShaderSource(sh, 1, &p, nullptr);
     glCompileShader(sh);
@@ -365,7 +500,7 @@ Program::Program(const std::vector<std::string>& files, const std::vector<std::s
     if (!ok) {
       char log[4096];
       glGetShaderInfoLog(sh, sizeof log, nullptr, log);
-      glDeleteShader(sh);
+      detail::deleteObject(Kind::Shader, sh);
       std::string msg(log);
       for (auto& c : msg) if (c == '\n') c = ' ';
       throw Error("shaders/" + file, "compile error: " + msg);
@@ -374,7 +509,8 @@ Program::Program(const std::vector<std::string>& files, const std::vector<std::s
     shaders.push_back(sh);
   }
   glLinkProgram(prog);
-  for (GLuint sh : shaders) glDeleteShader(sh);
+  for (GLuint sh : shaders) detail::deleteObject(Kind::Shader, sh);
+  shaders.clear();
   GLint ok = 0;
   glGetProgramiv(prog, GL_LINK_STATUS, &ok);
   if (!ok) {

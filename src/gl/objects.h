@@ -15,12 +15,29 @@
 
 namespace penumbra::gl {
 
-// Move-only owner of one GL name.
-template <void (*Delete)(GLuint)>
+// Kinds of GL object the wrappers own; every one is counted while alive (liveObjectCount).
+enum class Kind : int { Buffer, Texture, Framebuffer, VertexArray, Program, Sampler, Shader, Count };
+const char* toString(Kind k);
+
+// GL objects created through these wrappers and not yet deleted, in this process (all
+// contexts): of one kind, or of every kind. Resource tests check it returns to its baseline.
+long liveObjectCount(Kind k);
+long liveObjectCount();
+
+namespace detail {
+void objectCreated(Kind k);
+void deleteObject(Kind k, GLuint id);  // deletes the GL name and uncounts it
+void invalidateLimits();               // another context was made current
+}  // namespace detail
+
+// Move-only owner of one GL name of kind K.
+template <Kind K>
 class Object {
  public:
   Object() = default;
-  explicit Object(GLuint id) : id_(id) {}
+  explicit Object(GLuint id) : id_(id) {
+    if (id_) detail::objectCreated(K);
+  }
   ~Object() { reset(); }
   Object(Object&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
   Object& operator=(Object&& o) noexcept {
@@ -32,7 +49,7 @@ class Object {
   GLuint id() const { return id_; }
   explicit operator bool() const { return id_ != 0; }
   void reset() {
-    if (id_) Delete(id_);
+    if (id_) detail::deleteObject(K, id_);
     id_ = 0;
   }
 
@@ -40,14 +57,22 @@ class Object {
   GLuint id_ = 0;
 };
 
-void deleteBuffer(GLuint id);
-void deleteTexture(GLuint id);
-void deleteFramebuffer(GLuint id);
-void deleteVertexArray(GLuint id);
-void deleteProgram(GLuint id);
-void deleteSampler(GLuint id);
+// The GL's limits, queried once per context (llvmpipe: 16384 px textures and viewports, 2048
+// array layers, 128 MiB storage blocks). Allocations below check against them and throw a
+// one-line penumbra::Error instead of raising a GL error.
+struct Limits {
+  GLint maxTextureSize = 0, maxCubeMapSize = 0, maxArrayLayers = 0, maxRenderbufferSize = 0;
+  GLint maxViewport[2] = {0, 0};
+  GLint maxFramebufferWidth = 0, maxFramebufferHeight = 0, maxFramebufferLayers = 0;
+  GLint64 maxStorageBlockSize = 0;
+  // Largest single allocation attempted: on a software renderer (llvmpipe) "GPU memory" is
+  // system memory, which Linux overcommits, so an allocation beyond physical memory is refused
+  // up front rather than risking the OOM killer when it is touched; 0: no bound (a GPU).
+  double maxAllocationBytes = 0;
+};
+const Limits& limits();  // of the current context
 
-class Buffer : public Object<deleteBuffer> {
+class Buffer : public Object<Kind::Buffer> {
  public:
   Buffer() = default;
   // Immutable-size buffer with `bytes` of data (data may be null).
@@ -63,7 +88,7 @@ class Buffer : public Object<deleteBuffer> {
   std::size_t size_ = 0;
 };
 
-class Texture : public Object<deleteTexture> {
+class Texture : public Object<Kind::Texture> {
  public:
   Texture() = default;
   // 2D texture with one level; nearest filtering, clamp to edge.
@@ -96,7 +121,7 @@ class Texture : public Object<deleteTexture> {
   GLenum fmt_ = 0;
 };
 
-class Framebuffer : public Object<deleteFramebuffer> {
+class Framebuffer : public Object<Kind::Framebuffer> {
  public:
   // A colour attachment: a texture, or one layer of an array texture.
   struct Attachment {
@@ -119,7 +144,7 @@ class Framebuffer : public Object<deleteFramebuffer> {
 
 // Sampling state bound to a texture unit in place of the texture's own (one depth texture read
 // both raw and through a depth comparison).
-class Sampler : public Object<deleteSampler> {
+class Sampler : public Object<Kind::Sampler> {
  public:
   Sampler() = default;
   // Clamp to a border of `border` (all channels); linear or nearest filtering; with
@@ -129,7 +154,7 @@ class Sampler : public Object<deleteSampler> {
   static void unbind(GLuint unit);
 };
 
-class VertexArray : public Object<deleteVertexArray> {
+class VertexArray : public Object<Kind::VertexArray> {
  public:
   VertexArray() = default;  // no GL object: members may be declared before a context exists
   static VertexArray create();  // needs the current context
@@ -145,7 +170,7 @@ class VertexArray : public Object<deleteVertexArray> {
 // $PENUMBRA_SHADER_DIR instead when set, for iterating). Each source gets "#version 450 core",
 // the given defines ("NAME" or "NAME VALUE"), shaders/shared.h and its #include "file" lines
 // resolved. Compile/link errors throw penumbra::Error naming the shader file.
-class Program : public Object<deleteProgram> {
+class Program : public Object<Kind::Program> {
  public:
   Program() = default;
   Program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});

@@ -212,10 +212,12 @@ const gl::Texture& MultiViewTechnique::ensureMaps(GLenum format, const MapFrame&
     if (frame.size > maxSize)
       throw Error(name_, fmt::format("map size {} exceeds the GL's {}", frame.size, maxSize));
     maps_ = gl::Texture();
-    maps_ = gl::Texture::make2DArray(format, frame.size, frame.size, frame.layers);
-    if (glGetError() == GL_OUT_OF_MEMORY)
-      throw Error(name_, fmt::format("out of GPU memory for {} depth maps of {}^2 ({:.0f} MiB)", frame.layers, frame.size,
-                                     double(maps_.bytes()) / 1048576.0));
+    try {
+      maps_ = gl::Texture::make2DArray(format, frame.size, frame.size, frame.layers);
+    } catch (const Error&) {  // GL_OUT_OF_MEMORY (gl/objects.cpp): name the technique and the parameter
+      throw Error(name_, fmt::format("out of GPU memory for {} depth maps of {}^2 ({:.0f} MiB); use a smaller --param map",
+                                     frame.layers, frame.size, 4.0 * frame.size * double(frame.size) * frame.layers / 1048576.0));
+    }
   }
   maps_.clear(glm::vec4(0.0f));
   return maps_;
