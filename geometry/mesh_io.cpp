@@ -491,6 +491,9 @@ TriangleMesh loadPly(const std::string& path, std::string_view text, MeshReport&
       roles.push_back(role);
     }
     if (e.name == "vertex") {
+      // A second vertex element would append positions without the first one's normals or
+      // uvs (found by fuzzing: tests/fuzz/regressions/ply/); the format has one.
+      if (sawVertices) throw Error(path, "PLY file has more than one vertex element");
       const auto once = [&](Role r) { return std::count(roles.begin(), roles.end(), r) == 1; };
       if (!once(X) || !once(Y) || !once(Z))
         throw Error(path, "PLY vertices need x, y and z properties");

@@ -33,6 +33,23 @@ expect 2 "\-\-line" -- "$P" lut --line 3 -o "$T"
 expect 1 "does not exist" -- "$P" lut -o "$T/no/such/dir"
 expect 0 "" -- "$P" lut --samples 8 --line 16 --cube 4 -o "$T"
 test -s "$T/edge_rect_stratified_correlated_n8_seed1.lut" || { echo "FAIL: lut wrote no table"; fail=1; }
+# Bad inputs (hard-cases.md, "Bad inputs: expected behaviour"), all refused before any GL work.
+expect 2 "\-W/\-H" -- "$P" render -W 0 -H 0 -o "$T/x.png"
+expect 2 "\-\-samples" -- "$P" render --samples 129 -o "$T/x.png"
+expect 1 "size: an area light needs a positive size" -- "$P" render --set lights.0.size=0 -o "$T/x.png"
+test ! -e "$T/x.png" || { echo "FAIL: an image was written for a bad input"; fail=1; }
+# Read-only output folder. Root ignores mode bits, so as root the case runs as nobody.
+mkdir "$T/ro" && chmod 555 "$T/ro" && chmod 755 "$T"
+as_user=""; [ "$(id -u)" -eq 0 ] && as_user="setpriv --reuid=65534 --regid=65534 --clear-groups --"
+expect 1 "is not writable" -- $as_user "$P" render -o "$T/ro/x.png"
+# A mesh with dropped faces loads and `info` counts every drop; a glTF reaching outside its
+# folder is refused naming the file and the buffer.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 0 1\nf 1 2 3\nf 1 2 10\nf 1 1 2\nf 1 2 4\nf 2 3 1\n' > "$T/bad.obj"
+expect 0 "" -- "$P" info "$T/bad.obj"
+grep -q "1 triangle, 4 dropped (1 invalid index, 1 degenerate, 1 non-finite, 1 duplicate)" "$T/out" ||
+  { echo "FAIL: info does not count the dropped faces"; cat "$T/out"; fail=1; }
+printf '{"asset":{"version":"2.0"},"buffers":[{"byteLength":8,"uri":"../x.bin"}]}' > "$T/bad.gltf"
+expect 1 "bad.gltf: buffer 0: uri '../x.bin' leaves its folder" -- "$P" info "$T/bad.gltf"
 # Rendering cases need a GL context.
 "$P" render -W 32 -H 32 --samples 1 -o "$T/probe.png" 2>"$T/err"; rc=$?
 if [ "$rc" -eq 77 ]; then echo "no GL context: skipping rendering cases"; [ $fail -eq 0 ] && exit 77; exit 1; fi

@@ -63,6 +63,90 @@ void exrCoreError(exr_const_context_t, exr_result_t, const char* msg) {
   tExrCoreMessage = msg ? msg : "";
 }
 
+// OpenEXR's C++ header reader (checkOpenEXRFile, Imf::InputFile) trusts the file: it
+// allocates an unknown attribute's declared size before reading it (a 1.7 KB file declaring
+// 1.6 GB, found by fuzzing: tests/fuzz/regressions/exr/), and it reads a known type by its own
+// layout (a chlist until its empty name, a preview by its width x height) rather than by the
+// declared size, so a size that disagrees makes it read the rest of the header out of step.
+// Both are checked here, in the reader's own walk of the (single) header: every size fits in
+// the file, and every known type's content has exactly its declared size. Layout: magic,
+// version, then (name\0 type\0 int32 size value) per attribute, ended by an empty name.
+void checkExrAttributeSizes(const std::string& path) {
+  // The header is read whole; 64 MiB is far beyond any real one (a preview image included).
+  constexpr std::size_t kMaxHeader = 64u << 20;
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff fileSize = in.tellg();
+  std::string bytes(std::min<std::size_t>(fileSize > 0 ? std::size_t(fileSize) : 0, kMaxHeader), '\0');
+  in.seekg(0);
+  in.read(bytes.data(), std::streamsize(bytes.size()));
+  bytes.resize(std::size_t(in.gcount()));
+  const auto u8 = [&](std::size_t at) { return std::uint32_t(static_cast<unsigned char>(bytes[at])); };
+  const auto i32 = [&](std::size_t at) {
+    return std::int64_t(std::int32_t(u8(at) | u8(at + 1) << 8 | u8(at + 2) << 16 | u8(at + 3) << 24));
+  };
+  if (bytes.size() < 8) throw Error(path, "truncated OpenEXR header");
+  const std::size_t maxName = (u8(5) & 0x04) ? 255 : 31;  // long-names flag, version bit 10
+  std::size_t pos = 8;
+  auto readString = [&](const char* what) {
+    const std::size_t end = bytes.find('\0', pos);
+    if (end == std::string::npos) throw Error(path, "truncated OpenEXR header");
+    if (end - pos > maxName) throw Error(path, std::string("OpenEXR ") + what + " too long");
+    std::string out = bytes.substr(pos, end - pos);
+    pos = end + 1;
+    return out;
+  };
+  // Known types of fixed size (OpenEXR 3.1's TypedAttribute layouts).
+  static const std::map<std::string, std::int64_t> kFixed = {
+      {"box2i", 16}, {"box2f", 16},  {"compression", 1}, {"lineOrder", 1}, {"envmap", 1},
+      {"float", 4},  {"double", 8},  {"int", 4},         {"v2i", 8},        {"v2f", 8},
+      {"v2d", 16},   {"v3i", 12},    {"v3f", 12},        {"v3d", 24},       {"m33f", 36},
+      {"m44f", 64},  {"m33d", 72},   {"m44d", 128},      {"chromaticities", 32},
+      {"keycode", 28}, {"timecode", 8}, {"rational", 8}, {"tiledesc", 9}, {"deepImageState", 1}};
+  for (int count = 0; count < 10000; ++count) {
+    const std::string name = readString("attribute name");
+    if (name.empty()) return;
+    const std::string type = readString("attribute type");
+    if (bytes.size() - pos < 4) throw Error(path, "truncated OpenEXR header");
+    const std::int64_t size = i32(pos);
+    pos += 4;
+    const std::string what = "OpenEXR header attribute '" + oneLine(name) + "' (" + oneLine(type) + ")";
+    if (size < 0 || std::uint64_t(size) > bytes.size() - pos) {
+      if (bytes.size() == kMaxHeader) throw Error(path, "OpenEXR header larger than 64 MiB");
+      throw Error(path, what + " declares " + std::to_string(size) + " bytes, more than the " +
+                            std::to_string(bytes.size() - pos) + " left in the file");
+    }
+    std::int64_t content = size;  // what the C++ reader will consume
+    if (const auto it = kFixed.find(type); it != kFixed.end()) {
+      content = it->second;
+    } else if (type == "chlist") {  // entries: name\0 and 16 bytes, then an empty name
+      std::size_t at = pos;
+      while (at < pos + std::size_t(size) && bytes[at] != 0) {
+        const std::size_t end = bytes.find('\0', at);
+        if (end == std::string::npos || end - at > 255) break;  // channel names: any length
+        at = end + 1 + 16;
+      }
+      content = std::int64_t(at - pos) + 1;
+    } else if (type == "preview") {  // width, height, then 4 bytes per pixel
+      const long double pixels = size >= 8 ? (long double)i32(pos) * i32(pos + 4) : -1.0L;
+      content = pixels >= 0 && 8 + 4 * pixels == size ? size : -1;
+    } else if (type == "stringvector") {  // (int32 length, chars)*, each read into a string
+      std::int64_t at = 0;
+      while (at + 4 <= size) {
+        const std::int64_t n = i32(pos + std::size_t(at));
+        if (n < 0 || n > size - at - 4) break;
+        at += 4 + n;
+      }
+      content = at;
+    }
+    if (content != size) {
+      throw Error(path, what + " declares " + std::to_string(size) +
+                            " bytes but its content needs " + std::to_string(content));
+    }
+    pos += std::size_t(size);
+  }
+  throw Error(path, "OpenEXR header has too many attributes");
+}
+
 // Validates everything that decides how much memory a read will take, before any reader
 // allocates: the core API parses only the header (the chunk table is read lazily), whereas
 // Imf::InputFile sizes its line-offset table from the data window straight away.
@@ -102,6 +186,7 @@ void checkExrFile(const std::string& path) {
                           sizeText(kMaxDimension, kMaxDimension));
   }
   guard.reset();
+  checkExrAttributeSizes(path);
   // reduceMemory/reduceTime bound what the check itself may allocate and read.
   if (Imf::checkOpenEXRFile(path.c_str(), /*reduceMemory=*/true, /*reduceTime=*/true)) {
     throw Error(path, "corrupt or truncated OpenEXR file");

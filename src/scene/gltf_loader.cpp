@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -408,12 +409,14 @@ glm::dmat4 localMatrix(const tinygltf::Node& n) {
   return m;
 }
 
-// A usable world matrix: finite, and not (nearly) collapsing space onto a plane. The
-// determinant is compared with the product of the column lengths, so scale does not matter.
+// A usable world matrix: finite as the float matrix it is applied as (a double beyond float
+// range would become Inf, and converting it is undefined behaviour), and not (nearly)
+// collapsing space onto a plane. The determinant is compared with the product of the column
+// lengths, so scale does not matter.
 bool usable(const glm::dmat4& m) {
   for (int c = 0; c < 4; ++c) {
     for (int r = 0; r < 4; ++r) {
-      if (!std::isfinite(m[c][r])) return false;
+      if (!(std::abs(m[c][r]) <= double(std::numeric_limits<float>::max()))) return false;
     }
   }
   const glm::dmat3 l(m);
@@ -617,7 +620,10 @@ Model loadGltf(const std::string& path) {
         sm.mesh = it->second.mesh;
         sm.report = it->second.report;
         sm.material = it->second.material;
-        transformMesh(sm.mesh, glm::mat4(world));
+        if (const std::size_t n = placeMesh(sm.mesh, sm.report, glm::mat4(world))) {
+          L.warn(label + ": " + std::to_string(n) + " triangles of " + name +
+                 " dropped: the node's transform takes them beyond float range");
+        }
         out.meshes.push_back(std::move(sm));
       }
     }

@@ -63,6 +63,13 @@ geo::TriangleMesh makeDisk(float radius, int segments);
 // (negative determinant) reverses the triangle order so faces stay counter-clockwise outward.
 void transformMesh(geo::TriangleMesh& mesh, const glm::mat4& m);
 
+// transformMesh for a mesh that was cleaned in its own space: a finite matrix can still take a
+// large coordinate beyond float range (a 1e30 node scale on a 1e10 coordinate, kept in
+// tests/fuzz/regressions/), so triangles left with a non-finite vertex are dropped and counted
+// in `report` like NaN input (hard-cases.md, bad inputs: "huge magnitudes", "never silently
+// lost"). Returns how many triangles were dropped.
+std::size_t placeMesh(geo::TriangleMesh& mesh, geo::MeshReport& report, const glm::mat4& m);
+
 // Places a light: its frame follows `m` (the normal as a surface normal), its size scales with
 // the lengths of the transformed tangent and bitangent.
 Light transformLight(const Light& light, const glm::mat4& m);

@@ -177,7 +177,19 @@ int loadTexture(Context& ctx, const std::string& reference, const std::string& c
   if (const auto it = ctx.textureByKey.find(key); it != ctx.textureByKey.end()) return it->second;
   Texture texture;
   texture.source = key;
-  texture.image = procedural ? stainedGlassImage(64) : readTexture(key, /*srgb=*/true);
+  if (procedural) {
+    texture.image = stainedGlassImage(64);
+  } else if (lowerExtension(key) == ".exr") {
+    // NaN/Inf texels are replaced by 0; the scene's warnings say how many, as `penumbra info`
+    // prints them (hard-cases.md, bad inputs: EXR textures "sanitised with a warning").
+    int sanitized = 0;
+    texture.image = readExr(key, &sanitized);
+    if (sanitized > 0) {
+      ctx.warn(key + ": replaced " + std::to_string(sanitized) + " non-finite texels with 0");
+    }
+  } else {
+    texture.image = readTexture(key, /*srgb=*/true);
+  }
   if (texture.image.empty()) ctx.fail(context, "texture '" + reference + "' is empty");
   const int index = int(ctx.scene.textures.size());
   ctx.scene.textures.push_back(std::move(texture));
@@ -250,6 +262,22 @@ glm::mat4 readTransform(Context& ctx, Fields& f) {
     }
   }
   return world;
+}
+
+glm::vec3 unitOrFail(Context& ctx, glm::vec3 v, const std::string& context);
+
+// "spin": {"axis": [0, 1, 0], "degreesPerSecond": 30, "pivot": [x, y, z]} (for --frames).
+Spin readSpin(Context& ctx, Fields& f, glm::vec3 defaultPivot) {
+  Spin spin;
+  const Json* v = f.get("spin");
+  if (!v) return spin;
+  if (!v->is_object()) ctx.fail(f.at("spin"), "expected {\"axis\", \"degreesPerSecond\", \"pivot\"}");
+  Fields r(ctx, *v, f.at("spin"));
+  spin.axis = unitOrFail(ctx, r.vec3("axis", spin.axis), f.at("spin.axis"));
+  spin.degreesPerSecond = r.number("degreesPerSecond", 0.0f);
+  spin.pivot = r.vec3("pivot", defaultPivot);
+  r.finish();
+  return spin;
 }
 
 geo::TriangleMesh readShape(Context& ctx, Fields& f, const std::string& shape) {
@@ -344,6 +372,7 @@ void readObject(Context& ctx, const Json& item, int index) {
     ctx.fail(f.at("opacity"), "must be in [0, 1], got " + Fields::fmtFloat(opacity));
   }
   const glm::mat4 world = readTransform(ctx, f);
+  const Spin spin = readSpin(ctx, f, glm::vec3(world[3]));  // pivot: the object's origin
   const std::string label = name.empty() ? "objects[" + std::to_string(index) + "]" : name;
 
   std::vector<SceneMesh> placed;
@@ -356,7 +385,10 @@ void readObject(Context& ctx, const Json& item, int index) {
     for (const SceneMesh& source : model.model->meshes) {
       SceneMesh m = source;
       m.name = label + "/" + source.name;
-      transformMesh(m.mesh, world);
+      if (const std::size_t n = placeMesh(m.mesh, m.report, world)) {
+        ctx.warn(ctx.where + ": " + f.context() + ": " + std::to_string(n) + " triangles of " +
+                 source.name + " dropped: the transform takes them beyond float range");
+      }
       m.material = material >= 0          ? material
                    : source.material >= 0 ? model.materialBase + source.material
                                           : 0;
@@ -364,6 +396,7 @@ void readObject(Context& ctx, const Json& item, int index) {
     }
     for (const Light& light : model.model->lights) {
       ctx.scene.lights.push_back(transformLight(light, world));
+      ctx.scene.lights.back().spin = spin;
     }
   } else if (f.has("shape")) {
     SceneMesh m;
@@ -381,6 +414,7 @@ void readObject(Context& ctx, const Json& item, int index) {
   f.finish();
   for (SceneMesh& m : placed) {
     if (hasOpacity) m.material = withOpacity(ctx, m.material, opacity);
+    m.spin = spin;
     ctx.scene.meshes.push_back(std::move(m));
   }
 }
@@ -477,6 +511,7 @@ void readLight(Context& ctx, const Json& item, int index) {
       }
     }
   }
+  light.spin = readSpin(ctx, f, glm::vec3(0.0f));  // pivot: the world origin
   f.finish();
   ctx.scene.lights.push_back(std::move(light));
 }
@@ -587,6 +622,12 @@ Scene interpretScene(const Json& doc, const std::string& where, const std::strin
   } else {
     glm::vec3 lo, hi;
     scene.bounds(lo, hi);
+    // Bounds near float's range (a huge but finite model) cannot be framed: say so rather than
+    // report the computed camera's Inf as if the user had written it.
+    if (!isFinite(0.5f * (hi - lo)) || !isFinite(hi - lo) || !isFinite(0.5f * (lo + hi))) {
+      ctx.fail("camera", "the scene's bounds are too large to frame automatically; give a "
+                         "\"camera\"");
+    }
     readCamera(ctx, framingCamera(lo, hi));
   }
   f.finish();
