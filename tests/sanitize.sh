@@ -3,14 +3,13 @@
 # suite under the sanitizers. Any sanitizer report fails the test it happens in (halt on error,
 # UB is not recoverable). Leak checking is on; tests/lsan.supp suppresses only leaks whose stack
 # is inside Mesa / LLVM / libEGL / llvmpipe system libraries, never penumbra code.
-# The benchmarks (bench/) are not built there.
 # Usage: tests/sanitize.sh [extra ctest args...]   (from anywhere; BUILD=dir overrides build-asan)
 set -eu
 cd "$(dirname "$0")/.."
 SRC=$(pwd)
 BUILD=${BUILD:-build-asan}
 start=$(date +%s)
-cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPENUMBRA_SANITIZE=ON -DPENUMBRA_BUILD_BENCH=OFF >/dev/null
+cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPENUMBRA_SANITIZE=ON >/dev/null
 cmake --build "$BUILD"
 built=$(date +%s)
 # detect_leaks: on. The GL driver (llvmpipe) is not instrumented; its own allocations are covered
