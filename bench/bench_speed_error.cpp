@@ -7,7 +7,7 @@
 // reference, how often the technique is on a scene's Pareto front, and the plot of those means
 // (DIR/headline.svg, DIR/headline.md).
 //
-//   penumbra_bench_speed_error -o DIR [--scenes default,scenes/engine.json,...] [-W 256]
+//   penumbra_bench_speed_error -o DIR [--scenes default,scenes/engine.json,...] [-W 128]
 //       [--samples 8,16,32] [--techniques hard-sv,dcs,...] [--frames 3] [--warmup 1] [--backend egl]
 #include <CLI/CLI.hpp>
 
@@ -46,7 +46,7 @@ int speedErrorStudy(int argc, char** argv, std::FILE* out) {
   std::vector<std::string> techniques = {"hard-sv", "dcs", "dcs-lut", "mvr", "vwss", "reproject",
                                          "pcss", "pcss-ultra", "pcss-mask", "vssm"};
   std::string samples = "8,16,32", outDir, backend = "egl";
-  int width = 256, frames = 3, warmup = 1;
+  int width = 128, frames = 3, warmup = 1;
   bool images = true;
   app.add_option("--scenes", scenes, "scene files ('default': the built-in scene)")->delimiter(',');
   app.add_option("--techniques", techniques)->delimiter(',');

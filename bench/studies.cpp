@@ -7,7 +7,7 @@ const std::vector<Study>& studyTable() {
   // images, maps and frame counts so that the whole suite is a smoke run of a few minutes.
   static const std::vector<Study> table = {
       {"speed-error", "speed against error on every shipped scene, the headline table and plot", speedErrorStudy, {},
-       {"-W", "128", "--samples", "8,16", "--frames", "1"}},
+       {"-W", "96", "--samples", "8,16", "--frames", "1"}},
       {"dcs", "DCS paper: covered-sample modes, sample counts, shading modes, interleaving, semi-opaque", dcsStudies, {},
        {"-W", "256", "-H", "256", "--frames", "2"}},
       {"multiview", "VWSS paper tables 1-2, figures 8 and 13, map-resolution convergence", multiviewStudies, {},
