@@ -287,6 +287,15 @@ std::string plyHeader(const char* format, const char* indexType) {
 const int kFaces[5][3] = {{0, 1, 2}, {0, 1, 9}, {0, 0, 1}, {0, 1, 3}, {1, 2, 0}};
 const char* const kVertexText[4] = {"0 0 0", "1 0 0", "0 1 0", "nan 0 1"};
 
+// The vertex and face lines OFF and ASCII PLY share ("x y z", "3 a b c").
+std::string asciiVerticesAndFaces() {
+  std::string s;
+  for (const char* v : kVertexText) s += std::string(v) + "\n";
+  for (const auto& f : kFaces)
+    s += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
+  return s;
+}
+
 const MeshCase kMeshCases[] = {
     {"model.obj",
      [] {
@@ -299,21 +308,11 @@ const MeshCase kMeshCases[] = {
      }},
     {"model.off",
      [] {
-       std::string s = "OFF\n4 5 0\n";
-       for (const char* v : kVertexText) s += std::string(v) + "\n";
-       for (const auto& f : kFaces)
-         s += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " +
-              std::to_string(f[2]) + "\n";
-       return s;
+       return "OFF\n4 5 0\n" + asciiVerticesAndFaces();
      }},
     {"ascii.ply",
      [] {
-       std::string s = plyHeader("ascii", "int");
-       for (const char* v : kVertexText) s += std::string(v) + "\n";
-       for (const auto& f : kFaces)
-         s += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " +
-              std::to_string(f[2]) + "\n";
-       return s;
+       return plyHeader("ascii", "int") + asciiVerticesAndFaces();
      }},
     {"binary.ply",
      [] {
