@@ -119,6 +119,7 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   const TechniqueInfo& info = findTechnique(technique);
   checkOutputPath(output);
   Scene scene = loadSceneFor(o);
+  if (scene.isAnimated()) scene = scene.posedAt(o.time);  // "spin": the pose at --time
   RenderSettings settings = settingsFor(o, scene);
   auto context = gl::Context::create(gl::parseBackend(o.backend));
   PLOG_INFO("renderer: {} ({})", context->renderer(), context->version());

@@ -245,7 +245,7 @@ namespace {
 nlohmann::json spreadJson(const Spread& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }
 
 // The presets: the cartesian product of the sweep axes, the first axis varying slowest.
-std::vector<ComparePreset> makePresets(const Scene& scene, const RenderSettings& settings, const CompareOptions& o) {
+std::vector<ComparePreset> makePresets(const RenderSettings& settings, const CompareOptions& o) {
   std::vector<ComparePreset> presets(1);
   presets[0].width = settings.width, presets[0].height = settings.height, presets[0].samples = settings.sampling.count;
   presets[0].params = o.params;
@@ -279,7 +279,6 @@ std::vector<ComparePreset> makePresets(const Scene& scene, const RenderSettings&
   for (auto& p : presets) {
     for (auto& [k, v] : p.values) p.label += (p.label.empty() ? "" : " ") + k + "=" + v;
   }
-  (void)scene;
   return presets;
 }
 
@@ -337,7 +336,7 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
                                 const CompareOptions& o) {
   namespace fs = std::filesystem;
   CompareResult result;
-  result.presets = makePresets(scene, settings, o);
+  result.presets = makePresets(settings, o);
   const bool converged =
       o.converged || std::any_of(o.sweeps.begin(), o.sweeps.end(), [](auto& a) { return a.key == "samples"; });
   if (converged && !o.converged) PLOG_INFO("samples are swept: errors are also measured against raytrace-converged");
@@ -380,23 +379,38 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
   for (auto& j : jobs) steps += int(j.size()) + 1 + (converged ? 1 : 0);
   Progress progress(steps, o.progress);
 
-  // Frame f of a preset: the scene posed at its time (a copy only when something moves).
-  std::vector<Scene> posed;
-  for (int f = 0; f < frames; ++f)
-    if (animated) posed.push_back(scene.posedAt(settings.time + float(f) / o.fps));
-  auto sceneAt = [&](int f) -> const Scene& { return animated ? posed[std::size_t(f)] : scene; };
+  // Frame f: the scene posed at its time. Only moving scenes are copied, one frame at a time
+  // (a long --frames run must not hold a copy of the scene per frame); a renderer made from a
+  // posed scene is dropped before the next frame is posed.
+  std::unique_ptr<Scene> posed;
+  int posedFrame = -1;
+  auto sceneAt = [&](int f) -> const Scene& {
+    if (!animated) return scene;
+    if (posedFrame != f) {
+      posed = std::make_unique<Scene>(scene.posedAt(settings.time + float(f) / o.fps));
+      posedFrame = f;
+    }
+    return *posed;
+  };
 
   std::map<std::string, FrameResult> convergedRefs;  // by "WxH" (independent of the sample count)
   for (std::size_t pi = 0; pi < result.presets.size(); ++pi) {
     const ComparePreset& preset = result.presets[pi];
     RenderSettings s = settings;
     s.width = preset.width, s.height = preset.height, s.sampling.count = preset.samples;
-    std::vector<std::unique_ptr<Renderer>> renderers;  // per frame
-    for (int f = 0; f < frames; ++f) {
+    // A still has one renderer for every technique of the preset; --frames makes one per
+    // frame and technique (building one is not timed: the G-buffer is drawn in render()).
+    std::unique_ptr<Renderer> still;
+    if (frames == 1) still = std::make_unique<Renderer>(context, sceneAt(0), s);
+    auto rendererFor = [&](int f, ShadingMode shading, std::unique_ptr<Renderer>& slot) -> Renderer& {
+      if (frames == 1 && shading == s.shading) return *still;
+      slot.reset();  // before sceneAt replaces the scene it refers to
       RenderSettings sf = s;
+      sf.shading = shading;
       sf.time = settings.time + float(f) / o.fps;
-      renderers.push_back(std::make_unique<Renderer>(context, sceneAt(f), sf));
-    }
+      slot = std::make_unique<Renderer>(context, sceneAt(f), sf);
+      return *slot;
+    };
     const std::string suffix = preset.fileSuffix();
     const std::string at = preset.label.empty() ? "" : " @ " + preset.label;
 
@@ -405,18 +419,10 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
     // --frames, every frame's visibility.
     auto renderRun = [&](Technique& tech, CompareRun& run, ShadingMode shading,
                          std::vector<FrameVisibility>* keep) -> FrameResult {
-      std::unique_ptr<Renderer> fallback;
-      auto rendererAt = [&](int f) -> Renderer& {
-        if (shading == s.shading) return *renderers[std::size_t(f)];
-        RenderSettings sf = s;
-        sf.shading = shading;
-        sf.time = settings.time + float(f) / o.fps;
-        fallback = std::make_unique<Renderer>(context, sceneAt(f), sf);
-        return *fallback;
-      };
+      std::unique_ptr<Renderer> slot;
       run.shading = toString(shading);
       if (frames == 1) {
-        Timing t = timeFrames(rendererAt(0), tech, o.timingFrames, o.warmup);
+        Timing t = timeFrames(rendererFor(0, shading, slot), tech, o.timingFrames, o.warmup);
         for (auto& [k, v] : t.stages) run.stages.emplace_back(k, v);
         run.total = t.total, run.prepareMs = t.prepareMs;
         run.memoryBytes = t.last.memoryBytes, run.statistics = t.last.statistics;
@@ -426,7 +432,7 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
       std::map<std::string, std::vector<double>> stages;
       std::vector<double> totals;
       for (int f = 0; f < frames; ++f) {
-        Renderer& r = rendererAt(f);
+        Renderer& r = rendererFor(f, shading, slot);
         if (f == 0)
           for (int w = 0; w < o.warmup; ++w) r.render(tech);
         FrameResult fr = r.render(tech);
@@ -489,7 +495,8 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
       progress.step("reference: raytrace-converged" + at);
       if (!convergedRefs.count(key)) {
         auto t = makeTechnique("raytrace-converged");
-        convergedRefs[key] = renderers[0]->render(*t);
+        std::unique_ptr<Renderer> slot;
+        convergedRefs[key] = rendererFor(0, s.shading, slot).render(*t);
         if (!o.outDir.empty() && o.writeExr)
           writeFrame((fs::path(o.outDir) / ("raytrace-converged_" + key + ".exr")).string(), convergedRefs[key]);
       }
