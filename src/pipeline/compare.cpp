@@ -402,14 +402,22 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
     // frame and technique (building one is not timed: the G-buffer is drawn in render()).
     std::unique_ptr<Renderer> still;
     if (frames == 1) still = std::make_unique<Renderer>(context, sceneAt(0), s);
-    auto rendererFor = [&](int f, ShadingMode shading, std::unique_ptr<Renderer>& slot) -> Renderer& {
+    // `slot` keeps the renderer of the last frame asked for, so warm-up and timed renders of one
+    // frame share it.
+    struct Slot {
+      std::unique_ptr<Renderer> renderer;
+      int frame = -1;
+    };
+    auto rendererFor = [&](int f, ShadingMode shading, Slot& slot) -> Renderer& {
       if (frames == 1 && shading == s.shading) return *still;
-      slot.reset();  // before sceneAt replaces the scene it refers to
+      if (slot.renderer && slot.frame == f) return *slot.renderer;
+      slot.renderer.reset();  // before sceneAt replaces the scene it refers to
       RenderSettings sf = s;
       sf.shading = shading;
       sf.time = settings.time + float(f) / o.fps;
-      slot = std::make_unique<Renderer>(context, sceneAt(f), sf);
-      return *slot;
+      slot.renderer = std::make_unique<Renderer>(context, sceneAt(f), sf);
+      slot.frame = f;
+      return *slot.renderer;
     };
     const std::string suffix = preset.fileSuffix();
     const std::string at = preset.label.empty() ? "" : " @ " + preset.label;
@@ -419,38 +427,21 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
     // --frames, every frame's visibility.
     auto renderRun = [&](Technique& tech, CompareRun& run, ShadingMode shading,
                          std::vector<FrameVisibility>* keep) -> FrameResult {
-      std::unique_ptr<Renderer> slot;
+      Slot slot;
       run.shading = toString(shading);
-      if (frames == 1) {
-        Timing t = timeFrames(rendererFor(0, shading, slot), tech, o.timingFrames, o.warmup);
-        for (auto& [k, v] : t.stages) run.stages.emplace_back(k, v);
-        run.total = t.total, run.prepareMs = t.prepareMs;
-        run.memoryBytes = t.last.memoryBytes, run.statistics = t.last.statistics;
-        return std::move(t.last);
-      }
       FrameResult first;
-      std::map<std::string, std::vector<double>> stages;
-      std::vector<double> totals;
-      for (int f = 0; f < frames; ++f) {
-        Renderer& r = rendererFor(f, shading, slot);
-        if (f == 0)
-          for (int w = 0; w < o.warmup; ++w) r.render(tech);
-        FrameResult fr = r.render(tech);
-        double sum = 0.0;
-        for (auto& st : fr.timer.stages()) {
-          if (st.stage == "prepare") {
-            run.prepareMs = std::max(run.prepareMs, st.ms);
-            continue;
-          }
-          stages[st.stage].push_back(st.ms);
-          sum += st.ms;
-        }
-        totals.push_back(sum);
-        if (keep) keep->push_back(keepVisibility(fr));
-        if (f == 0) first = std::move(fr);
-      }
-      for (auto& [k, v] : stages) run.stages.emplace_back(k, spread(v));
-      run.total = spread(totals);
+      // A still: the same frame timed on one renderer. --frames: frame i on its own renderer
+      // (warm-up frames are frame 0), every frame's visibility kept for flicker.
+      Timing t = timeRenders(
+          frames == 1 ? o.timingFrames : frames, o.warmup,
+          [&](int i) { return rendererFor(i, shading, slot).render(tech); },
+          [&](int i, const FrameResult& fr) {
+            if (keep) keep->push_back(keepVisibility(fr));
+            if (frames > 1 && i == 0) first = fr;
+          });
+      for (auto& [k, v] : t.stages) run.stages.emplace_back(k, v);
+      run.total = t.total, run.prepareMs = t.prepareMs;
+      if (frames == 1) first = std::move(t.last);
       run.memoryBytes = first.memoryBytes, run.statistics = first.statistics;
       return first;
     };
@@ -495,7 +486,7 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
       progress.step("reference: raytrace-converged" + at);
       if (!convergedRefs.count(key)) {
         auto t = makeTechnique("raytrace-converged");
-        std::unique_ptr<Renderer> slot;
+        Slot slot;
         convergedRefs[key] = rendererFor(0, s.shading, slot).render(*t);
         if (!o.outDir.empty() && o.writeExr)
           writeFrame((fs::path(o.outDir) / ("raytrace-converged_" + key + ".exr")).string(), convergedRefs[key]);

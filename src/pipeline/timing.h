@@ -27,7 +27,7 @@ inline Spread spread(std::vector<double> v) {
 struct Timing {
   std::map<std::string, Spread> stages;  // "prepare" (once per scene) left out
   Spread total;
-  double prepareMs = 0.0;  // the once-per-scene stage, from the first frame
+  double prepareMs = 0.0;  // the once-per-scene stage (the longest seen)
   FrameResult last;        // the last timed frame
   double stage(const std::string& name) const {
     auto it = stages.find(name);
@@ -42,16 +42,21 @@ inline double frameStatistic(const FrameResult& f, const std::string& key) {
   return 0.0;
 }
 
-// Renders warmup + frames frames (at least one); stage spreads over the timed frames.
-inline Timing timeFrames(Renderer& renderer, Technique& technique, int frames, int warmup) {
+// Calls render(0) `warmup` times, then render(i) for i = 0..frames-1 (at least one), and
+// gives each timed frame to onFrame(i, frame) before it is kept as Timing::last. Stage spreads
+// are over the timed frames; "prepare" (a technique's once-per-scene work) is left out of them
+// and reported as the longest seen (renders of a moving scene prepare every frame).
+template <class Render, class OnFrame>
+Timing timeRenders(int frames, int warmup, Render&& render, OnFrame&& onFrame) {
   std::map<std::string, std::vector<double>> stages;
   std::vector<double> total;
   Timing t;
   frames = std::max(frames, 1);
   for (int f = 0; f < warmup + frames; ++f) {
-    t.last = renderer.render(technique);
+    const int i = std::max(0, f - warmup);
+    t.last = render(i);
     for (auto& st : t.last.timer.stages())
-      if (st.stage == "prepare") t.prepareMs += st.ms;
+      if (st.stage == "prepare") t.prepareMs = std::max(t.prepareMs, st.ms);
     if (f < warmup) continue;
     double sum = 0;
     for (auto& st : t.last.timer.stages()) {
@@ -60,10 +65,16 @@ inline Timing timeFrames(Renderer& renderer, Technique& technique, int frames, i
       sum += st.ms;
     }
     total.push_back(sum);
+    onFrame(i, t.last);
   }
   for (auto& [name, v] : stages) t.stages[name] = spread(v);
   t.total = spread(total);
   return t;
+}
+
+// The same frame `frames` times on one renderer, after `warmup` untimed ones.
+inline Timing timeFrames(Renderer& renderer, Technique& technique, int frames, int warmup) {
+  return timeRenders(frames, warmup, [&](int) { return renderer.render(technique); }, [](int, const FrameResult&) {});
 }
 
 }  // namespace penumbra
