@@ -17,7 +17,6 @@
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
-uniform float surfaceOffset;  // Scene::surfaceOffset(), as the reference's ray origins
 uniform vec3 eyePosition;
 uniform float lightRadius;  // bounding radius of the light around its centre
 uniform vec3 lightCorners[8];  // dcs.cpp lightCorners(): a planar light's 4 in cyclic order
@@ -62,7 +61,7 @@ void main() {
   PROFILE_COUNT(profFragments);
   // The point is moved off its surface towards the camera, where the reference's rays start
   // (shared.h): its own triangle then lies clearly on one side of every plane(p, e).
-  vec3 p = penumbraShadowOrigin(gp.xyz, texelFetch(gNormal, px, 0).xyz, eyePosition, surfaceOffset);
+  vec3 p = penumbraShadowOrigin(gp.xyz, texelFetch(gNormal, px, 0).xyz, eyePosition);
   DcsEdge e = dcsEdges[gEdge];
   vec3 a = e.v0.xyz, b = e.v1.xyz;
   // n_e and the light centre's side of plane(p, e), bit for bit as the shadow-volume count

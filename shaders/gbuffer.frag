@@ -1,11 +1,20 @@
 // Writes the G-buffer. The normal is the geometric normal turned towards the camera, so
 // surfaces are two-sided and the horizon rule (README "Conventions") is the same for every
 // technique and the reference.
+// The position is where the ray through the pixel centre meets the triangle's plane, not the
+// interpolated vertex positions: interpolation errs by a few ULPs of the triangle's vertices
+// (0.01 units near the camera on a 1e5-unit floor, off its own plane too when it is tilted),
+// the intersection by a few ULPs of the point itself, which is what the evaluation point's
+// epsilon (shared.h penumbraSurfaceEpsilon) assumes. Rays nearly in the plane keep the
+// interpolated point.
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
+flat in float vPlane;
 
 uniform vec3 cameraPosition;
+uniform mat4 worldFromClip;  // inverse of the camera's clipFromWorld
+uniform vec2 viewportSize;
 uniform vec3 baseColor;
 uniform float opacity;
 uniform int hasTexture;
@@ -16,12 +25,25 @@ layout(location = PENUMBRA_GBUF_POSITION) out vec4 outPosition;
 layout(location = PENUMBRA_GBUF_NORMAL) out vec4 outNormal;
 layout(location = PENUMBRA_GBUF_ALBEDO) out vec4 outAlbedo;
 
+vec3 pixelRayPoint(vec3 face) {
+  // glClipControl(GL_UPPER_LEFT): window y grows downwards in NDC (context.cpp).
+  vec2 ndc = vec2(2.0 * gl_FragCoord.x / viewportSize.x - 1.0, 1.0 - 2.0 * gl_FragCoord.y / viewportSize.y);
+  vec4 q = worldFromClip * vec4(ndc, 0.5, 1.0);
+  vec3 dir = q.xyz / q.w - cameraPosition;
+  float den = dot(face, dir);
+  if (!(abs(den) > 1e-3 * length(dir))) return vPosition;
+  float t = (vPlane - dot(face, cameraPosition)) / den;
+  return t > 0.0 ? cameraPosition + dir * t : vPosition;
+}
+
 void main() {
-  vec3 n = normalize(vNormal);
-  if (dot(n, cameraPosition - vPosition) < 0.0) n = -n;
+  vec3 face = normalize(vNormal);
+  vec3 position = pixelRayPoint(face);
+  vec3 n = face;
+  if (dot(n, cameraPosition - position) < 0.0) n = -n;
   vec3 albedo = baseColor;
   if (hasTexture != 0) albedo *= texture(baseColorTexture, vUv).rgb;
-  outPosition = vec4(vPosition, 1.0);
+  outPosition = vec4(position, 1.0);
   outNormal = vec4(n, float(materialId));
   outAlbedo = vec4(albedo, opacity);
 }

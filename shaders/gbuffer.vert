@@ -1,13 +1,15 @@
 // G-buffer pass: world position, face normal and uv of the nearest surface.
 layout(location = 0) in vec3 inPosition;
-layout(location = 1) in vec3 inNormal;  // geometric (face) normal
+layout(location = 1) in vec3 inNormal;  // geometric (face) normal, unit
 layout(location = 2) in vec2 inUv;
+layout(location = 3) in float inPlane;  // dot(face normal, a vertex), in double on the CPU
 
 uniform mat4 clipFromWorld;
 
 out vec3 vPosition;
 out vec3 vNormal;
 out vec2 vUv;
+flat out float vPlane;
 
 invariant gl_Position;
 
@@ -15,5 +17,6 @@ void main() {
   vPosition = inPosition;
   vNormal = inNormal;
   vUv = inUv;
+  vPlane = inPlane;
   gl_Position = clipFromWorld * vec4(inPosition, 1.0);
 }

@@ -6,7 +6,7 @@
 // the point meets the face's plane beyond the point exactly when the point and the camera lie
 // on the same side of that plane (the rasteriser has already found that the ray meets the face,
 // in front of the camera). The point is the visible point moved towards the camera along the
-// view ray, off its surface by the scene's surface offset (shared.h penumbraShadowOrigin, where
+// view ray, off its surface by penumbraSurfaceEpsilon (shared.h penumbraShadowOrigin, where
 // the wedge pass and the reference evaluate too): a face through the surface (the point's own near cap; a side in the plane of a face edge-on to
 // the light, hard case 9) then counts as on the camera's side. For a side, the test is
 // sideOfEdgePlane (common_volume.glsl), bit for bit the one the dcs wedges use to choose the sign of their
@@ -18,7 +18,6 @@
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 uniform vec3 lightPosition;
-uniform float surfaceOffset;
 uniform vec3 eyePosition;
 
 #ifdef SIDES
@@ -34,7 +33,7 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 gp = texelFetch(gPosition, px, 0);
   if (gp.w == 0.0) discard;
-  vec3 p = penumbraShadowOrigin(gp.xyz, texelFetch(gNormal, px, 0).xyz, eyePosition, surfaceOffset);
+  vec3 p = penumbraShadowOrigin(gp.xyz, texelFetch(gNormal, px, 0).xyz, eyePosition);
 #ifdef SIDES
   int side = sideOfEdgePlane(gEdgeV0, gEdgeV1, lightPosition, p);
 #else

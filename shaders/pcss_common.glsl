@@ -8,7 +8,6 @@ layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 layout(binding = PENUMBRA_UNIT_PCSS_DEPTH) uniform sampler2D depthRaw;         // nearest, border 0
 layout(binding = PENUMBRA_UNIT_PCSS_COMPARE) uniform sampler2DShadow depthCmp;  // linear, GEQUAL
 uniform vec3 eyePosition;
-uniform float surfaceOffset;
 uniform float lightHalfSize;  // world units: half the side of the light's equal-area square
 uniform float searchNear;     // view depth of the nearest occluder (blocker-search plane)
 uniform int blockerSamples;
@@ -57,7 +56,7 @@ Receiver receiverOf(ivec2 px, out vec3 p, out vec3 n) {
   vec4 g = texelFetch(gPosition, px, 0);
   p = g.xyz;
   n = texelFetch(gNormal, px, 0).xyz;
-  vec3 o = penumbraShadowOrigin(p, n, eyePosition, surfaceOffset);
+  vec3 o = penumbraShadowOrigin(p, n, eyePosition);
   vec4 c = mapClip(o, lightPosition);
   r.o = o;
   r.n = n;

@@ -34,7 +34,9 @@ vec2 viewTexelNdc(ivec2 texel, int size) {
 // tap's own ray, of the receiver's plane (the G-buffer's face normal), not with the receiver's
 // depth at its own texel, so a planar receiver meets itself exactly in a rasterised map at any
 // slope (no acne) and needs no large offset (no peter-panning). What remains: biasConstant
-// (world units) plus biasSlope texels of the plane's depth slope, for depths stored off the texel
+// (world units; negative: 4 x the float epsilon of the two positions the depth is computed from,
+// shared.h penumbraSurfaceEpsilon, so the bias follows the numbers' magnitude, not the scene's
+// size) plus biasSlope texels of the plane's depth slope, for depths stored off the texel
 // centre (vwss's points, pcss's bilinear taps); the slope is the view depth gained per world unit
 // of lateral image-plane offset, |n_lateral| / |n . ray| with the ray at unit depth, capped at
 // 100 for grazing receivers.
@@ -43,7 +45,8 @@ uniform float biasSlope;
 float depthBias(vec3 o, vec3 n, vec3 eye, float d) {
   vec3 ray = (o - eye) / d;
   float slope = min(length(n - mapAxis * dot(n, mapAxis)) / max(abs(dot(n, ray)), 1e-4), 100.0);
-  return biasConstant + biasSlope * slope * d * 2.0 * mapTanHalf / float(mapSize);
+  float constant = biasConstant >= 0.0 ? biasConstant : 4.0 * (penumbraSurfaceEpsilon(o) + penumbraSurfaceEpsilon(eye));
+  return constant + biasSlope * slope * d * 2.0 * mapTanHalf / float(mapSize);
 }
 // The view depth of the plane through o (normal n) along the ray of the view from `eye` through
 // normalised device coordinates ndc; `d` (o's own depth) where that ray runs (nearly) along the

@@ -40,7 +40,6 @@ float semiOpaqueTransmittance(ivec3 t, float zReceiver) {
 layout(binding = PENUMBRA_IMAGE_SAMPLE_VIS, r32f) uniform writeonly image2DArray sampleVisibility;
 #endif
 uniform vec3 eyePosition;  // the camera
-uniform float surfaceOffset;
 
 out vec4 outVisibility;
 
@@ -89,7 +88,7 @@ void main() {
   vec4 p = texelFetch(gPosition, px, 0);
   if (p.w == 0.0) { outVisibility = vec4(0.0); return; }
   vec3 n = texelFetch(gNormal, px, 0).xyz;
-  vec3 o = penumbraShadowOrigin(p.xyz, n, eyePosition, surfaceOffset);
+  vec3 o = penumbraShadowOrigin(p.xyz, n, eyePosition);
   uint base = pixelSampleBase(px);
   vec3 v = vec3(0.0);
   for (uint k = 0u; k < sampleCount; ++k) {

@@ -114,18 +114,35 @@ PENUMBRA_FN float penumbraDcsTransmittance(float count, int mode, float opaqueUn
   return c > 0.0f ? 0.0f : 1.0f;
 }
 
+// How far off its surface visibility is evaluated for a point p, relative to p's own floating-
+// point magnitude, never to the scene's size (Waechter and Binder, "A Fast and Robust Method for
+// Avoiding Self-Intersection", Ray Tracing Gems 2019, ch. 6: an offset of 256 ULPs of the point's
+// coordinates, a fixed tiny offset near the origin). We use the largest coordinate for all three
+// axes (one distance along the view ray below, not one integer offset per axis) and keep their
+// constants: 256 ULPs = 2^-15 relative, magnitudes below 1/32 count as 1/32. Points are in
+// camera-relative coordinates (Scene::cameraRelative), so the magnitude is the distance to the
+// camera (at least zNear) and a scene translated anywhere gives the same offset; a scaled scene
+// gets a scaled offset; a mirrored one the same (absolute values).
+#define PENUMBRA_EPS_RELATIVE (1.0f / 32768.0f)
+#define PENUMBRA_EPS_ORIGIN (1.0f / 32.0f)
+PENUMBRA_FN float penumbraSurfaceEpsilon(vec3 p) {
+  float m = max(max(abs(p.x), abs(p.y)), max(abs(p.z), PENUMBRA_EPS_ORIGIN));
+  return m * PENUMBRA_EPS_RELATIVE;
+}
+
 // Where visibility is evaluated for a visible point p (unit normal n facing the camera, camera
-// at `eye`): p moved towards the camera along the view ray until it is `offset` off its surface,
-// at most PENUMBRA_ORIGIN_MAX_STRETCH offsets along the ray (grazing views). The reference
-// starts its shadow rays there, and the shadow-volume count and the dcs wedges evaluate their
-// plane tests there: on the view ray, so that what the rasteriser found along that ray (which
-// volume face the ray meets, near a face's border too) holds for the point (an origin moved
-// along the normal instead left a pixel of hard case 19 off by one, where the ray passes within
-// 1e-5 of the box's bottom edge). Without a camera (CPU-only G-buffers), eye = p + n.
+// at `eye`): p moved towards the camera along the view ray until it is penumbraSurfaceEpsilon(p)
+// off its surface, at most PENUMBRA_ORIGIN_MAX_STRETCH times that along the ray (grazing views).
+// The reference starts its shadow rays there, and the shadow-volume count and the dcs wedges
+// evaluate their plane tests there: on the view ray, so that what the rasteriser found along
+// that ray (which volume face the ray meets, near a face's border too) holds for the point (an
+// origin moved along the normal instead left a pixel of hard case 19 off by one, where the ray
+// passes within 1e-5 of the box's bottom edge). Without a camera (CPU-only G-buffers),
+// eye = p + n.
 #define PENUMBRA_ORIGIN_MAX_STRETCH 16.0f
-PENUMBRA_FN vec3 penumbraShadowOrigin(vec3 p, vec3 n, vec3 eye, float offset) {
+PENUMBRA_FN vec3 penumbraShadowOrigin(vec3 p, vec3 n, vec3 eye) {
   PENUMBRA_PRECISE vec3 v = normalize(eye - p);
-  PENUMBRA_PRECISE float along = offset / max(dot(n, v), 1.0f / PENUMBRA_ORIGIN_MAX_STRETCH);
+  PENUMBRA_PRECISE float along = penumbraSurfaceEpsilon(p) / max(dot(n, v), 1.0f / PENUMBRA_ORIGIN_MAX_STRETCH);
   PENUMBRA_PRECISE vec3 o = p + v * along;
   return o;
 }

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "analytic_oracle.h"
 #include "sampling/light_samples.h"
+#include "sampling/shared.hpp"
 #include "techniques/raytrace/embree_reference.h"
 
 using namespace penumbra;
@@ -105,15 +107,16 @@ void checkSameSamples(bool disc, SampleStrategy strategy, PixelPattern pattern) 
   p.pattern = pattern;
   p.decorrelatedSets = 8;
   const LightSampleSet samples = makeLightSamples(scene, scene.lights[0], p);
-  const float offset = 1e-4f;
-  const VisibilityResult r = rt.sameSamples(g, samples, offset);
+  const VisibilityResult r = rt.sameSamples(g, samples);
   ASSERT_EQ(r.samples, 64);
   ASSERT_EQ(r.perSample.size(), g.position.size() * 64);
   int compared = 0, penumbra = 0;
   for (int y = 0; y < g.height; ++y)
     for (int x = 0; x < g.width; ++x) {
       const std::size_t i = std::size_t(y) * g.width + x;
-      const glm::dvec3 o = glm::dvec3(g.position[i]) + glm::dvec3(g.normal[i]) * double(offset);
+      // No camera in a CPU G-buffer: the origin is p + n * penumbraSurfaceEpsilon(p) (shared.h).
+      const glm::dvec3 o = glm::dvec3(g.position[i]) +
+                           glm::dvec3(g.normal[i]) * double(shared::penumbraSurfaceEpsilon(g.position[i]));
       const int set = samples.setForPixel(x, y);
       int visible = 0, excluded = 0;
       for (int k = 0; k < 64; ++k) {
@@ -138,38 +141,6 @@ void checkSameSamples(bool disc, SampleStrategy strategy, PixelPattern pattern) 
     }
   EXPECT_GT(compared, 40 * 40 * 60);
   EXPECT_GT(penumbra, 100);  // the grid crosses umbra, penumbra and lit floor
-}
-
-// Fraction of the square light [-0.5,0.5]^2 (at kLightHeight) hidden from floor point (x, 0, z)
-// by the square occluder [-0.5,0.5]^2 at kOccluderHeight: the occluder projects from p onto the
-// light plane as a square of side 0.5 * 2 * s, s = kLightHeight / kOccluderHeight, centred at
-// p + (0 - p) * s; the hidden fraction is the overlap area.
-double squareHiddenFraction(double x, double z) {
-  const double s = kLightHeight / kOccluderHeight;
-  const double cx = x * (1.0 - s), cz = z * (1.0 - s), half = 0.5 * s;
-  auto overlap = [](double c, double h) {
-    return std::max(0.0, std::min(0.5, c + h) - std::max(-0.5, c - h));
-  };
-  return overlap(cx, half) * overlap(cz, half);
-}
-
-// Same for the disc of radius 0.5 under the disc light of radius 0.5: the lens area of two
-// circles (radii 0.5 and 0.5 s, centre distance d) over the light's area.
-double discHiddenFraction(double x, double z) {
-  const double s = kLightHeight / kOccluderHeight;
-  const double r1 = 0.5, r2 = 0.5 * s, d = std::hypot(x, z) * (s - 1.0);
-  const double pi = std::numbers::pi;
-  double area;
-  if (d >= r1 + r2)
-    area = 0.0;
-  else if (d <= std::abs(r2 - r1))
-    area = pi * std::min(r1, r2) * std::min(r1, r2);
-  else {
-    const double a1 = std::acos((d * d + r1 * r1 - r2 * r2) / (2 * d * r1));
-    const double a2 = std::acos((d * d + r2 * r2 - r1 * r1) / (2 * d * r2));
-    area = r1 * r1 * (a1 - std::sin(2 * a1) / 2) + r2 * r2 * (a2 - std::sin(2 * a2) / 2);
-  }
-  return area / (pi * r1 * r1);
 }
 
 }  // namespace
@@ -205,7 +176,8 @@ TEST(RaytraceAnalytic, ConvergedMatchesClosedForm) {
     for (int i = 0; i < g.width; ++i) {
       const glm::vec3 p = g.position[i];
       const double want =
-          1.0 - (disc ? discHiddenFraction(p.x, p.z) : squareHiddenFraction(p.x, p.z));
+          1.0 - (disc ? test::discHiddenFraction(p.x, p.z, kOccluderHeight, kLightHeight)
+                     : test::squareHiddenFraction(p.x, p.z, kOccluderHeight, kLightHeight));
       EXPECT_NEAR(r.visibility.at(i, 0, 0), want, 0.02)
           << (disc ? "disc" : "square") << " x=" << p.x;
     }

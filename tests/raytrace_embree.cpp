@@ -5,10 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <algorithm>
 #include <numbers>
 
 #include "core/error.h"
 #include "sampling/light_samples.h"
+#include "sampling/shared.hpp"
 #include "techniques/raytrace/embree_reference.h"
 
 using namespace penumbra;
@@ -194,7 +196,7 @@ TEST(Raytrace, HorizonRule) {
   const glm::vec3 tilted = glm::normalize(glm::vec3(1, 1, 0));
   g.normal = {{0, 1, 0}, tilted, {0, -1, 0}};
   g.valid = {1, 1, 1};
-  const VisibilityResult r = rt.sameSamples(g, samples, 0.0f);
+  const VisibilityResult r = rt.sameSamples(g, samples);
   EXPECT_EQ(r.visibility.at(0, 0, 0), 1.0f);
   int above = 0;
   for (int k = 0; k < 64; ++k) {
@@ -292,13 +294,13 @@ TEST(Raytrace, StreamsMatchSingleSegments) {
   p.pattern = PixelPattern::Interleaved;
   const LightSampleSet samples = makeLightSamples(s, s.lights[0], p);
   const EmbreeReference rt(s, 2);
-  const float offset = rt.defaultOriginOffset();
   const VisibilityResult r = rt.sameSamples(g, samples);
   int partial = 0;
   for (int y = 0; y < g.height; ++y)
     for (int x = 0; x < g.width; ++x) {
       const std::size_t i = std::size_t(y) * g.width + x;
-      const glm::vec3 o = g.position[i] + g.normal[i] * offset;
+      // No camera in a CPU G-buffer: the origin moves along the normal (shared.h).
+      const glm::vec3 o = shared::penumbraShadowOrigin(g.position[i], g.normal[i], g.position[i] + g.normal[i]);
       const int set = samples.setForPixel(x, y);
       for (int k = 0; k < 128; ++k) {
         const float want = rt.transmittance(o, samples.position(set, k));
@@ -328,11 +330,25 @@ TEST(Raytrace, ConvergedExtremes) {
   EXPECT_THROW(rt.converged(g, light, s, 0), Error);
 }
 
-TEST(Raytrace, DefaultOriginOffset) {
-  Scene s = baseScene();
-  s.meshes.push_back(quad("floor", -3, 3, -4, 4, 0.0f, 0));  // bounding radius 5
-  EXPECT_NEAR(EmbreeReference(s, 1).defaultOriginOffset(), 5e-4f, 1e-8f);
-  EXPECT_EQ(EmbreeReference(baseScene(), 1).defaultOriginOffset(), 1e-6f);  // empty scene
+TEST(Raytrace, SurfaceEpsilonIsRelativeToThePoint) {
+  // shared.h penumbraSurfaceEpsilon: 2^-15 of the largest coordinate (256 ULPs, Waechter and
+  // Binder 2019), 2^-20 within 1/32 of the origin; independent of any scene size.
+  using shared::penumbraSurfaceEpsilon;
+  EXPECT_EQ(penumbraSurfaceEpsilon(glm::vec3(1.0f, -3.0f, 2.0f)), 3.0f / 32768.0f);
+  EXPECT_EQ(penumbraSurfaceEpsilon(glm::vec3(0.0f)), 1.0f / (32.0f * 32768.0f));
+  for (const glm::vec3 p : {glm::vec3(0.3f, 1.7f, -2.9f), glm::vec3(1e5f, 3.0f, -1e5f), glm::vec3(-7e-2f, 0.0f, 4e-2f)}) {
+    const float e = penumbraSurfaceEpsilon(p);
+    EXPECT_EQ(penumbraSurfaceEpsilon(-p), e);              // mirrored
+    EXPECT_EQ(penumbraSurfaceEpsilon(1024.0f * p), 1024.0f * e);  // scaled (a power of two: exact)
+    // The origin leaves its surface by far more than the float spacing at p, at every magnitude.
+    const glm::vec3 n(0.0f, 1.0f, 0.0f);
+    const glm::vec3 o = shared::penumbraShadowOrigin(p, n, p + glm::vec3(0.0f, 1.0f, 1.0f));
+    const double off = double(o.y) - double(p.y);
+    EXPECT_GT(off, 0.9 * double(e)) << p.x;
+    const float m = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    EXPECT_GE(double(e), 100.0 * double(std::nextafter(m, 1e30f) - m)) << p.x;  // >= 100 ULPs of p
+    EXPECT_LT(off, 1.1 * double(e));
+  }
 }
 
 TEST(Raytrace, Throughput) {

@@ -40,7 +40,8 @@ TEST(Pipeline, ModulateShadingMatchesEquation3) {
   int checked = 0;
   for (std::size_t i = 0; i < f.gbuffer.valid.size(); ++i) {
     if (!f.gbuffer.valid[i]) continue;
-    glm::vec3 p = f.gbuffer.position[i], n = f.gbuffer.normal[i];
+    // The pipeline renders in the camera's frame: back to world coordinates.
+    glm::vec3 p = glm::vec3(glm::dvec3(f.gbuffer.position[i]) + f.gbuffer.origin), n = f.gbuffer.normal[i];
     glm::vec3 d = l.position - p;
     float r2 = glm::dot(d, d);
     glm::vec3 dir = d / std::sqrt(r2);

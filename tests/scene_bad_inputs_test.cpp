@@ -471,10 +471,10 @@ TEST(SceneBadInputs, ZeroSizedLightsAreRejectedForEveryShape) {
               "lights[0].size: an area light needs a positive size");
   expectError([&] { loadScene(path, {"lights.0.size=0"}); }, path,
               "lights[0].size: an area light needs a positive size");
-  for (const char* shape : {"disk", "sphere"}) {
+  for (const std::string shape : {"disk", "sphere"}) {
     SCOPED_TRACE(shape);
     expectError(
-        [&] { loadScene(path, {std::string("lights.0.type=") + shape, "lights.0.radius=0"}); },
+        [&] { loadScene(path, {"lights.0.type=" + shape, "lights.0.radius=0"}); },
         path, "lights[0].radius: an area light needs a positive radius");
   }
   // A glTF area light of size 0, and one whose node scales it to nothing.

@@ -120,6 +120,7 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   checkOutputPath(output);
   Scene scene = loadSceneFor(o);
   if (scene.isAnimated()) scene = scene.posedAt(o.time);  // "spin": the pose at --time
+  scene.makeCameraRelative();  // in place: the Renderer would otherwise translate a copy
   RenderSettings settings = settingsFor(o, scene);
   auto context = gl::Context::create(gl::parseBackend(o.backend));
   PLOG_INFO("renderer: {} ({})", context->renderer(), context->version());
@@ -159,6 +160,7 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
   options.frames = c.frames, options.fps = c.fps;
 
   Scene scene = loadSceneFor(o);
+  scene.makeCameraRelative();  // in place: each Renderer would otherwise translate a copy
   options.outDir = c.outDir.empty() ? (fs::path("out") / scene.name).string() : c.outDir;
   std::error_code ec;
   fs::create_directories(options.outDir, ec);

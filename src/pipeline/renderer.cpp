@@ -73,6 +73,7 @@ struct GVertex {
   glm::vec3 position;
   glm::vec3 normal;
   glm::vec2 uv;
+  float plane;  // dot(normal, a vertex): the plane the G-buffer intersects with the pixel's ray
 };
 }  // namespace
 
@@ -92,11 +93,15 @@ GpuScene::GpuScene(const Scene& scene, int width, int height)
     bool hasUv = mesh.uvs.size() == mesh.positions.size();
     for (auto& t : mesh.triangles) {
       glm::vec3 p[3] = {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
-      glm::vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
-      float len = glm::length(n);
-      n = len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+      // In double: a float cross product of long edges loses the normal of a small triangle.
+      glm::dvec3 nd = glm::cross(glm::dvec3(p[1]) - glm::dvec3(p[0]), glm::dvec3(p[2]) - glm::dvec3(p[0]));
+      double len = glm::length(nd);
+      glm::vec3 n = len > 0.0 ? glm::vec3(nd / len) : glm::vec3(0.0f, 1.0f, 0.0f);
+      // The plane through the triangle's vertices with the float normal n: their mean offset.
+      float plane = float((glm::dot(glm::dvec3(n), glm::dvec3(p[0])) + glm::dot(glm::dvec3(n), glm::dvec3(p[1])) +
+                           glm::dot(glm::dvec3(n), glm::dvec3(p[2]))) / 3.0);
       for (int i = 0; i < 3; ++i)
-        verts.push_back({p[i], n, hasUv ? mesh.uvs[t[i]] : glm::vec2(0.0f)});
+        verts.push_back({p[i], n, hasUv ? mesh.uvs[t[i]] : glm::vec2(0.0f), plane});
     }
     d.count = GLsizei(verts.size()) - d.first;
     if (d.count > 0) draws_.push_back(d);
@@ -108,7 +113,8 @@ GpuScene::GpuScene(const Scene& scene, int width, int height)
   vao_.vertexBuffer(vertices_, sizeof(GVertex))
       .attribute(0, 3, offsetof(GVertex, position))
       .attribute(1, 3, offsetof(GVertex, normal))
-      .attribute(2, 2, offsetof(GVertex, uv));
+      .attribute(2, 2, offsetof(GVertex, uv))
+      .attribute(3, 1, offsetof(GVertex, plane));
 
   for (auto& t : scene.textures) {
     auto tex = gl::Texture::make2D(GL_RGBA32F, t.image.width, t.image.height);
@@ -178,6 +184,8 @@ void GpuScene::renderGBuffer() {
   program_.use();
   program_.set("clipFromWorld", clipFromWorld_);
   program_.set("cameraPosition", cameraPos_);
+  program_.set("worldFromClip", glm::mat4(glm::inverse(glm::dmat4(clipFromWorld_))));
+  program_.set("viewportSize", glm::vec2(float(width_), float(height_)));
   drawGBuffer(program_);
   gl::Context::checkErrors("G-buffer");
 }
@@ -193,6 +201,7 @@ CpuGBuffer GpuScene::readGBuffer() const {
   CpuGBuffer g;
   g.width = width_, g.height = height_;
   g.camera = cameraPos_;
+  g.origin = scene_.origin;
   std::size_t n = pos.pixelCount();
   g.position.resize(n), g.normal.resize(n), g.valid.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -209,8 +218,18 @@ std::size_t GpuScene::memoryBytes() const {
 
 // ---- Renderer --------------------------------------------------------------------------------
 
-Renderer::Renderer(gl::Context& context, const Scene& scene, const RenderSettings& settings)
-    : context_(context), scene_(scene), settings_(settings) {
+namespace {
+std::unique_ptr<Scene> cameraRelativeCopy(const Scene& scene) {
+  if (scene.isCameraRelative()) return nullptr;
+  auto local = std::make_unique<Scene>(scene);
+  local->makeCameraRelative();
+  return local;
+}
+}  // namespace
+
+Renderer::Renderer(gl::Context& context, const Scene& given, const RenderSettings& settings)
+    : context_(context), local_(cameraRelativeCopy(given)), scene_(local_ ? *local_ : given), settings_(settings) {
+  const Scene& scene = scene_;
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   if (settings.width <= 0 || settings.height <= 0 || settings.width > maxSize || settings.height > maxSize)

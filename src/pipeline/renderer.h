@@ -107,7 +107,9 @@ class GpuScene {
   gl::Program program_;
 };
 
-// Renders frames of one scene with one technique. Holds the GL context.
+// Renders frames of one scene with one technique. Holds the GL context. Techniques and the
+// reference see the scene in camera-relative coordinates (Scene::makeCameraRelative): a scene
+// not yet in them is copied and translated once here.
 class Renderer {
  public:
   Renderer(gl::Context& context, const Scene& scene, const RenderSettings& settings);
@@ -121,7 +123,8 @@ class Renderer {
 
  private:
   gl::Context& context_;
-  const Scene& scene_;
+  std::unique_ptr<Scene> local_;  // a camera-relative copy, when the scene given was not
+  const Scene& scene_;            // the scene every technique renders: camera at the origin
   RenderSettings settings_;
   std::unique_ptr<GpuScene> gpu_;
   gl::Texture color_, visibility_, perSample_;

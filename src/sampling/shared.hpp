@@ -8,6 +8,7 @@
 namespace penumbra::shared {
 using uint = std::uint32_t;
 using vec3 = glm::vec3;
+using glm::abs;
 using glm::dot;
 using glm::exp;
 using glm::max;

@@ -53,17 +53,32 @@ bool Scene::hasSemiOpaque() const {
   return false;
 }
 
-float Scene::surfaceOffset() const {
+glm::vec3 Scene::extent() const {
   glm::vec3 lo, hi;
   bounds(lo, hi);
-  const float radius = 0.5f * glm::length(hi - lo);
-  return std::max(1e-4f * (std::isfinite(radius) ? radius : 0.0f), 1e-6f);
+  return glm::max(glm::abs(lo), glm::abs(hi));
 }
 
 glm::mat4 Spin::at(float time) const {
   const glm::mat4 toPivot = glm::translate(glm::mat4(1.0f), pivot);
   return toPivot * glm::rotate(glm::mat4(1.0f), glm::radians(degreesPerSecond * time), axis) *
          glm::translate(glm::mat4(1.0f), -pivot);
+}
+
+void Scene::makeCameraRelative() {
+  const glm::vec3 c = camera.position;
+  if (c == glm::vec3(0.0f)) return;
+  for (SceneMesh& m : meshes) {
+    for (glm::vec3& p : m.mesh.positions) p -= c;
+    m.spin.pivot -= c;
+  }
+  for (Light& l : lights) {
+    l.position -= c;
+    l.spin.pivot -= c;
+  }
+  camera.target -= c;
+  camera.position = glm::vec3(0.0f);
+  origin += glm::dvec3(c);
 }
 
 bool Scene::isAnimated() const {

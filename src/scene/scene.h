@@ -102,16 +102,26 @@ struct Scene {
   int width = 256, height = 256;  // default output size
   glm::vec3 background{0.0f};
   std::vector<std::string> warnings;  // everything dropped or changed, one line each
+  // World position of this scene's coordinate origin. Loaders read world coordinates and then
+  // move the scene into the camera's frame (makeCameraRelative), so that floats keep their
+  // detail around the camera whatever the world's offset (hard case 26); `origin` is the
+  // camera's world position then, for anything that must report world coordinates.
+  glm::dvec3 origin{0.0};
 
   std::size_t triangleCount() const;
   bool hasSemiOpaque() const;  // any mesh whose material opacity is in (0,1)
   // Axis-aligned bounds of all mesh vertices.
   void bounds(glm::vec3& lo, glm::vec3& hi) const;
-  // How far every technique and the reference move a visible point off its surface, along the
-  // camera-facing normal, before deciding what it sees: 1e-4 of the bounding-sphere radius
-  // (at least 1e-6), enough to leave the surface at any scene scale, small enough to keep
-  // contact shadows.
-  float surfaceOffset() const;
+  // The largest absolute value of each coordinate over all mesh vertices (0 without any): a
+  // bound of the float magnitude of every surface point.
+  glm::vec3 extent() const;
+  // Translates every position (vertices, lights, camera, spin pivots) by -camera.position, in
+  // place, and adds it to `origin`: the camera then sits at (0,0,0). Every technique and the
+  // reference render in these coordinates (the Renderer makes a translated copy of a scene
+  // whose camera is elsewhere), so a scene translated anywhere renders the same. Differences of
+  // floats on one grid are exact, so a translation by a float already in the scene loses nothing.
+  void makeCameraRelative();
+  bool isCameraRelative() const { return camera.position == glm::vec3(0.0f); }
   // Any mesh or light with a spin.
   bool isAnimated() const;
   // A copy with every spinning mesh and light moved to its pose at `time` (seconds).

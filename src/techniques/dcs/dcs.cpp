@@ -113,6 +113,11 @@ class DepthComplexitySampling final : public Technique {
     coding_ = dcs::planOpacity(opacities, options_.opacity, options_.opacityTolerance);
     if (coding_.mode != PENUMBRA_DCS_OPACITY_OPAQUE) PLOG_INFO("dcs: semi-opaque occluders, {}", coding_.describe());
     volumes_.prepare(scene, gpu, coding_.units, coding_.opaqueUnits);
+    // The wedges' growth covers the float epsilon of every evaluation point (shared.h
+    // penumbraSurfaceEpsilon), bounded by that of the scene's largest coordinate: more is only
+    // slower (the fragment shader decides exactly), less could miss a pixel at a wedge's border.
+    const glm::vec3 extent = scene.extent();
+    wedgeMargin_ = 2.0f * shared::penumbraSurfaceEpsilon(extent);
     // All meshes' edges and incident triangles in two static buffers, edge ids global.
     std::vector<GpuEdge> edges;
     std::vector<GpuIncidence> incidences;
@@ -205,9 +210,8 @@ class DepthComplexitySampling final : public Technique {
       prog.set("lightCornerCount", int(corners.size()));
       prog.set("eyePosition", pass.gpu.cameraPosition());
       prog.set("nearRadius", nearRadius);
-      prog.set("margin", 2.0f * pass.scene.surfaceOffset());
+      prog.set("margin", wedgeMargin_);
       prog.set("lightRadius", radius);
-      prog.set("surfaceOffset", pass.scene.surfaceOffset());
       if (lut) {
         glm::vec2 half = light.shape == LightShape::Rect ? 0.5f * light.size : glm::vec2(light.size.x);
         prog.set("lightAxisU", light.tangent / half.x);
@@ -551,6 +555,7 @@ class DepthComplexitySampling final : public Technique {
   dcs::OpacityCoding coding_;
   ShadowVolumeCounter volumes_;
   std::vector<std::uint32_t> edgeOffset_;
+  float wedgeMargin_ = 0.0f;
   gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_, profileBuffer_;
   gl::Texture bound_, checksum_, counters_;
   gl::Framebuffer boundFbo_, counterFbo_;

@@ -147,7 +147,6 @@ struct EmbreeReference::Impl {
   RTCScene scene = nullptr;
   std::vector<float> opacity;  // per geomID
   unsigned threads = 1;
-  float defaultOffset = 1e-6f;
   mutable std::atomic<std::uint64_t> rays{0};
   std::string lastError;  // set by the device error callback
 
@@ -195,10 +194,10 @@ struct EmbreeReference::Impl {
   // with the conventions of the header: horizon rule, ray origin off the surface. All rays
   // of the pixel go to Embree as one stream.
   glm::vec3 shadePixel(const glm::vec3& p, const glm::vec3& n, const glm::vec3& eye, const glm::vec3* pos,
-                       const glm::vec3* lum, int count, float offset, float* perSample, Scratch& s,
+                       const glm::vec3* lum, int count, float* perSample, Scratch& s,
                        std::vector<int>& sampleOf, std::vector<float>& tr,
                        std::uint64_t& rayCount) const {
-    const glm::vec3 o = shared::penumbraShadowOrigin(p, n, eye, offset);
+    const glm::vec3 o = shared::penumbraShadowOrigin(p, n, eye);
     s.reset(std::size_t(count));
     sampleOf.clear();
     for (int k = 0; k < count; ++k) {
@@ -223,7 +222,7 @@ struct EmbreeReference::Impl {
   // `samplesFor(x, y, pixel, scratchSet)` gives it (positions and luminances; it may fill and
   // point into `scratchSet`). Per-sample results are kept when `perSample` is set.
   template <class SamplesFor>
-  VisibilityResult traceImage(const CpuGBuffer& gbuf, int n, float offset, bool perSample,
+  VisibilityResult traceImage(const CpuGBuffer& gbuf, int n, bool perSample,
                               SamplesFor&& samplesFor) {
     VisibilityResult out;
     out.samples = n;
@@ -239,7 +238,7 @@ struct EmbreeReference::Impl {
         if (!gbuf.valid[i]) continue;  // no surface: visibility 0
         const auto [pos, lum] = samplesFor(x, y, i, scratchSet);
         const glm::vec3 p = gbuf.position[i], nrm = gbuf.normal[i];
-        const glm::vec3 v = shadePixel(p, nrm, gbuf.camera.value_or(p + nrm), pos, lum, n, offset,
+        const glm::vec3 v = shadePixel(p, nrm, gbuf.camera.value_or(p + nrm), pos, lum, n,
                                        perSample ? &out.perSample[i * n] : nullptr, scratch,
                                        sampleOf, tr, rayCount);
         for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
@@ -311,22 +310,18 @@ EmbreeReference::EmbreeReference(const Scene& scene, int threads)
   }
   rtcCommitScene(m.scene);
   m.throwIfError("building the BVH");
-
-  m.defaultOffset = scene.surfaceOffset();
 }
 
 EmbreeReference::~EmbreeReference() = default;
 
-VisibilityResult EmbreeReference::sameSamples(const CpuGBuffer& gbuf, const LightSampleSet& samples,
-                                              float originOffset) const {
+VisibilityResult EmbreeReference::sameSamples(const CpuGBuffer& gbuf, const LightSampleSet& samples) const {
   checkGBuffer(gbuf);
   const int n = samples.count;
   const std::size_t total = std::size_t(samples.setCount) * n;
   PENUMBRA_CHECK(n >= 1 && samples.setCount >= 1 && samples.positions.size() == total &&
                      samples.luminance.size() == total,
                  "LightSampleSet arrays do not match count x setCount");
-  const float offset = originOffset >= 0.0f ? originOffset : impl_->defaultOffset;
-  return impl_->traceImage(gbuf, n, offset, true, [&](int x, int y, std::size_t, LightSampleSet&) {
+  return impl_->traceImage(gbuf, n, true, [&](int x, int y, std::size_t, LightSampleSet&) {
     const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
     return std::pair(&samples.positions[first], &samples.luminance[first]);
   });
@@ -334,15 +329,16 @@ VisibilityResult EmbreeReference::sameSamples(const CpuGBuffer& gbuf, const Ligh
 
 VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light& light,
                                             const Scene& scene, int count, float time,
-                                            float originOffset) const {
+                                            std::uint32_t seed) const {
   checkGBuffer(gbuf);
   // Validates count and light up front, so errors are thrown here rather than in a worker.
   const int n = makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, 1, time).count;
-  const float offset = originOffset >= 0.0f ? originOffset : impl_->defaultOffset;
-  return impl_->traceImage(gbuf, n, offset, false, [&](int, int, std::size_t i, LightSampleSet& set) {
+  return impl_->traceImage(gbuf, n, false, [&](int, int, std::size_t i, LightSampleSet& set) {
     // A fresh stratified set per pixel, seeded by the pixel index (makeLightSampleSet hashes
     // the seed): decorrelated (section 5.1) and independent of the thread that computes it.
-    set = makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, std::uint32_t(i), time);
+    // `seed` picks another family of sets (a second estimate, for the sampling noise).
+    const std::uint32_t pixelSeed = seed == 0 ? std::uint32_t(i) : shared::penumbraHash(std::uint32_t(i) ^ shared::penumbraHash(seed));
+    set = makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, pixelSeed, time);
     return std::pair(set.positions.data(), set.luminance.data());
   });
 }
@@ -358,7 +354,5 @@ float EmbreeReference::transmittance(const glm::vec3& from, const glm::vec3& to)
 }
 
 double EmbreeReference::raysCast() const { return double(impl_->rays.load()); }
-
-float EmbreeReference::defaultOriginOffset() const { return impl_->defaultOffset; }
 
 }  // namespace penumbra

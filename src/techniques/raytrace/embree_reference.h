@@ -9,9 +9,13 @@
 //  * a pixel is shaded only if the G-buffer has a surface there (valid);
 //  * a sample below the surface's horizon, dot(n, x_k - p) <= 0 with n the camera-facing
 //    normal, has visibility 0;
-//  * the ray starts at penumbraShadowOrigin(p, n, camera, originOffset) (shaders/shared.h: p
-//    moved towards the camera along the view ray until originOffset off its surface; along n
-//    when the G-buffer has no camera) and stops at the sample (t < 1 - 1e-5 relative).
+//  * the ray starts at penumbraShadowOrigin(p, n, camera) (shaders/shared.h: p moved towards
+//    the camera along the view ray until penumbraSurfaceEpsilon(p), 2^-15 of p's largest
+//    coordinate, off its surface; along n when the G-buffer has no camera) and stops at the
+//    sample (t < 1 - 1e-5 relative).
+//  * positions are camera-relative (Scene::cameraRelative; the pipeline's Renderer hands every
+//    technique and this reference the same translated scene), so that floats keep the detail
+//    of a scene far from the world's origin.
 #pragma once
 
 #include <cstdint>
@@ -30,10 +34,11 @@ namespace penumbra {
 // Per-pixel surface data read back from the GPU G-buffer (top row first, like Image).
 struct CpuGBuffer {
   int width = 0, height = 0;
-  std::vector<glm::vec3> position;  // world
+  std::vector<glm::vec3> position;  // the scene's coordinates: world position minus `origin`
   std::vector<glm::vec3> normal;    // world, unit, facing the camera
   std::vector<std::uint8_t> valid;  // 1 where a surface was hit
   std::optional<glm::vec3> camera;  // the view the G-buffer was rendered from, if any
+  glm::dvec3 origin{0.0};           // Scene::origin of the scene it was rendered from
 };
 
 // Per-light visibility: the RGB visibility buffer of eq. 2 (textured lights weight each sample by
@@ -53,19 +58,18 @@ class EmbreeReference {
   EmbreeReference(const EmbreeReference&) = delete;
   EmbreeReference& operator=(const EmbreeReference&) = delete;
 
-  // Same-samples mode. `originOffset` in world units (default: 1e-4 * scene bounding radius).
-  VisibilityResult sameSamples(const CpuGBuffer& gbuf, const LightSampleSet& samples,
-                               float originOffset = -1.0f) const;
+  // Same-samples mode.
+  VisibilityResult sameSamples(const CpuGBuffer& gbuf, const LightSampleSet& samples) const;
 
-  // Converged mode: `count` stratified samples per pixel, a fresh decorrelated set per pixel.
+  // Converged mode: `count` stratified samples per pixel, a fresh decorrelated set per pixel
+  // (seeded by the pixel; `seed` != 0 gives an independent estimate).
   VisibilityResult converged(const CpuGBuffer& gbuf, const Light& light, const Scene& scene,
-                             int count = 1024, float time = 0.0f, float originOffset = -1.0f) const;
+                             int count = 1024, float time = 0.0f, std::uint32_t seed = 0) const;
 
   // Transmittance of one segment (for tests): 1 unoccluded, 0 opaque hit.
   float transmittance(const glm::vec3& from, const glm::vec3& to) const;
 
   double raysCast() const;  // total rays cast since construction (for rays/s)
-  float defaultOriginOffset() const;
 
  private:
   struct Impl;

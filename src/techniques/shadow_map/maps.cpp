@@ -29,8 +29,8 @@ int readPcfTaps(const TechniqueParams& params) {
   return pcf;
 }
 
-void setBiasUniforms(const gl::Program& p, const MapOptions& o, const Scene& scene) {
-  p.set("biasConstant", float(o.biasConstant >= 0.0 ? o.biasConstant : 4.0 * scene.surfaceOffset()));
+void setBiasUniforms(const gl::Program& p, const MapOptions& o) {
+  p.set("biasConstant", float(o.biasConstant));  // < 0: per point (shadow_map_common.glsl depthBias)
   p.set("biasSlope", float(o.biasSlope));
 }
 
@@ -246,8 +246,7 @@ void MultiViewTechnique::renderVisibility(LightPass& pass) {
     const gl::Program& prog = resolveProgram(pass.perSample != nullptr);
     setMapUniforms(prog, frame_);
     prog.set("eyePosition", pass.gpu.cameraPosition());
-    prog.set("surfaceOffset", pass.scene.surfaceOffset());
-    setBiasUniforms(prog, options_, pass.scene);
+    setBiasUniforms(prog, options_);
     maps_.bind(PENUMBRA_UNIT_SHADOW_MAPS);
     if (semiOpaque_) {
       semiCount_.bind(PENUMBRA_UNIT_SEMI_COUNT);

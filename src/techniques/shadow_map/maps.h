@@ -28,14 +28,14 @@ namespace penumbra::shadow_map {
 // The view and bias options of every shadow-map technique (multi-view and single-view).
 struct MapOptions {
   int size = 1024;            // map resolution (square), as the VWSS paper's 1024^2
-  double biasConstant = -1.0; // world units along the view axis; < 0: 4 x Scene::surfaceOffset()
+  double biasConstant = -1.0; // world units along the view axis; < 0: per point, 4 x the positions' float epsilon (shadow_map_common.glsl)
   double biasSlope = 1.0;     // texels of the receiver plane's depth slope (shadow_map_common.glsl)
   double maxHalfAngle = 80.0; // degrees: receivers needing a wider frustum are left unshadowed
 };
 // Reads map, bias, slope-bias, max-angle from --param.
 MapOptions readMapOptions(const TechniqueParams& params);
 // The uniforms of shadow_map_common.glsl biasedDepth.
-void setBiasUniforms(const gl::Program& program, const MapOptions& options, const Scene& scene);
+void setBiasUniforms(const gl::Program& program, const MapOptions& options);
 
 struct MapFrame {
   glm::vec3 axis{0.0f, -1.0f, 0.0f}, right{1.0f, 0.0f, 0.0f}, up{0.0f, 0.0f, 1.0f};

@@ -67,10 +67,9 @@ void SingleViewTechnique::bindMap() const {
 void SingleViewTechnique::setUniforms(const gl::Program& p, const LightPass& pass, int blockerSamples, int pcfSamples,
                                       double kernelScale) const {
   setMapUniforms(p, frame_);
-  setBiasUniforms(p, map_, pass.scene);
+  setBiasUniforms(p, map_);
   setLightUniforms(p, pass.light, pass.samples);
   p.set("eyePosition", pass.gpu.cameraPosition());
-  p.set("surfaceOffset", pass.scene.surfaceOffset());
   p.set("lightHalfSize", halfSize_);
   p.set("searchNear", searchNear_);
   p.set("blockerSamples", blockerSamples);

@@ -83,7 +83,6 @@ void ShadowVolumeCounter::count(LightPass& pass) {
       prog->set("clipFromWorld", pass.gpu.clipFromWorld());
       prog->set("lightPosition", pass.light.position);
       prog->set("eyePosition", pass.gpu.cameraPosition());
-      prog->set("surfaceOffset", pass.scene.surfaceOffset());
     }
     drawPoints(sidesProgram_, sideBuf, sideVerts.size(), GL_LINES);
     drawPoints(capsProgram_, capBuf, capVerts.size(), GL_TRIANGLES);

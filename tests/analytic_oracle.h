@@ -1,0 +1,44 @@
+// Closed forms of hard case 23 (shared/docs/hard-cases.md): the fraction of a light hidden from a
+// floor point (x, 0, z) by a parallel occluder centred above the origin under a parallel light
+// centred above it. Used by the reference's analytic test and the scale tests of hard case 25.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace penumbra::test {
+
+// Fraction of the square light [-0.5,0.5]^2 (at lightHeight) hidden from floor point (x, 0, z)
+// by the square occluder [-0.5,0.5]^2 at occluderHeight: the occluder projects from p onto the
+// light plane as a square of side 0.5 * 2 * s, s = lightHeight / occluderHeight, centred at
+// p + (0 - p) * s; the hidden fraction is the overlap area.
+inline double squareHiddenFraction(double x, double z, double occluderHeight, double lightHeight) {
+  const double s = lightHeight / occluderHeight;
+  const double cx = x * (1.0 - s), cz = z * (1.0 - s), half = 0.5 * s;
+  auto overlap = [](double c, double h) {
+    return std::max(0.0, std::min(0.5, c + h) - std::max(-0.5, c - h));
+  };
+  return overlap(cx, half) * overlap(cz, half);
+}
+
+// Same for the disc of radius 0.5 under the disc light of radius 0.5: the lens area of two
+// circles (radii 0.5 and 0.5 s, centre distance d) over the light's area.
+inline double discHiddenFraction(double x, double z, double occluderHeight, double lightHeight) {
+  const double s = lightHeight / occluderHeight;
+  const double r1 = 0.5, r2 = 0.5 * s, d = std::hypot(x, z) * (s - 1.0);
+  const double pi = std::numbers::pi;
+  double area;
+  if (d >= r1 + r2)
+    area = 0.0;
+  else if (d <= std::abs(r2 - r1))
+    area = pi * std::min(r1, r2) * std::min(r1, r2);
+  else {
+    const double a1 = std::acos((d * d + r1 * r1 - r2 * r2) / (2 * d * r1));
+    const double a2 = std::acos((d * d + r2 * r2 - r1 * r1) / (2 * d * r2));
+    area = r1 * r1 * (a1 - std::sin(2 * a1) / 2) + r2 * r2 * (a2 - std::sin(2 * a2) / 2);
+  }
+  return area / (pi * r1 * r1);
+}
+
+}  // namespace penumbra::test
