@@ -58,6 +58,10 @@ std::vector<Case> cases() {
                         "scenes/hard/19-camera-inside-occluder.json", "scenes/hard/20-light-behind-camera.json",
                         "scenes/hard/23-analytic-square.json", "scenes/hard/23-analytic-disk.json"})
     for (int n : {16, 64}) out.push_back({s, n});
+  // Issue 14: scale and offset (hard cases 25, 26).
+  for (const char* s : {"scenes/hard/25-cube-huge-floor.json", "scenes/hard/25-plate-huge-floor.json",
+                        "scenes/hard/26-cube-far-1e5.json", "scenes/hard/26-quad-straddled.json"})
+    out.push_back({s, 16});
   for (const char* s : {"scenes/hard/01-cube-on-plane.json", "scenes/hard/15-two-plates.json",
                         "scenes/stained-glass.json", "scenes/hard/05-open-cylinder.json"})
     for (int n : {32, 128}) out.push_back({s, n});
