@@ -92,6 +92,9 @@ int speedErrorStudy(int argc, char** argv, std::FILE* out) {
       writeReport(r, o.outDir);
       std::fprintf(out, "== %s (%s, %zu triangles, %dx%d)\n%s", scene.name.c_str(), path.c_str(), scene.triangleCount(),
                    s.width, s.height, reportTable(r).c_str());
+      // A failed run (its row says why) would silently drop out of the headline's means.
+      for (auto& run : r.runs)
+        if (run.failed) throw Error(scene.name, run.technique + " failed: " + run.failure);
 
       auto plotted = plottedRuns(r);
       std::vector<std::pair<double, double>> pts;

@@ -67,7 +67,8 @@ void main() {
   }
   vec2 sums = texelFetch(checksum, px, 0).rg;
   float expected = sums.r;
-  atomicMax(boundMax, uint(sums.g));
+  // Clamped below 2^32 (uint() of a larger float is undefined): still past 2^24, still refused.
+  atomicMax(boundMax, uint(min(sums.g, 4294967040.0)));
   if (bad || abs(digitTotal - expected) > 0.5) atomicAdd(overflowPixels, 1u);
   if (negative) atomicAdd(negativePixels, 1u);
   if (!bad) atomicMax(maxCount, maxD);  // a wrapped digit is reported, not a count

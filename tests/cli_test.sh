@@ -72,6 +72,25 @@ expect 2 "pcf: must be 1, 5 or 9" -- "$P" render -t mvr -W 32 -H 32 --param pcf=
 expect 2 "expected key=value" -- "$P" render -t mvr -W 32 -H 32 --param map -o "$T/p.png"
 expect 2 "given twice" -- "$P" render -t mvr -W 32 -H 32 --param map=64 --param map=128 -o "$T/p.png"
 expect 2 "expected a number" -- "$P" render -t vwss -W 32 -H 32 --param scale=big -o "$T/p.png"
+# Non-finite numbers (issue 14): refused in one line, before any rendering.
+expect 2 "\-\-time: must be a finite number of seconds, got nan" -- "$P" render -W 32 -H 32 --time nan -o "$T/n.png"
+expect 2 "\-\-time: must be a finite number of seconds, got inf" -- "$P" compare -W 32 -H 32 --time inf --techniques none -o "$T/cmpn"
+expect 2 "\-\-max-error: must be a finite RMSE >= 0, got -1" -- "$P" compare -W 32 -H 32 --techniques none --max-error -1 -o "$T/cmpn"
+expect 2 "\-\-max-error: must be a finite RMSE >= 0, got nan" -- "$P" compare -W 32 -H 32 --techniques none --max-error nan -o "$T/cmpn"
+test ! -e "$T/n.png" || { echo "FAIL: an image was written for --time nan"; fail=1; }
+# One technique's failure (vssm refuses a map that is not a power of two when it renders) is its
+# row in every output; the others go on; the run ends with exit 1 naming it.
+expect 1 "compare: 1 of 2 technique runs failed (see the report): vssm (vssm: map size 1000 is not a power of two" -- \
+  "$P" compare -W 32 -H 32 --samples 4 --techniques vssm,hard-sv --param map=1000 --timing-frames 1 --warmup 0 -o "$T/cmpf"
+grep -q "^vssm  *FAILED: vssm: map size 1000" "$T/cmpf/table.txt" || { echo "FAIL: table.txt lacks the failed row"; fail=1; }
+grep -q "^hard-sv  *[0-9]" "$T/cmpf/table.txt" || { echo "FAIL: table.txt lacks hard-sv's row"; fail=1; }
+grep -q '"status": "failed"' "$T/cmpf/report.json" || { echo "FAIL: report.json lacks the failed run"; fail=1; }
+grep -q ',vssm,.*,failed,vssm: map size 1000' "$T/cmpf/report.csv" || { echo "FAIL: report.csv lacks the failed row"; fail=1; }
+grep -q '<tr class="failed"><td class="l">vssm</td>' "$T/cmpf/index.html" || { echo "FAIL: index.html lacks the failed row"; fail=1; }
+test -s "$T/cmpf/hard-sv.png" || { echo "FAIL: hard-sv did not go on after vssm failed"; fail=1; }
+# Hard case 30: nearly transparent occluders (opacity 3e-9 overflowed dcs's units to -2^31:
+# RMSE 0.98, exit 0); now dcs equals the reference.
+expect 0 "" -- "$P" compare "$SRC/scenes/hard/30-tiny-opacity.json" -W 64 -H 64 --samples 8 --techniques dcs --timing-frames 1 --warmup 0 --max-error 0.001 -o "$T/cmp30"
 # GL limits and out-of-memory (issue 7): one-line errors, never a crash or a GL error.
 noglerr() { if grep -q 'GL error\|GL: ' "$T/err"; then echo "FAIL: GL error logged"; cat "$T/err"; fail=1; fi; }
 expect 2 "map: 100000 is outside" -- "$P" render -t mvr -W 32 -H 32 --param map=100000 -o "$T/p.png"; noglerr

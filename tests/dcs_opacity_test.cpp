@@ -78,5 +78,58 @@ TEST(DcsOpacity, EveryOccludingSurfaceGetsAUnit) {
   EXPECT_GT(c.maxLayerError, 1e-7);
 }
 
+// Hard case 30: opacities far below the tolerance. Units of -ln(1 - 3e-9) would make an
+// opaque surface 2.3e9 units (past an int: it wrapped to -2^31 and every count went wrong);
+// such a surface is within the tolerance of transparent and codes as 0 units instead.
+TEST(DcsOpacity, NearlyTransparentSurfacesNeverOcclude) {
+  const double tol = 1.0 / 1024.0;
+  for (auto mode : {OpacityMode::Sum, OpacityMode::Product}) {
+    OpacityCoding c = planOpacity({3e-9f, 1e-7f, 1e-8f, 1.0f}, mode, tol);
+    EXPECT_EQ(c.mode, PENUMBRA_DCS_OPACITY_OPAQUE) << "nothing left to code but opaque surfaces";
+    EXPECT_EQ(c.units, (std::vector<int>{0, 0, 0, 1}));
+    EXPECT_EQ(c.opaqueUnits, 1);
+    EXPECT_NEAR(c.maxLayerError, 1e-7, 1e-9) << "the error is the largest dropped opacity";
+  }
+  // Mixed with surfaces that need units: the unit comes from those (2e-3 is the finest here:
+  // U = ceil(ln 1024 / -ln(1 - 2e-3)) = 3463), the nearly transparent ones still get 0.
+  OpacityCoding c = planOpacity({1e-7f, 1e-8f, 3e-9f, 2e-3f, 0.5f, 1.0f}, OpacityMode::Product, tol);
+  ASSERT_EQ(c.mode, PENUMBRA_DCS_OPACITY_PRODUCT);
+  EXPECT_EQ(c.units[0], 0);
+  EXPECT_EQ(c.units[1], 0);
+  EXPECT_EQ(c.units[2], 0);
+  EXPECT_GE(c.units[3], 1);
+  EXPECT_EQ(c.units[5], c.opaqueUnits);
+  EXPECT_GT(c.opaqueUnits, 3000);
+  EXPECT_LT(c.opaqueUnits, 4000);
+  EXPECT_LE(c.maxLayerError, tol);
+  EXPECT_NEAR(transmittance(c, float(c.units[3])), 1.0f - 2e-3f, tol);
+  EXPECT_NEAR(transmittance(c, float(c.units[4])), 0.5f, tol);
+}
+
+// However the opacities fall, an opaque surface stays within the unit budget (an int, and
+// 16 opaque crossings within the 2^24 a float counter holds exactly).
+TEST(DcsOpacity, OpaqueUnitsStayWithinTheBudget) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> near(0.001f, 0.003f), any(0.0f, 1.0f);
+  for (double tol : {1.0 / 1024.0, 1e-4, 1e-6, 1e-9}) {
+    for (int trial = 0; trial < 40; ++trial) {
+      std::vector<float> a = {1.0f, near(rng), any(rng), any(rng) * 1e-6f};
+      OpacityCoding c = planOpacity(a, OpacityMode::Product, tol);
+      ASSERT_EQ(c.mode, PENUMBRA_DCS_OPACITY_PRODUCT);
+      EXPECT_GE(c.opaqueUnits, 1);
+      EXPECT_LE(c.opaqueUnits, kMaxOpaqueUnits);
+      for (int u : c.units) {
+        EXPECT_GE(u, 0);
+        EXPECT_LE(u, c.opaqueUnits);
+      }
+      // The worst layer error is what the coding reports, within the tolerance when the budget
+      // allows the unit the tolerance needs (1/1024 always does).
+      if (tol >= 1e-4) {
+        EXPECT_LE(c.maxLayerError, tol) << a[1] << " " << a[2];
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace penumbra::dcs

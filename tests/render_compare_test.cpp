@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "pipeline/report.h"
 #include "render_test_util.h"
@@ -45,6 +46,95 @@ TEST(Compare, SweepPresetsAndDeduplication) {
     if (run.reference && r.presets[run.preset].samples == 8) ref8 = run.converged->visibility.rmse;
   EXPECT_LT(ref8, ref4);
   EXPECT_EQ(plottedRuns(r).size(), r.runs.size());
+  EXPECT_EQ(gl::Context::takeErrorCount(), 0);
+}
+
+// Issue 14: one technique's failure is its row of the report, not the end of the run. vssm
+// refuses a map that is not a power of two when it renders (its min-max hierarchy halves the
+// map); dcs and hard-sv, before and after it, go on and measure as they would alone.
+class CompareFailure : public TempDirTest {};
+
+TEST_F(CompareFailure, AFailedTechniqueIsItsRowAndTheOthersGoOn) {
+  Scene scene = loadScene(scenePath("scenes/hard/01-cube-on-plane.json"));
+  CompareOptions o;
+  o.techniques = {"dcs", "vssm", "hard-sv"};
+  o.params = {"map=1000"};
+  o.timingFrames = 1, o.warmup = 0, o.progress = 0;
+  o.outDir = dir_.string();
+  CompareResult r = compareTechniques(context(), scene, settings(48, 8), o);
+  ASSERT_EQ(r.runs.size(), 4u);
+  const CompareRun& failed = r.runs[2];
+  EXPECT_EQ(failed.technique, "vssm");
+  ASSERT_TRUE(failed.failed);
+  EXPECT_NE(failed.failure.find("not a power of two"), std::string::npos) << failed.failure;
+  EXPECT_TRUE(failed.image.empty());
+  for (std::size_t i : {0u, 1u, 3u}) {
+    EXPECT_FALSE(r.runs[i].failed) << r.runs[i].technique << ": " << r.runs[i].failure;
+    EXPECT_GT(r.runs[i].total.median, 0.0) << r.runs[i].technique;
+  }
+  EXPECT_EQ(r.runs[1].technique, "dcs");
+  EXPECT_LE(r.runs[1].errors.visibility.rmse, 1e-3) << "dcs equals the reference per sample";
+  EXPECT_EQ(r.runs[3].technique, "hard-sv");
+  EXPECT_GT(r.runs[3].errors.visibility.pixelsCounted, 0);
+  for (std::size_t i : plottedRuns(r)) EXPECT_FALSE(r.runs[i].failed) << "a failed run has no point";
+  EXPECT_EQ(gl::Context::takeErrorCount(), 0);
+
+  // Every output says so: the table, the JSON, the CSV and the page.
+  writeReport(r, dir_.string());
+  auto read = [&](const std::string& name) {
+    std::ifstream in(dir_ / name);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  std::string table = read("table.txt");
+  EXPECT_NE(table.find("vssm                             FAILED: vssm: map size 1000 is not a power of two"), std::string::npos)
+      << table;
+  EXPECT_NE(table.find("hard-sv "), std::string::npos);
+  nlohmann::json j = nlohmann::json::parse(read("report.json"));
+  ASSERT_EQ(j["runs"].size(), 4u);
+  EXPECT_EQ(j["runs"][2]["status"], "failed");
+  EXPECT_NE(j["runs"][2]["error"].get<std::string>().find("not a power of two"), std::string::npos);
+  EXPECT_FALSE(j["runs"][2].contains("errors")) << "no numbers for a run that never rendered";
+  EXPECT_EQ(j["runs"][1]["status"], "ok");
+  EXPECT_EQ(j["runs"][3]["status"], "ok");
+  std::istringstream csv(read("report.csv"));
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",status,error"), std::string::npos) << header;
+  int failedRows = 0, okRows = 0;
+  while (std::getline(csv, line)) {
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), std::count(header.begin(), header.end(), ',')) << line;
+    if (line.find(",vssm,") != std::string::npos) {
+      EXPECT_NE(line.find(",failed,vssm: map size 1000 is not a power of two"), std::string::npos) << line;
+      ++failedRows;
+    } else {
+      EXPECT_NE(line.find(",ok,"), std::string::npos) << line;
+      ++okRows;
+    }
+  }
+  EXPECT_EQ(failedRows, 1);
+  EXPECT_EQ(okRows, 3);
+  std::string html = read("index.html");
+  EXPECT_NE(html.find("<tr class=\"failed\"><td class=\"l\">vssm</td>"), std::string::npos);
+  EXPECT_NE(html.find("<b>failed:</b> vssm: map size 1000 is not a power of two"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "dcs.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "hard-sv.png"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "vssm.png"));
+}
+
+// A failed reference leaves nothing to measure against: the comparison ends, naming it.
+TEST(Compare, AFailedReferenceEndsTheRun) {
+  Scene scene = loadScene(scenePath("scenes/hard/01-cube-on-plane.json"));
+  scene.lights[0].intensity = NAN;  // every technique's shaded image is NaN, the reference's first
+  CompareOptions o;
+  o.techniques = {"hard-sv"};
+  o.timingFrames = 1, o.warmup = 0, o.progress = 0;
+  try {
+    compareTechniques(context(), scene, settings(32, 4), o);
+    ADD_FAILURE() << "a comparison without a reference";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("compare: the reference (raytrace) failed: raytrace:"), std::string::npos)
+        << e.what();
+  }
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }
 

@@ -458,6 +458,76 @@ INSTANTIATE_TEST_SUITE_P(Bases, DcsOverflow,
                            return "base" + std::to_string(info.param.base) + "_plates" + std::to_string(info.param.plates);
                          });
 
+// Counts past what a float counter holds exactly are refused, naming dcs and the cause, never
+// rendered with rounded counts: 20 opaque plates of 2^20 units each (a tolerance of 1e-9 and a
+// plate of opacity 2e-9 ask for the finest unit the budget allows, dcs/opacity.h) make 2^24.3.
+TEST(DcsOverflowRefusal, CountsPastAFloatCounterAreAnError) {
+  Scene scene = plateStack(20);
+  Material film;
+  film.opacity = 2e-9f;
+  scene.materials.push_back(film);
+  scene.meshes[1].material = 1;
+  Renderer renderer(context(), scene, settings(64, 16));
+  DcsOptions o;
+  o.opacityTolerance = 1e-9;
+  auto dcs = makeDepthComplexitySampling(o);
+  try {
+    renderer.render(*dcs, "dcs");
+    ADD_FAILURE() << "dcs rendered counts of 2^24.3 units";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("dcs: light 'key': counts reach"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("float counter holds exactly"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(gl::Context::takeErrorCount(), 0);
+}
+
+// Hard case 30: occluders of opacity 1e-7 .. 3e-9. Before: opacity 3e-9 made an opaque surface
+// -2^31 units (an int overflow; visibility RMSE 0.98, 2489 negative-count pixels, exit 0), 1e-7
+// and 1e-8 made 6.9e7 and 6.9e8 units (past 2^24: 794 negative-count pixels). Now such
+// surfaces are within the single-layer tolerance of transparent (0 units) and dcs equals the
+// reference per sample, with no negative or inconsistent count.
+struct TinyCase {
+  const char* scene;
+  const char* opacity;  // materials.0.opacity override, or null
+  int size;             // the semi-opaque panes cost ~0.5 s per 1000 pixels on llvmpipe
+};
+
+class DcsTinyOpacity : public ::testing::TestWithParam<TinyCase> {};
+
+TEST_P(DcsTinyOpacity, EqualsTheReferencePerSample) {
+  const TinyCase& c = GetParam();
+  std::vector<std::string> overrides;
+  if (c.opacity) overrides.push_back(std::string("materials.0.opacity=") + c.opacity);
+  Scene scene = loadScene(scenePath(c.scene), overrides);
+  ASSERT_TRUE(scene.hasSemiOpaque());
+  Comparison r = renderAndCompare(scene, "dcs", settings(c.size, 16));
+  const auto& e = r.errors;
+  ASSERT_GT(e.samplePairs, 0);
+  RecordProperty("visibility_rmse", std::to_string(e.visibility.rmse));
+  EXPECT_LE(e.visibility.rmse, 1e-3);
+  EXPECT_GE(e.sampleAgreement, 0.999) << e.samplePairs << " (pixel, sample) pairs compared";
+  EXPECT_EQ(statistic(r.frame, "negativeCountPixels"), 0.0);
+  EXPECT_EQ(statistic(r.frame, "inconsistentPixels"), 0.0);
+  EXPECT_GE(statistic(r.frame, "opaqueUnits"), 1.0);
+  EXPECT_LE(statistic(r.frame, "opaqueUnits"), double(dcs::kMaxOpaqueUnits));
+  EXPECT_LE(statistic(r.frame, "opacityLayerError"), 1.0 / 1024.0);
+  // Only the mixed scene has surfaces that need units (2e-3, 0.5): a product coding; the
+  // others have nothing left to code but the opaque floor.
+  const bool mixed = std::string(c.scene).find("mixed") != std::string::npos;
+  EXPECT_EQ(statistic(r.frame, "opacityCoding"), double(mixed ? PENUMBRA_DCS_OPACITY_PRODUCT : PENUMBRA_DCS_OPACITY_OPAQUE));
+}
+
+INSTANTIATE_TEST_SUITE_P(HardCase30, DcsTinyOpacity,
+                         ::testing::Values(TinyCase{"scenes/hard/30-tiny-opacity.json", nullptr, 128},
+                                           TinyCase{"scenes/hard/30-tiny-opacity.json", "1e-7", 128},
+                                           TinyCase{"scenes/hard/30-tiny-opacity.json", "1e-8", 128},
+                                           TinyCase{"scenes/hard/30-tiny-opacity-mixed.json", nullptr, 64}),
+                         [](const auto& info) {
+                           std::string n = sceneTestName(info.param.scene);
+                           if (info.param.opacity) n += std::string("_opacity") + (info.param.opacity[3] == '7' ? "1e7" : "1e8");
+                           return n;
+                         });
+
 }  // namespace
 }  // namespace penumbra::test
 

@@ -117,6 +117,36 @@ TEST(Pipeline, RejectsBadImageSizes) {
   EXPECT_THROW(Renderer(context(), scene, s), Error);
 }
 
+// Issue 14: a NaN or an infinity in an output image is an error naming the technique, never
+// an image (`--time nan` rendered 800 of 1024 pixels NaN with exit 0; the CLI now refuses it,
+// the pipeline is the last guard). Here a light of NaN intensity (the shaded image) and the
+// spinning fan posed at t = NaN (NaN light samples: the visibility).
+TEST(Pipeline, NonFiniteImagesAreAnErrorNamingTheTechnique) {
+  auto expectRefused = [](const Scene& scene, const std::string& technique, const std::string& what) {
+    Renderer renderer(context(), scene, settings(32, 4));
+    auto tech = makeTechnique(technique);
+    try {
+      renderer.render(*tech, technique);
+      ADD_FAILURE() << technique << " rendered a non-finite image (" << what << ")";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.where(), technique) << e.what();
+      EXPECT_NE(std::string(e.what()).find("NaN or infinite"), std::string::npos) << e.what();
+    }
+  };
+  Scene dark = litFloor(0.5f);
+  dark.lights[0].intensity = NAN;
+  for (const char* t : {"none", "hard-sv", "raytrace"}) expectRefused(dark, t, "NaN intensity");
+  Scene fan = loadScene(scenePath("scenes/spinning-fan.json")).posedAt(NAN);
+  for (const char* t : {"hard-sv", "raytrace"}) expectRefused(fan, t, "posed at NaN");
+  // A failed frame leaves nothing behind: the next render of a good scene is clean.
+  Scene good = litFloor(0.5f);
+  Renderer renderer(context(), good, settings(32, 4));
+  auto tech = makeTechnique("hard-sv");
+  FrameResult f = renderer.render(*tech, "hard-sv");
+  for (float v : f.color.data) ASSERT_TRUE(std::isfinite(v));
+  EXPECT_EQ(gl::Context::takeErrorCount(), 0);
+}
+
 TEST(Pipeline, EveryTechniqueRendersWithoutGlErrors) {
   Scene scene = defaultScene();
   for (auto& t : techniqueTable()) {

@@ -144,5 +144,64 @@ TEST(Report, PlotAndPageShowEveryRun) {
   EXPECT_NE(table.find("conv RMSE"), std::string::npos);
 }
 
+// Issue 14: a failed run is a row in every output (the reason, no numbers, no point), with
+// the CSV's columns unchanged; the other runs are as before.
+TEST(Report, AFailedRunIsARowEverywhere) {
+  CompareResult r = handMade();
+  CompareRun failed;
+  failed.technique = "broken", failed.preset = 1, failed.shading = "modulate";
+  failed.params = {"map=1000"};
+  failed.failed = true;
+  failed.failure = "broken: map size 1000 <is> not a power of two";
+  r.runs.push_back(failed);
+
+  EXPECT_EQ(plottedRuns(r).size(), 6u) << "a failed run has no point";
+  EXPECT_EQ(count(speedErrorSvg(r), "class=\"point\""), 6u);
+
+  std::string table = reportTable(r);
+  EXPECT_EQ(count(table, "\n"), 8u);
+  EXPECT_NE(table.find("broken @ samples=8               FAILED: broken: map size 1000 <is> not a power of two\n"),
+            std::string::npos)
+      << table;
+
+  std::string csv = reportCsv(r);
+  std::istringstream lines(csv);
+  std::string header, line, last;
+  std::getline(lines, header);
+  EXPECT_EQ(header.substr(header.size() - 18), "image,status,error") << header;
+  auto columns = [](const std::string& l) {  // outside quotes
+    std::size_t n = 1;
+    bool quoted = false;
+    for (char c : l) {
+      if (c == '"') quoted = !quoted;
+      n += !quoted && c == ',';
+    }
+    return n;
+  };
+  int ok = 0;
+  while (std::getline(lines, line)) {
+    EXPECT_EQ(columns(line), columns(header)) << line;
+    ok += line.find(",ok,") != std::string::npos;
+    last = line;
+  }
+  EXPECT_EQ(ok, 6);
+  EXPECT_EQ(last, "s<&>,broken,0,samples=8,map=1000,8,8,8,modulate,,,,,,,,,,,,,,,,,,,,,,,,failed,"
+                  "broken: map size 1000 <is> not a power of two");
+
+  nlohmann::json j = r.json();
+  ASSERT_EQ(j["runs"].size(), 7u);
+  EXPECT_EQ(j["runs"][6]["status"], "failed");
+  EXPECT_EQ(j["runs"][6]["error"], failed.failure);
+  for (const char* k : {"totalMs", "errors", "statistics", "stagesMs"}) EXPECT_FALSE(j["runs"][6].contains(k)) << k;
+  EXPECT_EQ(j["runs"][1]["status"], "ok");
+  EXPECT_TRUE(j["runs"][1].contains("errors"));
+
+  std::string html = reportHtml(r);
+  EXPECT_EQ(count(html, "<tr class=\"failed\">"), 1u);
+  EXPECT_NE(html.find("<b>failed:</b> broken: map size 1000 &lt;is&gt; not a power of two</td></tr>"), std::string::npos);
+  EXPECT_EQ(html.find("<is>"), std::string::npos) << "the reason is escaped";
+  EXPECT_EQ(count(html, "<img src=\"broken"), 0u) << "no image for a failed run";
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -13,6 +13,7 @@
 #include <fstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -37,7 +38,14 @@ Scene loadSceneFor(const CommonOptions& o) {
   return o.scene.empty() ? defaultScene(o.overrides) : loadScene(o.scene, o.overrides);
 }
 
+// Numbers CLI11 reads as floats accept "nan" and "inf": refused here, one line, exit 2.
+void checkTime(float time) {
+  if (!std::isfinite(time))
+    throw Error("--time", fmt::format("must be a finite number of seconds, got {}", time), ExitCode::Usage);
+}
+
 RenderSettings settingsFor(const CommonOptions& o, const Scene& scene) {
+  checkTime(o.time);
   RenderSettings s;
   if (o.width == 0 || o.height == 0 || o.width < -1 || o.height < -1)
     throw Error("-W/-H", "image size must be positive", ExitCode::Usage);
@@ -118,6 +126,7 @@ int info(const CommonOptions& o) {
 int render(const CommonOptions& o, const std::string& technique, const std::string& output) {
   const TechniqueInfo& info = findTechnique(technique);
   checkOutputPath(output);
+  checkTime(o.time);
   Scene scene = loadSceneFor(o);
   if (scene.isAnimated()) scene = scene.posedAt(o.time);  // "spin": the pose at --time
   scene.makeCameraRelative();  // in place: the Renderer would otherwise translate a copy
@@ -128,7 +137,7 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   TechniqueParams params(o.params);
   auto tech = info.create(params);
   params.checkConsumed();
-  FrameResult frame = renderer.render(*tech);
+  FrameResult frame = renderer.render(*tech, technique);
   writeFrame(output, frame);
   json j = frameSummary(frame);
   j["technique"] = technique;
@@ -154,6 +163,9 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
   if (c.warmup < 0 || c.warmup > 100) throw Error("--warmup", "must be in 0..100", ExitCode::Usage);
   if (c.frames < 1 || c.frames > 10000) throw Error("--frames", "must be in 1..10000", ExitCode::Usage);
   if (!(c.fps > 0.0f) || !std::isfinite(c.fps)) throw Error("--fps", "must be positive", ExitCode::Usage);
+  if (c.maxError && !(std::isfinite(*c.maxError) && *c.maxError >= 0.0))
+    throw Error("--max-error", fmt::format("must be a finite RMSE >= 0, got {}", *c.maxError), ExitCode::Usage);
+  checkTime(o.time);
   options.params = o.params;
   options.converged = c.converged;
   options.timingFrames = c.timingFrames, options.warmup = c.warmup;
@@ -175,11 +187,24 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
   std::fprintf(stderr, "%s", reportTable(result).c_str());
   PLOG_INFO("report: {}", (fs::path(options.outDir) / "index.html").string());
   if (o.json) std::printf("%s\n", result.json().dump(2).c_str());
-  if (c.maxError >= 0.0) {
+  // Failed techniques (their rows say why): the run is an error, after the report is written.
+  std::vector<std::string> failed;
+  std::size_t techniqueRuns = 0;
+  for (auto& run : result.runs) techniqueRuns += !run.reference;
+  for (auto& run : result.runs)
+    if (run.failed) {
+      const std::string& label = result.presets[run.preset].label;
+      failed.push_back(run.technique + (label.empty() ? "" : " @ " + label) + " (" + run.failure + ")");
+    }
+  if (!failed.empty())
+    throw Error("compare", fmt::format("{} of {} technique runs failed (see the report): {}", failed.size(), techniqueRuns,
+                                       fmt::join(failed, "; ")));
+  if (c.maxError) {
     for (auto& run : result.runs)
-      if (!run.reference && run.errors.visibility.rmse > c.maxError) {
+      // A NaN error fails the threshold (the pipeline refuses NaN images; this is the last guard).
+      if (!run.reference && !(run.errors.visibility.rmse <= *c.maxError)) {
         std::fprintf(stderr, "penumbra: %s: visibility RMSE %.4g exceeds --max-error %.4g\n", run.technique.c_str(),
-                     run.errors.visibility.rmse, c.maxError);
+                     run.errors.visibility.rmse, *c.maxError);
         return int(ExitCode::ThresholdExceeded);
       }
   }

@@ -1,6 +1,7 @@
 // penumbra's subcommands. Each returns the process exit code (see core/error.h ExitCode).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,7 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
 struct CompareCliOptions {
   std::vector<std::string> techniques;  // names or {"all"}
   std::string outDir;                   // empty: out/<scene name>
-  double maxError = -1.0;               // exit 3 above it (visibility RMSE, same-sample reference)
+  std::optional<double> maxError;       // exit 3 above it (visibility RMSE, same-sample reference)
   std::vector<std::string> sweeps, insets;
   bool converged = false;
   int timingFrames = 3, warmup = 1, frames = 1;

@@ -60,7 +60,8 @@ int main(int argc, char** argv) {
   addCommon(compare, o, true);
   compare->add_option("--techniques", techniques, "comma-separated techniques, or 'all'")->capture_default_str();
   compare->add_option("-o,--output", cmp.outDir, "output folder (default: out/<scene name>)");
-  compare->add_option("--max-error", cmp.maxError, "exit 3 if a technique's visibility RMSE against the reference exceeds this");
+  double maxError = 0.0;
+  auto* maxErrorOption = compare->add_option("--max-error", maxError, "exit 3 if a technique's visibility RMSE against the reference exceeds this");
   compare->add_option("--sweep", cmp.sweeps, "key=v1,v2,...: samples, resolution or a technique parameter (repeatable; presets are the product)");
   compare->add_flag("--converged", cmp.converged, "also measure against raytrace-converged (implied by a samples sweep)");
   compare->add_option("--inset", cmp.insets, "x,y,w,h: a region to zoom in the report (repeatable; default: two chosen)");
@@ -112,6 +113,7 @@ int main(int argc, char** argv) {
         }
       }
       cmp.techniques = names;
+      if (maxErrorOption->count()) cmp.maxError = maxError;
       return cli::compare(o, cmp);
     }
   } catch (const Error& e) {

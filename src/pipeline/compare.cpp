@@ -434,7 +434,7 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
       // (warm-up frames are frame 0), every frame's visibility kept for flicker.
       Timing t = timeRenders(
           frames == 1 ? o.timingFrames : frames, o.warmup,
-          [&](int i) { return rendererFor(i, shading, slot).render(tech); },
+          [&](int i) { return rendererFor(i, shading, slot).render(tech, run.technique); },
           [&](int i, const FrameResult& fr) {
             if (keep) keep->push_back(keepVisibility(fr));
             if (frames > 1 && i == 0) first = fr;
@@ -475,7 +475,12 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
     refRun.technique = "raytrace", refRun.preset = pi, refRun.reference = true;
     std::vector<FrameVisibility> refFrames;
     auto refTech = makeTechnique("raytrace");
-    FrameResult ref = renderRun(*refTech, refRun, s.shading, frames > 1 ? &refFrames : nullptr);
+    FrameResult ref;
+    try {
+      ref = renderRun(*refTech, refRun, s.shading, frames > 1 ? &refFrames : nullptr);
+    } catch (const Error& e) {  // nothing can be measured without it: the comparison ends
+      throw Error("compare", "the reference (raytrace" + at + ") failed: " + e.what(), e.exitCode());
+    }
     if (pi == 0) {
       result.insets = o.insets.empty() ? chooseInsets(ref) : o.insets;
       result.insetSource = o.insets.empty() ? "chosen" : "given";
@@ -500,15 +505,28 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
 
     for (auto& job : jobs[pi]) {
       progress.step(job.technique + at);
-      TechniqueParams params(preset.params);
-      auto tech = makeTechnique(job.technique, params);
       CompareRun run;
       run.technique = job.technique, run.preset = pi, run.params = job.read;
-      ShadingMode shading = s.shading;
-      if (shading == ShadingMode::PerSample && !tech->providesPerSample()) shading = ShadingMode::Modulate;
       std::vector<FrameVisibility> kept;
-      FrameResult f = renderRun(*tech, run, shading, frames > 1 ? &kept : nullptr);
-      tech.reset();  // its render targets go before the next technique allocates its own
+      FrameResult f;
+      try {
+        TechniqueParams params(preset.params);
+        auto tech = makeTechnique(job.technique, params);
+        ShadingMode shading = s.shading;
+        if (shading == ShadingMode::PerSample && !tech->providesPerSample()) shading = ShadingMode::Modulate;
+        f = renderRun(*tech, run, shading, frames > 1 ? &kept : nullptr);
+        // (its render targets go, at the end of this block, before the next technique allocates its own)
+      } catch (const std::exception& e) {
+        // One technique's failure is its row of the report, not the end of the comparison.
+        CompareRun failed;
+        failed.technique = job.technique, failed.preset = pi, failed.params = job.read;
+        failed.shading = run.shading;
+        failed.failed = true;
+        failed.failure = e.what();
+        PLOG_ERROR("{}{} failed: {}", job.technique, at, failed.failure);
+        result.runs.push_back(std::move(failed));
+        continue;
+      }
       run.errors = measureErrors(f, ref);
       if (conv) run.converged = measureErrors(f, *conv);
       if (frames > 1) {
@@ -603,7 +621,15 @@ nlohmann::json CompareResult::json() const {
                      {"errors", errorsJson(r.errors)},
                      {"image", r.image},
                      {"heat", r.heat},
-                     {"insets", r.insetImages}};
+                     {"insets", r.insetImages},
+                     {"status", r.failed ? "failed" : "ok"}};
+    if (r.failed) {
+      // No numbers for a failed run: its timings and errors were never measured.
+      for (const char* k : {"stagesMs", "stagesSpreadMs", "totalMs", "totalSpreadMs", "prepareMs", "memoryBytes",
+                            "statistics", "errors"})
+        t.erase(k);
+      t["error"] = r.failure;
+    }
     if (r.converged) t["convergedErrors"] = errorsJson(*r.converged);
     if (r.flicker >= 0.0)
       t["temporal"] = {{"flicker", r.flicker}, {"referenceMotion", r.referenceMotion}, {"meanVisibilityRmse", r.meanFrameRmse}};

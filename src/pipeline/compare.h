@@ -107,6 +107,11 @@ struct CompareRun {
   // - the reference's change), i.e. flicker the reference does not have; the reference's own
   // RMS change; the mean visibility RMSE over the frames.
   double flicker = -1.0, referenceMotion = -1.0, meanFrameRmse = -1.0;
+  // The technique failed (an Error or another exception while it was created or rendered):
+  // `failure` says why; no timings, errors or images. The other runs go on; a failed reference
+  // ends the comparison (compareTechniques throws).
+  bool failed = false;
+  std::string failure;
   std::string image, heat;  // file names in the output folder, "" if not written
   std::vector<std::string> insetImages;
   // The error the plot uses: visibility RMSE against the converged reference if measured,
@@ -127,7 +132,8 @@ struct CompareResult {
 
 // Renders the references and every technique at every preset, writing images (.exr, .png,
 // heat maps, inset crops) into options.outDir as it goes. Parameters are checked (a key no
-// technique reads is refused) before the first render.
+// technique reads is refused) before the first render. A technique that fails is a run with
+// `failed` set (the others go on); a reference that fails throws.
 CompareResult compareTechniques(gl::Context& context, const Scene& scene, const RenderSettings& settings,
                                 const CompareOptions& options);
 

@@ -1,7 +1,9 @@
 #include "pipeline/renderer.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
@@ -249,7 +251,39 @@ Renderer::Renderer(gl::Context& context, const Scene& given, const RenderSetting
 
 Renderer::~Renderer() = default;
 
-FrameResult Renderer::render(Technique& technique) {
+namespace {
+
+// Values of `im` that are NaN or infinite, and the pixels holding them.
+std::size_t nonFinitePixels(const Image& im) {
+  std::size_t bad = 0;
+  for (std::size_t i = 0; i < im.pixelCount(); ++i) {
+    bool finite = true;
+    for (int c = 0; c < im.channels; ++c) finite = finite && std::isfinite(im.data[i * std::size_t(im.channels) + std::size_t(c)]);
+    bad += !finite;
+  }
+  return bad;
+}
+
+}  // namespace
+
+FrameResult Renderer::render(Technique& technique, const std::string& name) {
+  try {
+    return renderFrame(technique, name);
+  } catch (...) {
+    // A technique that failed part-way may leave its fixed-function state: the next render
+    // (compare goes on with the other techniques) starts from the state every pass expects.
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_CULL_FACE);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glUseProgram(0);
+    gl::Context::checkErrors("failed frame");
+    throw;
+  }
+}
+
+FrameResult Renderer::renderFrame(Technique& technique, const std::string& name) {
   FrameResult result;
   result.timer = StageTimer([] { glFinish(); });
   StageTimer& timer = result.timer;
@@ -372,12 +406,19 @@ FrameResult Renderer::render(Technique& technique) {
           for (std::size_t i = 0; i < n; ++i) lr.perSample[i * std::size_t(samples.count) + k] = layers.data[k * n + i];
       }
     });
+    if (std::size_t bad = nonFinitePixels(lr.visibility))
+      throw Error(name, fmt::format("light '{}': {} of {} visibility pixels are NaN or infinite", light.name, bad,
+                                    lr.visibility.pixelCount()));
+    if (std::any_of(lr.perSample.begin(), lr.perSample.end(), [](float v) { return !std::isfinite(v); }))
+      throw Error(name, fmt::format("light '{}': per-sample visibility holds NaN or infinite values", light.name));
     result.lights.push_back(std::move(lr));
   }
   Image c4 = timer.time("readback", [&] { return color_.read(4); });
   result.color = Image(c4.width, c4.height, 3);
   for (std::size_t i = 0; i < c4.pixelCount(); ++i)
     for (int c = 0; c < 3; ++c) result.color.data[i * 3 + c] = c4.data[i * 4 + c];
+  if (std::size_t bad = nonFinitePixels(result.color))
+    throw Error(name, fmt::format("{} of {} pixels of the shaded image are NaN or infinite", bad, result.color.pixelCount()));
   cpuGBuffer();  // always return the G-buffer: comparisons mask background pixels with it
   result.statistics = technique.statistics();
   result.memoryBytes = gpu_->memoryBytes() + color_.bytes() + visibility_.bytes() +

@@ -116,12 +116,15 @@ class Renderer {
   ~Renderer();
 
   // Renders one frame. Throws penumbra::Error for settings the technique cannot honour (e.g.
-  // per-sample shading with a technique that has no per-sample results).
-  FrameResult render(Technique& technique);
+  // per-sample shading with a technique that has no per-sample results), and, naming `name`,
+  // when a visibility buffer or the shaded image holds a NaN or an infinity (never an image
+  // that is silently wrong).
+  FrameResult render(Technique& technique, const std::string& name = "technique");
 
   gl::Context& context() { return context_; }
 
  private:
+  FrameResult renderFrame(Technique& technique, const std::string& name);
   gl::Context& context_;
   std::unique_ptr<Scene> local_;  // a camera-relative copy, when the scene given was not
   const Scene& scene_;            // the scene every technique renders: camera at the origin

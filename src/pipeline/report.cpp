@@ -113,7 +113,7 @@ std::vector<std::size_t> plottedRuns(const CompareResult& r) {
   std::vector<std::size_t> out;
   for (std::size_t i = 0; i < r.runs.size(); ++i) {
     const CompareRun& run = r.runs[i];
-    if (run.reference && !run.converged) continue;
+    if (run.failed || (run.reference && !run.converged)) continue;
     if (!(run.total.median > 0.0) || !std::isfinite(run.plotError())) continue;
     out.push_back(i);
   }
@@ -239,6 +239,10 @@ std::string reportTable(const CompareResult& r) {
   if (temporal) t += fmt::format(" {:>9}", "flicker");
   t += "  stages ms\n";
   for (auto& run : r.runs) {
+    if (run.failed) {
+      t += fmt::format("{:<32} FAILED: {}\n", runLabel(r, run), run.failure);
+      continue;
+    }
     t += fmt::format("{:<32} {:>9.1f} {:>17} {:>8.1f}", runLabel(r, run), run.total.median,
                      fmt::format("({:.1f}-{:.1f})", run.total.min, run.total.max), double(run.memoryBytes) / 1048576.0);
     if (run.reference && !run.converged) t += fmt::format(" {:>9} {:>8} {:>9} {:>10}", "-", "-", "-", "-");
@@ -258,11 +262,22 @@ std::string reportCsv(const CompareResult& r) {
       "scene,technique,reference,preset,params,samples,width,height,shading,total_ms_median,total_ms_min,total_ms_max,"
       "prepare_ms,stages_ms,memory_bytes,vis_rmse,vis_mean,vis_max,vis_rmse_outside_band,misclassified_pixels,"
       "sample_agreement,img_rmse,img_mean,img_max,conv_vis_rmse,conv_vis_mean,conv_vis_max,conv_img_rmse,flicker,"
-      "reference_motion,mean_frame_rmse,image\n";
+      "reference_motion,mean_frame_rmse,image,status,error\n";
   const std::string scene = r.info.value("sceneName", std::string());
   auto num = [](double v) { return fmt::format("{:.6g}", v); };
   for (auto& run : r.runs) {
     const ComparePreset& p = r.presets[run.preset];
+    if (run.failed) {
+      // The run's identity, empty numbers (never measured), then why it failed.
+      std::vector<std::string> f = {csvField(scene), csvField(run.technique), run.reference ? "1" : "0", csvField(p.label),
+                                    csvField(join(run.params, " ")), std::to_string(p.samples), std::to_string(p.width),
+                                    std::to_string(p.height), run.shading};
+      f.insert(f.end(), 23, "");
+      f.push_back("failed");
+      f.push_back(csvField(run.failure));
+      c += join(f, ",") + "\n";
+      continue;
+    }
     std::vector<std::string> stages;
     for (auto& [k, v] : run.stages) stages.push_back(k + "=" + fmt::format("{:.3f}", v.median));
     const TechniqueErrors& e = run.errors;
@@ -282,6 +297,8 @@ std::string reportCsv(const CompareResult& r) {
     }
     for (double v : {run.flicker, run.referenceMotion, run.meanFrameRmse}) f.push_back(v >= 0.0 ? num(v) : "");
     f.push_back(csvField(run.image));
+    f.push_back("ok");
+    f.push_back("");
     c += join(f, ",") + "\n";
   }
   return c;
@@ -304,6 +321,7 @@ th { background: #f4f4f4; position: sticky; top: 0; }
 td.l, th.l { text-align: left; }
 td.st { white-space: normal; min-width: 300px; font-size: 0.9em; }
 tr.ref td { color: #555; font-style: italic; }
+tr.failed td { color: #b00020; background: #fff0f0; }
 tr.front td:first-child { font-weight: bold; }
 .gallery { display: flex; flex-wrap: wrap; gap: 12px; }
 figure { margin: 0; border: 1px solid #ddd; padding: 6px; background: #fafafa; }
@@ -362,6 +380,14 @@ img.missing { outline: 3px solid red; min-width: 64px; min-height: 64px; }
     std::vector<std::string> stageList;
     for (auto& [k, v] : run.stages) stageList.push_back(fmt::format("{}&nbsp;{:.2f}", escape(k), v.median));
     const std::string stages = join(stageList, " &middot; ");
+    if (run.failed) {
+      const int rest = 12 + (conv ? 2 : 0) + (temporal ? 3 : 0);
+      h += fmt::format("<tr class=\"failed\"><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td>"
+                       "<td class=\"l st\" colspan=\"{}\"><b>failed:</b> {}</td></tr>\n",
+                       escape(run.technique), escape(p.label), escape(join(run.params, " ")), p.samples, rest,
+                       escape(run.failure));
+      continue;
+    }
     h += fmt::format("<tr class=\"{}\"><td class=\"l\">{}{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td>"
                      "<td>{:.2f}</td><td>{:.2f}&ndash;{:.2f}</td><td class=\"l st\">{}</td><td>{:.1f}</td><td>{:.2f}</td>",
                      run.reference ? "ref" : (front ? "front" : ""), escape(run.technique), run.reference ? " (reference)" : "",

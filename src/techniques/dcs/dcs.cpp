@@ -59,6 +59,9 @@ struct GpuStatus {
 
 // Bias of every counter digit (shaders/dcs_init.frag).
 constexpr int kBias = 2;
+// The largest count the widest layout (one counter per float channel) holds: float adds
+// integers exactly below 2^24 (packing.h).
+constexpr std::int64_t kMaxExactCount = std::int64_t(dcs::kLayouts[dcs::kLayoutCount - 1].base) - 1;
 
 geo::LightExtent extentOf(const Light& l) {
   geo::LightExtent e;
@@ -112,6 +115,10 @@ class DepthComplexitySampling final : public Technique {
     for (auto& m : scene.meshes) opacities.push_back(std::clamp(scene.materials[std::size_t(m.material)].opacity, 0.0f, 1.0f));
     coding_ = dcs::planOpacity(opacities, options_.opacity, options_.opacityTolerance);
     if (coding_.mode != PENUMBRA_DCS_OPACITY_OPAQUE) PLOG_INFO("dcs: semi-opaque occluders, {}", coding_.describe());
+    for (std::size_t i = 0; i < opacities.size(); ++i)
+      if (opacities[i] > 0.0f && coding_.units[i] == 0)
+        PLOG_INFO("dcs: mesh '{}' (opacity {:.3g}) never occludes: within the single-layer tolerance {:.3g} of transparent",
+                  scene.meshes[i].name, opacities[i], options_.opacityTolerance);
     volumes_.prepare(scene, gpu, coding_.units, coding_.opaqueUnits);
     // The wedges' growth covers the float epsilon of every evaluation point (shared.h
     // penumbraSurfaceEpsilon), bounded by that of the scene's largest coordinate: more is only
@@ -272,6 +279,9 @@ class DepthComplexitySampling final : public Technique {
         Image dc = volumes_.counter().read(1), bound = bound_.read(1);
         float m = 0.0f;
         for (std::size_t i = 0; i < dc.data.size(); ++i) m = std::max(m, std::round(dc.data[i]) + bound.data[i]);
+        // Float sums of positive integers never round below 2^24 once past it: a bound too
+        // deep for every base is seen as such (and refused) before an int could overflow.
+        if (!(double(m) + kBias <= double(kMaxExactCount))) refuseDepth(light, double(m));
         return int(m) + kBias;
       });
     }
@@ -350,6 +360,10 @@ class DepthComplexitySampling final : public Technique {
         PLOG_INFO("dcs: light '{}': counts up to {} (bound, + bias {}) need {}", light.name, maxCount - kBias, kBias,
                    plan.describe());
       status = runCounterPasses(plan);
+      if (std::int64_t(status.boundMax) > kMaxExactCount) {
+        boundCache_.erase(pass.lightIndex);
+        refuseDepth(light, double(status.boundMax) - kBias);
+      }
       int measured = int(status.boundMax);
       boundCache_[pass.lightIndex] = measured;
       if (std::int64_t(plan.counters.base) - 1 >= measured) break;
@@ -367,9 +381,20 @@ class DepthComplexitySampling final : public Technique {
     stats_.inconsistentPixels = status.overflowPixels;
     // The bound makes an overflow impossible: every count stays below D(c) + bound <= B - 1 - bias
     // during and after the update. A digit-sum mismatch therefore means a count below -bias: the
-    // shadow-volume count and the wedges disagree about a point within a pixel of a shadow-volume
-    // side (they decide "inside" at slightly different points). Such pixels are reported.
+    // shadow-volume count and the wedges disagree about a point (an edge-band pixel of a volume
+    // side), and the borrow corrupts the pixel's other samples. With accurate silhouettes and
+    // the exact covered-sample test that image is wrong where dcs promises the reference's: an
+    // error, never a warning. Standard silhouettes (dcs-standard, they miss edges) and the
+    // paper's 2D modes (naive, lut) are approximate by design; they report such pixels.
     std::size_t pixels = std::size_t(pass.gpu.width()) * std::size_t(pass.gpu.height());
+    // A count that ends in [-bias, -1] (read as 0) is the same disagreement, caught by the bias
+    // before it borrowed: exact dcs has none on any scene (render_dcs_test), so one is an error too.
+    const bool exact = coverage == PENUMBRA_DCS_COVERAGE_EXACT && options_.silhouettes == SilhouetteMode::Accurate;
+    if ((status.overflowPixels > 0 || status.negativePixels > 0) && exact)
+      throw Error("dcs", fmt::format("light '{}': {} pixels with inconsistent counts (a counter left its digit) and {} "
+                                     "with negative counts: the shadow-volume count and the wedges disagree, the image "
+                                     "would be wrong there",
+                                     light.name, status.overflowPixels, status.negativePixels));
     if (status.overflowPixels > pixels / 1000)
       PLOG_WARN("dcs: {} pixels with inconsistent counts (shadow-volume count vs wedges at a volume side)",
                 status.overflowPixels);
@@ -446,6 +471,13 @@ class DepthComplexitySampling final : public Technique {
     if (count) out.read(ids.data(), sizeof(std::uint32_t) * count, sizeof(std::uint32_t));
     std::sort(ids.begin(), ids.end());
     return std::vector<int>(ids.begin(), ids.end());
+  }
+  // A light whose counts (its depth complexity times the units of a crossing) pass what a float
+  // counter holds exactly: refused, never rendered with rounded counts.
+  [[noreturn]] void refuseDepth(const Light& light, double count) const {
+    throw Error("dcs", fmt::format("light '{}': counts reach {:.0f} units, past the {} a float counter holds exactly "
+                                   "(opaque surfaces are {} units each: {})",
+                                   light.name, count, kMaxExactCount, coding_.opaqueUnits, coding_.describe()));
   }
   // shaders/common_dcs.glsl, DcsProfile.
   struct Profile {

@@ -11,7 +11,11 @@
 // transmittance is within `tolerance` of 1 - a with as few units as possible (fewer units: a
 // narrower counter base, more counters per channel). Scenes without semi-opaque surfaces use
 // neither (one unit per occluder, T = [count == 0]): no semi-opaque path.
-// Surfaces of opacity 0 never occlude (0 units), as in the reference. No GL here.
+// Surfaces of opacity 0 never occlude (0 units), as in the reference; nor do surfaces within
+// `tolerance` of transparent (0 units: their single-layer error is their opacity, at most the
+// tolerance), which would otherwise need billions of units (hard case 30). An opaque surface is
+// at most kMaxOpaqueUnits units, so that 2^24 / kMaxOpaqueUnits = 16 opaque crossings still fit
+// the 2^24 a float counter holds exactly (deeper counts are refused at render time). No GL here.
 #pragma once
 
 #include <string>
@@ -20,6 +24,8 @@
 namespace penumbra::dcs {
 
 enum class OpacityMode { Sum, Product };
+
+inline constexpr int kMaxOpaqueUnits = 1 << 20;
 
 struct OpacityCoding {
   int mode = 0;             // PENUMBRA_DCS_OPACITY_* (shaders/shared.h)
