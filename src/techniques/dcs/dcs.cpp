@@ -52,6 +52,18 @@ struct GpuIncidence {
   glm::vec4 third;  // xyz third vertex, w the triangle's orientation along the edge (+-1)
   glm::vec4 normal;  // the triangle's plane: n (its winding), w = d with n . x + d = 0
 };
+// A triangle the path from the light centre to a sample passes through (shaders/dcs_init.frag).
+struct GpuPathCrossing {
+  glm::vec4 plane;  // the triangle's plane as in GpuIncidence::normal
+  glm::ivec4 meta;  // x the centre's side, y the sample's side (+-1, 0 on it), z 1 for the closed rule, w units
+};
+// The triangle's plane n . x + d = 0 in its own winding, as the wedges store it (one expression,
+// so the init pass and the wedges decide a point's side of it alike).
+glm::vec4 trianglePlane(const std::vector<glm::vec3>& P, const glm::uvec3& tri) {
+  glm::dvec3 a(P[tri.x]), b(P[tri.y]), c(P[tri.z]);
+  glm::dvec3 n = glm::cross(b - a, c - a);
+  return glm::vec4(glm::vec3(n), float(-glm::dot(n, a)));
+}
 struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
   std::uint32_t boundMax = 0;  // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
@@ -130,14 +142,15 @@ class DepthComplexitySampling final : public Technique {
           const auto& inc = topo.incidences[e.firstIncidence + k];
           const glm::uvec3& tri = topo.weldedTriangles[inc.triangle];
           std::uint32_t third = tri.x + tri.y + tri.z - e.v0 - e.v1;
-          glm::dvec3 a(P[tri.x]), b(P[tri.y]), c(P[tri.z]);
-          glm::dvec3 n = glm::cross(b - a, c - a);
-          incidences.push_back({glm::vec4(P[third], float(inc.orientation)), glm::vec4(glm::vec3(n), float(-glm::dot(n, a)))});
+          incidences.push_back({glm::vec4(P[third], float(inc.orientation)), trianglePlane(P, tri)});
         }
         edges.push_back(g);
       }
     }
     edgeBuffer_ = gl::Buffer(edges);
+    edges_ = std::move(edges);
+    edgeRules_.clear();
+    for (auto& m : volumes_.meshes()) edgeRules_.push_back(m.rule);
     incidenceBuffer_ = gl::Buffer(incidences);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
     profileBuffer_ = gl::Buffer(sizeof(Profile), nullptr);
@@ -158,7 +171,41 @@ class DepthComplexitySampling final : public Technique {
     const int coverage = dcs::edgeLutSupports(light) ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;
     stats_.coverage = coverage;
     const GpuLut* lut = coverage != PENUMBRA_DCS_COVERAGE_EXACT ? &lutFor(pass) : nullptr;
-    volumes_.count(pass);  // D(c): stages "silhouettes", "shadow volume"
+    float radius = 0.0f;
+    std::vector<glm::vec3> corners = lightCorners(light, radius);
+    // Hard cases 27-29: the closed meshes the light touches or enters are counted per triangle
+    // (every crossing), and the paths from the centre to the samples that pass through a
+    // triangle get their jump in the init pass (ShadowVolumeCounter::place).
+    ShadowVolumeCounter::Placement placed;
+    pass.timer.time("dcs placement", [&] {
+      placed = volumes_.place(glm::dvec3(light.position), &pass.samples.positions, double(radius),
+                              glm::dvec3(pass.gpu.cameraPosition()));
+      useRules(placed.rules);
+    });
+    stats_.perTriangleMeshes = placed.perTriangleMeshes;
+    stats_.pathCrossings = placed.crossings.size();
+    int maxPathGain = 0;  // the most a sample's path crossings can add to its count
+    {
+      std::vector<GpuPathCrossing> gpuCrossings;
+      for (std::size_t k = 0; k + 1 < placed.firstCrossing.size(); ++k) {
+        int gain = 0;
+        for (std::uint32_t j = placed.firstCrossing[k]; j < placed.firstCrossing[k + 1]; ++j) {
+          const auto& x = placed.crossings[j];
+          const auto& m = volumes_.meshes()[x.mesh];
+          gain += m.units;
+          gpuCrossings.push_back({trianglePlane(m.topology.weldedPositions, m.topology.weldedTriangles[x.at.triangle]),
+                                  glm::ivec4(x.at.sideC, x.at.sideS,
+                                             placed.rules[x.mesh] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0, m.units)});
+        }
+        maxPathGain = std::max(maxPathGain, gain);
+      }
+      if (!gpuCrossings.empty()) {
+        pathFirstBuffer_ = gl::Buffer(placed.firstCrossing);
+        pathBuffer_ = gl::Buffer(gpuCrossings);
+      }
+    }
+    const bool hasPathCrossings = !placed.crossings.empty();
+    volumes_.count(pass, placed.rules);  // D(c): stages "silhouettes", "shadow volume"
 
     std::vector<int> edgeIds;
     pass.timer.time("dcs edges", [&] {
@@ -172,9 +219,9 @@ class DepthComplexitySampling final : public Technique {
         const auto& m = meshes[mi];
         if (m.units == 0) continue;  // never occludes
         if (options_.silhouettes == SilhouetteMode::Accurate) {
-          for (auto e : geo::extractAccurateSilhouette(m.topology, extent, m.rule)) edgeIds.push_back(int(edgeOffset_[mi] + e));
+          for (auto e : geo::extractAccurateSilhouette(m.topology, extent, placed.rules[mi])) edgeIds.push_back(int(edgeOffset_[mi] + e));
         } else {
-          for (auto& s : geo::extractPointSilhouette(m.topology, glm::dvec3(light.position), m.rule).sides)
+          for (auto& s : geo::extractPointSilhouette(m.topology, glm::dvec3(light.position), placed.rules[mi]).sides)
             edgeIds.push_back(int(edgeOffset_[mi] + s.edge));
         }
       }
@@ -186,8 +233,6 @@ class DepthComplexitySampling final : public Technique {
     gl::Buffer idBuffer(edgeIds);
     gl::VertexArray idVao = gl::VertexArray::create();
     idVao.vertexBuffer(idBuffer, sizeof(int)).attributeInt(0, 1, 0);
-    float radius = 0.0f;
-    std::vector<glm::vec3> corners = lightCorners(light, radius);
     edgeBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGES);
     incidenceBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
 
@@ -255,7 +300,7 @@ class DepthComplexitySampling final : public Technique {
     if (cached != boundCache_.end()) {
       maxCount = cached->second;
     } else if (options_.firstFrameBound >= 0) {
-      maxCount = options_.firstFrameBound + kBias;
+      maxCount = options_.firstFrameBound + kBias + maxPathGain;
     } else {
       maxCount = pass.timer.time("dcs bound", [&] {
         boundFbo_.bind();
@@ -268,7 +313,7 @@ class DepthComplexitySampling final : public Technique {
         Image dc = volumes_.counter().read(1), bound = bound_.read(1);
         float m = 0.0f;
         for (std::size_t i = 0; i < dc.data.size(); ++i) m = std::max(m, std::round(dc.data[i]) + bound.data[i]);
-        return int(m) + kBias;
+        return int(m) + kBias + maxPathGain;
       });
     }
 
@@ -295,12 +340,21 @@ class DepthComplexitySampling final : public Technique {
           glDisable(GL_BLEND);
           glDisable(GL_DEPTH_TEST);
           volumes_.counter().bind(PENUMBRA_UNIT_COUNTER);
+          pass.gpu.bindGBuffer();
           progs.init.use();
           progs.init.set("digitSum", float(sum));
+          progs.init.set("passFirst", first);
           progs.init.set("passCount", count);
+          progs.init.set("pathCrossings", hasPathCrossings ? 1 : 0);
+          if (hasPathCrossings) {
+            setLightUniforms(progs.init, light, pass.samples);
+            progs.init.set("eyePosition", pass.gpu.cameraPosition());
+            progs.init.set("surfaceOffset", pass.scene.surfaceOffset());
+            pathFirstBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PATH_FIRST);
+            pathBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PATH);
+          }
           emptyVao_.bind();
           glDrawArrays(GL_TRIANGLES, 0, 3);
-          pass.gpu.bindGBuffer();
           wedgeState();
           progs.wedge.set("passFirst", first);
           progs.wedge.set("passCount", count);
@@ -397,7 +451,9 @@ class DepthComplexitySampling final : public Technique {
             {"opacityCoding", double(coding_.mode)},
             {"coverageMode", double(stats_.coverage)},
             {"opaqueUnits", double(coding_.opaqueUnits)},
-            {"opacityLayerError", coding_.maxLayerError}};
+            {"opacityLayerError", coding_.maxLayerError},
+            {"closedMeshesPerTriangle", double(stats_.perTriangleMeshes)},
+            {"pathCrossings", double(stats_.pathCrossings)}};
     if (options_.profile) {
       const Profile& p = stats_.profile;
       for (auto [name, value] : {std::pair{"profileRectangleEdges", p.rectangleEdges}, {"profileWedgeEdges", p.wedgeEdges},
@@ -455,7 +511,22 @@ class DepthComplexitySampling final : public Technique {
     std::uint32_t maxCount = 0, boundMaxCount = 0, negativePixels = 0, inconsistentPixels = 0;
     std::uint32_t reruns = 0;  // counter passes run again because the previous frame's bound failed
     int coverage = PENUMBRA_DCS_COVERAGE_EXACT;  // the covered-sample mode of the last light
+    std::size_t perTriangleMeshes = 0;  // closed meshes the light touches or enters (counted per triangle)
+    std::size_t pathCrossings = 0;      // (sample, triangle) pairs: a centre-to-sample path through a triangle
   };
+
+  // The closed-rule flag of each edge (meta.z) as `rules` says for this light; the edge buffer
+  // is written again only when a mesh's rule changes.
+  void useRules(const std::vector<geo::VolumeRule>& rules) {
+    if (rules == edgeRules_) return;
+    const auto& meshes = volumes_.meshes();
+    for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
+      std::size_t end = mi + 1 < meshes.size() ? edgeOffset_[mi + 1] : edges_.size();
+      for (std::size_t e = edgeOffset_[mi]; e < end; ++e) edges_[e].meta.z = rules[mi] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0;
+    }
+    edgeBuffer_.write(edges_.data(), edges_.size() * sizeof(GpuEdge));
+    edgeRules_ = rules;
+  }
 
   Programs& programsFor(const dcs::PackingPlan& plan, int coverage) {
     int key = (plan.layout * 16 + plan.targets) * 4 + coverage;
@@ -552,6 +623,9 @@ class DepthComplexitySampling final : public Technique {
   ShadowVolumeCounter volumes_;
   std::vector<std::uint32_t> edgeOffset_;
   gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_, profileBuffer_;
+  std::vector<GpuEdge> edges_;             // edgeBuffer_'s contents
+  std::vector<geo::VolumeRule> edgeRules_;  // the rule per mesh edgeBuffer_ holds
+  gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (shaders/dcs_init.frag)
   gl::Texture bound_, checksum_, counters_;
   gl::Framebuffer boundFbo_, counterFbo_;
   gl::Program silhouetteProgram_;
