@@ -170,6 +170,24 @@ PointLocation locatePoint(const EdgeTopology& topology, const glm::dvec3& x) {
   return out;
 }
 
+int triangleFacing(const EdgeTopology& topology, std::uint32_t t, const glm::dvec3& x) { return facingAt(topology, t, x); }
+
+bool onTriangleBorder(const EdgeTopology& topology, const glm::dvec3& x) {
+  for (std::uint32_t t : trianglesNearBall(topology, x, 0.0)) {
+    if (facingAt(topology, t, x) != 0 || !inTriangle(topology, t, x, true)) continue;
+    const glm::uvec3& tri = topology.weldedTriangles[t];
+    const std::vector<glm::vec3>& P = topology.weldedPositions;
+    const std::uint32_t idx[3] = {tri.x, tri.y, tri.z};
+    glm::dvec3 p0;
+    const glm::dvec3 n = triangleNormal(topology, t, p0);
+    for (int i = 0; i < 3; ++i) {
+      const glm::dvec3 a(P[idx[i]]), b(P[idx[(i + 1) % 3]]);
+      if (glm::dot(n, glm::cross(b - a, x - a)) == 0.0) return true;
+    }
+  }
+  return false;
+}
+
 std::vector<std::uint32_t> trianglesNearBall(const EdgeTopology& topology, const glm::dvec3& centre, double radius) {
   std::vector<std::uint32_t> out;
   const std::vector<glm::vec3>& P = topology.weldedPositions;

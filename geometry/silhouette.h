@@ -104,6 +104,11 @@ struct PathCrossing {
   std::uint32_t triangle;
   std::int8_t sideC, sideS;
 };
+// The facing of triangle t at x as extractPointSilhouette decides it: +1, -1, 0 in its plane.
+int triangleFacing(const EdgeTopology& topology, std::uint32_t t, const glm::dvec3& x);
+// x lies exactly on an edge or a vertex of some triangle (in its plane, on its border): where a
+// path starting at x meets the surface at a border, which the crossings above do not resolve.
+bool onTriangleBorder(const EdgeTopology& topology, const glm::dvec3& x);
 // The triangles that can meet a path inside the ball (centre, radius): a cheap filter.
 std::vector<std::uint32_t> trianglesNearBall(const EdgeTopology& topology, const glm::dvec3& centre, double radius);
 // Appends the crossings of the path c -> s with the candidate triangles.

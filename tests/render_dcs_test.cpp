@@ -70,7 +70,8 @@ std::vector<Case> cases() {
                         "scenes/hard/29-light-below-floor.json", "scenes/hard/29-light-inside-tube.json"})
     out.push_back({s, 16});
   for (const char* s : {"scenes/hard/28-rect-partly-inside.json", "scenes/hard/28-rect-centre-inside.json",
-                        "scenes/hard/28-disk-through-box.json", "scenes/hard/28-sphere-partly-inside.json"})
+                        "scenes/hard/28-disk-through-box.json", "scenes/hard/28-sphere-partly-inside.json",
+                        "scenes/hard/28-sphere-at-vertex.json", "scenes/hard/28-rect-on-edge.json"})
     for (int n : {16, 64}) out.push_back({s, n});
   return out;
 }
@@ -98,6 +99,22 @@ TEST(Dcs, LightsStraddlingABoxMatchTheReferenceWithEveryPattern) {
   Comparison outside = renderAndCompare(loadScene(scenePath("scenes/hard/01-cube-on-plane.json")), "dcs", settings(64, 16));
   EXPECT_EQ(statistic(outside.frame, "closedMeshesPerTriangle"), 0.0);
   EXPECT_EQ(statistic(outside.frame, "pathCrossings"), 0.0);
+}
+
+// Hard case 28: a light centred exactly on a mesh vertex or edge. Paths from the centre start
+// on the border of faces, so dcs integrates from a point of the light next to the centre
+// (statistic shiftedOrigin); a light centred inside a face or off the mesh does not.
+TEST(Dcs, LightCentredOnAVertexOrEdgeIntegratesFromNextToIt) {
+  for (const char* file : {"scenes/hard/28-sphere-at-vertex.json", "scenes/hard/28-rect-on-edge.json"}) {
+    Comparison r = renderAndCompare(loadScene(scenePath(file)), "dcs", settings(96, 32));
+    EXPECT_EQ(statistic(r.frame, "shiftedOrigin"), 1.0) << file;
+    EXPECT_GE(r.errors.sampleAgreement, 0.999) << file;
+    EXPECT_LE(r.errors.visibility.rmse, 1e-3) << file;
+    EXPECT_EQ(statistic(r.frame, "negativeCountPixels"), 0.0) << file;
+  }
+  Comparison off = renderAndCompare(loadScene(scenePath("scenes/hard/28-rect-partly-inside.json")), "dcs", settings(64, 16));
+  EXPECT_EQ(statistic(off.frame, "shiftedOrigin"), 0.0);
+  EXPECT_EQ(statistic(off.frame, "coplanarTriangles"), 0.0);
 }
 
 // Hard case 28: a light inside a closed box: everything outside the box is dark, in dcs as in

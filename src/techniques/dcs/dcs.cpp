@@ -29,6 +29,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -161,18 +162,35 @@ class DepthComplexitySampling final : public Technique {
     programs_.clear();
     luts_.clear();
     boundCache_.clear();
+    warnedCoplanar_.clear();
     counters_ = gl::Texture();
     emptyVao_ = gl::VertexArray::create();
   }
 
-  void renderVisibility(LightPass& pass) override {
+  void renderVisibility(LightPass& lightPass) override {
+    // The integration origin (hard cases 27-28): the light centre, unless it lies exactly on a
+    // mesh edge or vertex (a light centred on a box's edge or corner). There a path from it to
+    // a sample starts on the border of the surface, where neither the crossing of one triangle
+    // (dcs_init.frag) nor an edge update (a wedge whose plane holds the start) describes the
+    // jump; any point of the light can serve as the origin of the integration (DCS 4.2: D(s) =
+    // D(x) + the changes from x to s), so a point next to the centre, off every border, does.
+    Light origin = lightPass.light;
+    stats_.shiftedOrigin = false;
+    if (origin.shape != LightShape::Point && volumes_.onMeshBorder(glm::dvec3(origin.position))) {
+      origin.position = offBorder(lightPass.light);
+      stats_.shiftedOrigin = true;
+    }
+    LightPass pass{lightPass.scene, origin, lightPass.lightIndex, lightPass.samples, lightPass.gpu, lightPass.timer,
+                   lightPass.cpuGBuffer, lightPass.visibility, lightPass.perSample, lightPass.cpuPerSample};
     const Light& light = pass.light;
-    // The paper's 2D covered-sample modes need a planar light; others use the exact test.
-    const int coverage = dcs::edgeLutSupports(light) ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;
+    // The paper's 2D covered-sample modes need a planar light (and its centre as the origin);
+    // others use the exact test.
+    const int coverage = dcs::edgeLutSupports(light) && !stats_.shiftedOrigin ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;
     stats_.coverage = coverage;
     const GpuLut* lut = coverage != PENUMBRA_DCS_COVERAGE_EXACT ? &lutFor(pass) : nullptr;
     float radius = 0.0f;
-    std::vector<glm::vec3> corners = lightCorners(light, radius);
+    std::vector<glm::vec3> corners = lightCorners(lightPass.light, radius);
+    radius += glm::length(origin.position - lightPass.light.position);  // around the origin
     // Hard cases 27-29: the closed meshes the light touches or enters are counted per triangle
     // (every crossing), and the paths from the centre to the samples that pass through a
     // triangle get their jump in the init pass (ShadowVolumeCounter::place).
@@ -183,6 +201,11 @@ class DepthComplexitySampling final : public Technique {
       useRules(placed.rules);
     });
     stats_.perTriangleMeshes = placed.perTriangleMeshes;
+    stats_.coplanarTriangles = placed.coplanarTriangles;
+    if (placed.coplanarTriangles > 0 && warnedCoplanar_.insert(pass.lightIndex).second)
+      PLOG_WARN("dcs: light '{}' lies in the plane of {} triangles: where its samples cross such a face's border the counts "
+                "may differ from the reference (a path along a surface is not resolved exactly)",
+                light.name, placed.coplanarTriangles);
     stats_.pathCrossings = placed.crossings.size();
     int maxPathGain = 0;  // the most a sample's path crossings can add to its count
     {
@@ -209,7 +232,7 @@ class DepthComplexitySampling final : public Technique {
 
     std::vector<int> edgeIds;
     pass.timer.time("dcs edges", [&] {
-      geo::LightExtent extent = extentOf(light);
+      geo::LightExtent extent = extentOf(lightPass.light);
       if (options_.gpuSilhouettes && options_.silhouettes == SilhouetteMode::Accurate) {
         edgeIds = gpuAccurateSilhouette(extent);
         return;
@@ -453,7 +476,9 @@ class DepthComplexitySampling final : public Technique {
             {"opaqueUnits", double(coding_.opaqueUnits)},
             {"opacityLayerError", coding_.maxLayerError},
             {"closedMeshesPerTriangle", double(stats_.perTriangleMeshes)},
-            {"pathCrossings", double(stats_.pathCrossings)}};
+            {"pathCrossings", double(stats_.pathCrossings)},
+            {"shiftedOrigin", stats_.shiftedOrigin ? 1.0 : 0.0},
+            {"coplanarTriangles", double(stats_.coplanarTriangles)}};
     if (options_.profile) {
       const Profile& p = stats_.profile;
       for (auto [name, value] : {std::pair{"profileRectangleEdges", p.rectangleEdges}, {"profileWedgeEdges", p.wedgeEdges},
@@ -513,7 +538,27 @@ class DepthComplexitySampling final : public Technique {
     int coverage = PENUMBRA_DCS_COVERAGE_EXACT;  // the covered-sample mode of the last light
     std::size_t perTriangleMeshes = 0;  // closed meshes the light touches or enters (counted per triangle)
     std::size_t pathCrossings = 0;      // (sample, triangle) pairs: a centre-to-sample path through a triangle
+    std::size_t coplanarTriangles = 0;  // triangles in the light's plane (Placement)
+    bool shiftedOrigin = false;         // the light centre lies on a mesh edge or vertex: integrated from next to it
   };
+
+  // A point of the light 1% of its size from the centre (well-conditioned volume sides through
+  // the edges at the centre), off every mesh edge and vertex.
+  glm::vec3 offBorder(const Light& l) const {
+    const float size = l.shape == LightShape::Rect ? 0.5f * std::min(l.size.x, l.size.y) : l.size.x;
+    const glm::vec3 t = l.tangent, b = l.bitangent(), n = l.normal;
+    glm::vec3 x = l.position;
+    for (int k = 0; k < 8; ++k) {
+      // Directions away from the axes and from each other (golden-angle turns), inside the
+      // light: in its plane for rect and disk, any for a sphere.
+      const float a = 0.3f + 2.39996f * float(k);
+      glm::vec3 d = std::cos(a) * t + std::sin(a) * b;
+      if (l.shape == LightShape::Sphere) d = glm::normalize(d + 0.5f * n);
+      x = l.position + (0.01f * float(1 + k)) * size * d;
+      if (!volumes_.onMeshBorder(glm::dvec3(x))) return x;
+    }
+    return x;
+  }
 
   // The closed-rule flag of each edge (meta.z) as `rules` says for this light; the edge buffer
   // is written again only when a mesh's rule changes.
@@ -632,6 +677,7 @@ class DepthComplexitySampling final : public Technique {
   std::map<int, gl::Program> boundPrograms_;  // by covered-sample mode
   std::map<int, Programs> programs_;
   std::map<std::uint64_t, GpuLut> luts_;  // by sample-pattern hash
+  std::set<int> warnedCoplanar_;  // lights warned about (once each)
   std::map<int, int> boundCache_;  // light index -> the last frame's measured bound (+ bias)
   gl::VertexArray emptyVao_;
   Stats stats_;

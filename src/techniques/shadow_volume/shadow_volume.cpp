@@ -47,6 +47,11 @@ ShadowVolumeCounter::Placement ShadowVolumeCounter::place(const glm::dvec3& cent
     std::vector<std::size_t> foundStart(n + 1, 0);
     if (n > 0) {
       std::vector<std::uint32_t> near = geo::trianglesNearBall(m.topology, centre, radius);
+      for (std::uint32_t t : near) {
+        bool inPlane = geo::triangleFacing(m.topology, t, centre) == 0;
+        for (std::size_t k = 0; k < n && inPlane; ++k) inPlane = geo::triangleFacing(m.topology, t, glm::dvec3((*samples)[k])) == 0;
+        out.coplanarTriangles += inPlane;
+      }
       for (std::size_t k = 0; k < n; ++k) {
         foundStart[k] = found.size();
         if (!near.empty()) geo::pathCrossings(m.topology, near, centre, glm::dvec3((*samples)[k]), found);
@@ -81,6 +86,12 @@ ShadowVolumeCounter::Placement ShadowVolumeCounter::place(const glm::dvec3& cent
   }
   out.firstCrossing.push_back(std::uint32_t(out.crossings.size()));
   return out;
+}
+
+bool ShadowVolumeCounter::onMeshBorder(const glm::dvec3& x) const {
+  for (const MeshVolumes& m : meshes_)
+    if (m.units != 0 && geo::onTriangleBorder(m.topology, x)) return true;
+  return false;
 }
 
 void ShadowVolumeCounter::count(LightPass& pass, const std::vector<geo::VolumeRule>& rules) {

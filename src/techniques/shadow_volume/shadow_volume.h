@@ -59,11 +59,17 @@ class ShadowVolumeCounter {
     std::vector<std::uint32_t> firstCrossing;  // per sample, then the end: a range of `crossings`
     std::vector<Crossing> crossings;
     std::size_t perTriangleMeshes = 0;  // closed meshes given one volume per triangle for this light
+    // Triangles in whose plane the centre and every sample lie (a light lying on a face): a
+    // path across such a face's border is not resolved exactly (dcs warns).
+    std::size_t coplanarTriangles = 0;
   };
   // `samples` (null: the centre only, hard-sv) and the ball of `radius` around `centre` that
   // holds them.
   Placement place(const glm::dvec3& centre, const std::vector<glm::vec3>* samples, double radius,
                   const glm::dvec3& eye) const;
+
+  // x lies exactly on an edge or a vertex of an occluding mesh (geo::onTriangleBorder).
+  bool onMeshBorder(const glm::dvec3& x) const;
 
   // Fills counter() with the number of volumes (from pass.light.position) containing each
   // visible point: the count of closed objects plus open surfaces between it and the light,
