@@ -71,7 +71,8 @@ std::vector<Case> cases() {
     out.push_back({s, 16});
   for (const char* s : {"scenes/hard/28-rect-partly-inside.json", "scenes/hard/28-rect-centre-inside.json",
                         "scenes/hard/28-disk-through-box.json", "scenes/hard/28-sphere-partly-inside.json",
-                        "scenes/hard/28-sphere-at-vertex.json", "scenes/hard/28-rect-on-edge.json"})
+                        "scenes/hard/28-sphere-at-vertex.json", "scenes/hard/28-rect-on-edge.json",
+                        "scenes/hard/28-disk-pierced-by-pole.json"})
     for (int n : {16, 64}) out.push_back({s, n});
   return out;
 }
@@ -96,6 +97,11 @@ TEST(Dcs, LightsStraddlingABoxMatchTheReferenceWithEveryPattern) {
       EXPECT_GT(statistic(r.frame, "pathCrossings"), 0.0) << file;
     }
   }
+  // A pole through the light with no sample inside it: closed rule, paths crossing it.
+  Comparison pole = renderAndCompare(loadScene(scenePath("scenes/hard/28-disk-pierced-by-pole.json")), "dcs", settings(96, 64));
+  EXPECT_LE(pole.errors.visibility.rmse, 1e-3);
+  EXPECT_EQ(statistic(pole.frame, "closedMeshesPerTriangle"), 0.0);
+  EXPECT_GT(statistic(pole.frame, "pathCrossings"), 0.0);
   Comparison outside = renderAndCompare(loadScene(scenePath("scenes/hard/01-cube-on-plane.json")), "dcs", settings(64, 16));
   EXPECT_EQ(statistic(outside.frame, "closedMeshesPerTriangle"), 0.0);
   EXPECT_EQ(statistic(outside.frame, "pathCrossings"), 0.0);
