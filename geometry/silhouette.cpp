@@ -106,3 +106,141 @@ std::vector<std::uint32_t> extractAccurateSilhouette(const EdgeTopology& topolog
 }
 
 }  // namespace penumbra::geo
+
+namespace penumbra::geo {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+int signOf(double v) { return (v > 0.0) - (v < 0.0); }
+
+// The facing of triangle t at x, as extractPointSilhouette computes it.
+int facingAt(const EdgeTopology& topology, std::size_t t, const glm::dvec3& x) {
+  glm::dvec3 p0;
+  const glm::dvec3 n = triangleNormal(topology, t, p0);
+  return signOf(glm::dot(n, x - p0));
+}
+
+// Sign test of one triangle edge u -> v that is zero: claimed by the triangle that runs the edge
+// from its lower to its higher welded index (the shared-edge tie-break of silhouette.h).
+bool claims(std::uint32_t u, std::uint32_t v) { return u < v; }
+
+// x in the plane of triangle t: inside it, or on its border. `inclusive`: every border point
+// counts; otherwise the shared-edge tie-break decides (vertices: both edges must claim).
+bool inTriangle(const EdgeTopology& topology, std::size_t t, const glm::dvec3& x, bool inclusive) {
+  const glm::uvec3& tri = topology.weldedTriangles[t];
+  const std::vector<glm::vec3>& P = topology.weldedPositions;
+  const std::uint32_t idx[3] = {tri.x, tri.y, tri.z};
+  glm::dvec3 p0;
+  const glm::dvec3 n = triangleNormal(topology, t, p0);
+  if (!(glm::dot(n, n) > 0.0)) return false;  // degenerate: no surface
+  for (int i = 0; i < 3; ++i) {
+    const glm::dvec3 a(P[idx[i]]), b(P[idx[(i + 1) % 3]]);
+    const double side = glm::dot(n, glm::cross(b - a, x - a));
+    if (side < 0.0) return false;
+    if (side == 0.0 && !inclusive && !claims(idx[i], idx[(i + 1) % 3])) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+PointLocation locatePoint(const EdgeTopology& topology, const glm::dvec3& x) {
+  PointLocation out;
+  const std::vector<glm::vec3>& P = topology.weldedPositions;
+  if (P.empty()) return out;
+  glm::dvec3 lo(P[0]), hi(P[0]);
+  for (const glm::vec3& p : P) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+  if (glm::any(glm::lessThan(x, lo)) || glm::any(glm::greaterThan(x, hi))) return out;
+  double solidAngle = 0.0;
+  for (std::size_t t = 0; t < topology.weldedTriangles.size(); ++t) {
+    if (facingAt(topology, t, x) == 0 && inTriangle(topology, t, x, true)) {
+      out.onSurface = true;
+      return out;
+    }
+    const glm::uvec3& tri = topology.weldedTriangles[t];
+    const glm::dvec3 a = glm::dvec3(P[tri.x]) - x, b = glm::dvec3(P[tri.y]) - x, c = glm::dvec3(P[tri.z]) - x;
+    const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+    // Van Oosterom and Strackee (1983): tan(omega / 2) = det(a, b, c) / (|a||b||c| + ...).
+    const double det = glm::dot(a, glm::cross(b, c));
+    const double den = la * lb * lc + glm::dot(a, b) * lc + glm::dot(b, c) * la + glm::dot(c, a) * lb;
+    solidAngle += 2.0 * std::atan2(det, den);
+  }
+  out.winding = int(std::lround(solidAngle / (4.0 * kPi)));
+  return out;
+}
+
+int triangleFacing(const EdgeTopology& topology, std::uint32_t t, const glm::dvec3& x) { return facingAt(topology, t, x); }
+
+bool onTriangleBorder(const EdgeTopology& topology, const glm::dvec3& x) {
+  for (std::uint32_t t : trianglesNearBall(topology, x, 0.0)) {
+    if (facingAt(topology, t, x) != 0 || !inTriangle(topology, t, x, true)) continue;
+    const glm::uvec3& tri = topology.weldedTriangles[t];
+    const std::vector<glm::vec3>& P = topology.weldedPositions;
+    const std::uint32_t idx[3] = {tri.x, tri.y, tri.z};
+    glm::dvec3 p0;
+    const glm::dvec3 n = triangleNormal(topology, t, p0);
+    for (int i = 0; i < 3; ++i) {
+      const glm::dvec3 a(P[idx[i]]), b(P[idx[(i + 1) % 3]]);
+      if (glm::dot(n, glm::cross(b - a, x - a)) == 0.0) return true;
+    }
+  }
+  return false;
+}
+
+std::vector<std::uint32_t> trianglesNearBall(const EdgeTopology& topology, const glm::dvec3& centre, double radius) {
+  std::vector<std::uint32_t> out;
+  const std::vector<glm::vec3>& P = topology.weldedPositions;
+  for (std::size_t t = 0; t < topology.weldedTriangles.size(); ++t) {
+    const glm::uvec3& tri = topology.weldedTriangles[t];
+    const glm::dvec3 a(P[tri.x]), b(P[tri.y]), c(P[tri.z]);
+    const glm::dvec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
+    // Box around the ball, grown by a relative 1e-9 (rounding of the corners), against the
+    // triangle's box; then the ball against the triangle's plane.
+    const double r = radius * (1.0 + 1e-9);
+    if (glm::any(glm::lessThan(hi, centre - r)) || glm::any(glm::greaterThan(lo, centre + r))) continue;
+    glm::dvec3 p0;
+    const glm::dvec3 n = triangleNormal(topology, t, p0);
+    const double len = glm::length(n);
+    if (!(len > 0.0)) continue;
+    if (std::abs(glm::dot(n, centre - p0)) > r * len) continue;
+    out.push_back(std::uint32_t(t));
+  }
+  return out;
+}
+
+void pathCrossings(const EdgeTopology& topology, const std::vector<std::uint32_t>& candidates, const glm::dvec3& c,
+                   const glm::dvec3& s, std::vector<PathCrossing>& out) {
+  const std::vector<glm::vec3>& P = topology.weldedPositions;
+  for (std::uint32_t t : candidates) {
+    const int sc = facingAt(topology, t, c), ss = facingAt(topology, t, s);
+    if (sc == ss) continue;  // same side, or the whole path in the plane: no crossing
+    bool crosses = false;
+    if (sc == 0) {
+      crosses = inTriangle(topology, t, c, false);
+    } else if (ss == 0) {
+      crosses = inTriangle(topology, t, s, false);
+    } else {
+      // The path meets the plane inside t when it passes the three edges on the same hand:
+      // orient(c, s, u, v) of one sign for every edge u -> v (zero: the shared-edge tie-break).
+      const glm::uvec3& tri = topology.weldedTriangles[t];
+      const std::uint32_t idx[3] = {tri.x, tri.y, tri.z};
+      int hand = 0;
+      crosses = true;
+      for (int i = 0; i < 3 && crosses; ++i) {
+        const glm::dvec3 u(P[idx[i]]), v(P[idx[(i + 1) % 3]]);
+        const int o = signOf(glm::dot(glm::cross(s - c, u - c), v - c));
+        if (o == 0) {
+          crosses = claims(idx[i], idx[(i + 1) % 3]);
+        } else if (hand == 0) {
+          hand = o;
+        } else {
+          crosses = o == hand;
+        }
+      }
+    }
+    if (crosses) out.push_back({t, std::int8_t(sc), std::int8_t(ss)});
+  }
+}
+
+}  // namespace penumbra::geo

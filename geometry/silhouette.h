@@ -73,3 +73,46 @@ std::vector<std::uint32_t> extractAccurateSilhouette(const EdgeTopology& topolog
                                                      const LightExtent& light, VolumeRule rule);
 
 }  // namespace penumbra::geo
+
+namespace penumbra::geo {
+
+// Lights touching or inside closed meshes (hard cases 27-29). Every test is in double on the
+// welded positions, with the facing expression of extractPointSilhouette, so "a point exactly on
+// a triangle's plane" means exactly what facing 0 means for the shadow volumes.
+//
+// Convention for a light point exactly on a surface: the surface it lies on does not occlude it
+// (its triangles have facing 0 and no volume; the reference's ray stops 1e-5 short of the
+// sample); the rest of the mesh does. Tie-break on a shared edge (a point or a segment exactly
+// through an edge shared by two triangles): the triangle that runs the edge from its lower to
+// its higher welded index claims it, so a flat face split into triangles counts once.
+
+// Where x lies against a mesh: on a triangle (its plane through x, x inside it or on its border),
+// else the winding number (generalised, Van Oosterom-Strackee solid angles, rounded: 1 inside a
+// closed mesh wound outwards, 0 outside, -1 inside an inverted one). Points outside the mesh's
+// bounding box are 0 without the solid-angle sum.
+struct PointLocation {
+  bool onSurface = false;
+  int winding = 0;
+};
+PointLocation locatePoint(const EdgeTopology& topology, const glm::dvec3& x);
+
+// Where the straight path from c to s passes through a triangle (an endpoint on the triangle
+// counts, with side 0): what the depth complexity of a path from the light centre gains or loses
+// besides the edge crossings (techniques/shadow_volume, dcs). `sideC`/`sideS` are the signs of
+// the triangle's facing at c and s (+1 on the side its normal points to).
+struct PathCrossing {
+  std::uint32_t triangle;
+  std::int8_t sideC, sideS;
+};
+// The facing of triangle t at x as extractPointSilhouette decides it: +1, -1, 0 in its plane.
+int triangleFacing(const EdgeTopology& topology, std::uint32_t t, const glm::dvec3& x);
+// x lies exactly on an edge or a vertex of some triangle (in its plane, on its border): where a
+// path starting at x meets the surface at a border, which the crossings above do not resolve.
+bool onTriangleBorder(const EdgeTopology& topology, const glm::dvec3& x);
+// The triangles that can meet a path inside the ball (centre, radius): a cheap filter.
+std::vector<std::uint32_t> trianglesNearBall(const EdgeTopology& topology, const glm::dvec3& centre, double radius);
+// Appends the crossings of the path c -> s with the candidate triangles.
+void pathCrossings(const EdgeTopology& topology, const std::vector<std::uint32_t>& candidates, const glm::dvec3& c,
+                   const glm::dvec3& s, std::vector<PathCrossing>& out);
+
+}  // namespace penumbra::geo

@@ -59,6 +59,8 @@
 #define PENUMBRA_SSBO_SEMI_STATUS 8     // multi-view maps: most semi-opaque surfaces on one texel
 #define PENUMBRA_SSBO_VSSM_SAT 9        // vssm: summed-area table of the depth moments, a texel a pair
 #define PENUMBRA_SSBO_VSSM_HSM 10       // vssm: min-max hierarchical shadow map, all levels, a texel a pair
+#define PENUMBRA_SSBO_DCS_PATH_FIRST 11  // dcs: per light sample, the first of its path crossings (then the end)
+#define PENUMBRA_SSBO_DCS_PATH 12        // dcs: path crossings (triangle plane, sides, rule, units)
 #define PENUMBRA_VSSM_FIXED_ONE 32767.0 // vssm exact SAT: depth in [0,1] as 15-bit integers (sums of
                                         // squares stay below 2^53 at 2048^2: exact in doubles)
 

@@ -249,6 +249,56 @@ TEST(GeometrySilhouette, LightInsideClosedMeshHasNoSides) {
   EXPECT_TRUE(s.sides.empty());
 }
 
+// Hard case 27: where a point lies against the cube. Inside: winding 1; outside: 0 (also 1e-4
+// beyond a vertex); exactly on a face, an edge or a vertex: on the surface; the inverted cube
+// winds -1 inside.
+TEST(GeometryInside, PointLocationOnTheCube) {
+  const EdgeTopology topo = buildEdgeTopology(cube());
+  EXPECT_EQ(locatePoint(topo, {0.1, 0.2, -0.1}).winding, 1);
+  EXPECT_FALSE(locatePoint(topo, {0.1, 0.2, -0.1}).onSurface);
+  EXPECT_EQ(locatePoint(topo, {0.49999, -0.49999, 0.49999}).winding, 1);
+  EXPECT_EQ(locatePoint(topo, {0.5001, 0.5001, 0.5001}).winding, 0);
+  EXPECT_EQ(locatePoint(topo, {0.3, 0.7, 0.0}).winding, 0);  // inside the box, above the cube
+  EXPECT_EQ(locatePoint(topo, {3.0, 0.0, 0.0}).winding, 0);  // outside the bounding box
+  for (glm::dvec3 on : {glm::dvec3(0.5, 0.1, 0.2), glm::dvec3(0.5, 0.5, 0.2), glm::dvec3(0.5, 0.5, 0.5),
+                        glm::dvec3(0.0, 0.0, -0.5) /* on the -z face's diagonal */}) {
+    const PointLocation at = locatePoint(topo, on);
+    EXPECT_TRUE(at.onSurface) << on.x << " " << on.y << " " << on.z;
+  }
+  TriangleMesh inverted = cube();
+  for (auto& t : inverted.triangles) std::swap(t.y, t.z);
+  EXPECT_EQ(locatePoint(buildEdgeTopology(inverted), {0.1, 0.2, -0.1}).winding, -1);
+}
+
+// Hard case 28: a path from a centre outside to a sample inside enters through one triangle
+// (side +1 -> -1), also when it passes exactly through a face's diagonal (the shared-edge
+// tie-break claims it for one of the two triangles); a path ending on a face has side 0 there;
+// a path beside the cube crosses nothing.
+TEST(GeometryInside, PathCrossingsCountEachFaceOnce) {
+  const EdgeTopology topo = buildEdgeTopology(cube());
+  const glm::dvec3 c(0.9, 0.1, 0.2);
+  std::vector<std::uint32_t> near = trianglesNearBall(topo, c, 1.0);
+  ASSERT_FALSE(near.empty());
+  auto crossings = [&](const glm::dvec3& from, const glm::dvec3& to) {
+    std::vector<PathCrossing> out;
+    pathCrossings(topo, trianglesNearBall(topo, from, glm::length(to - from)), from, to, out);
+    return out;
+  };
+  std::vector<PathCrossing> in = crossings(c, {0.2, 0.1, 0.2});
+  ASSERT_EQ(in.size(), 1u);
+  EXPECT_EQ(in[0].sideC, 1);
+  EXPECT_EQ(in[0].sideS, -1);
+  // Through the +x face's diagonal (1,2,6)/(1,6,5) runs from (0.5,-0.5,-0.5) to (0.5,0.5,0.5).
+  EXPECT_EQ(crossings({0.9, 0.1, 0.1}, {0.2, 0.1, 0.1}).size(), 1u);
+  EXPECT_EQ(crossings({0.9, -0.2, -0.2}, {0.1, -0.2, -0.2}).size(), 1u);
+  std::vector<PathCrossing> onFace = crossings(c, {0.5, 0.1, 0.2});
+  ASSERT_EQ(onFace.size(), 1u);
+  EXPECT_EQ(onFace[0].sideS, 0);
+  EXPECT_TRUE(crossings(c, {0.9, 0.9, 0.2}).empty());
+  // Through the cube: in and out.
+  EXPECT_EQ(crossings({0.9, 0.1, 0.2}, {-0.9, 0.1, 0.2}).size(), 2u);
+}
+
 // Hard case 4: the boundary of an open quad is a silhouette from both sides, with opposite
 // signs; the shared diagonal cancels.
 TEST(GeometrySilhouette, OpenQuadPerTriangle) {

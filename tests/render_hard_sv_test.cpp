@@ -47,10 +47,34 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"scenes/hard/06-book.json", 160},
                       Case{"scenes/hard/07-flipped-triangle.json", 160},
                       Case{"scenes/hard/20-light-behind-camera.json", 160},
-                      Case{"scenes/engine.json", 192}),
+                      Case{"scenes/engine.json", 192},
+                      // Hard cases 27-29: the light centre on a vertex, an edge, a face, 1e-4
+                      // outside; outside a box it straddles; inside an open tube.
+                      Case{"scenes/hard/27-point-at-vertex.json", 128}, Case{"scenes/hard/27-point-on-edge.json", 128},
+                      Case{"scenes/hard/27-point-on-face.json", 128}, Case{"scenes/hard/27-point-outside.json", 128},
+                      Case{"scenes/hard/28-rect-partly-inside.json", 128},
+                      Case{"scenes/hard/28-sphere-partly-inside.json", 128},
+                      Case{"scenes/hard/29-light-inside-tube.json", 128}),
     [](const auto& info) {
       return std::string(info.param.scene).empty() ? std::string("default") : sceneTestName(info.param.scene);
     });
+
+// Hard cases 27-29 where the light centre is enclosed: inside a cube, a box, below the floor.
+// Everything in view is dark in the reference; hard-sv agrees (the closed meshes around the
+// centre are counted per triangle).
+TEST(HardSv, LightCentreInsideAClosedMeshOrBelowTheFloor) {
+  for (const char* file : {"scenes/hard/27-point-inside.json", "scenes/hard/28-rect-centre-inside.json",
+                           "scenes/hard/28-disk-through-box.json", "scenes/hard/28-rect-inside-box.json",
+                           "scenes/hard/29-light-below-floor.json"}) {
+    Comparison r = renderAndCompare(loadScene(scenePath(file)), "hard-sv", settings(96, 1));
+    EXPECT_LE(misclassifiedFraction(r.errors), 0.005) << file;
+    EXPECT_LE(r.errors.visibility.rmse, 1e-3) << file;
+    std::size_t lit = 0;
+    for (std::size_t i = 0; i < r.reference.gbuffer.valid.size(); ++i)
+      lit += r.reference.gbuffer.valid[i] && r.reference.lights[0].perSample[i] > 0.5f;
+    EXPECT_EQ(lit, 0u) << file << ": the reference should be dark everywhere";
+  }
+}
 
 }  // namespace
 }  // namespace penumbra::test

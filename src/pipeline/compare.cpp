@@ -56,6 +56,14 @@ TechniqueErrors measureErrors(const FrameResult& frame, const FrameResult& ref) 
   Image va = stack(a), vb = stack(b);
   auto validL = repeat(valid, L);
   e.visibility = compareImages(va, vb, {}, validL);
+  std::vector<std::uint8_t> unshadowed(n * L, 0);
+  for (std::size_t l = 0; l < L; ++l) {
+    const auto& m = frame.lights[l].unshadowed;
+    if (m.size() != n) continue;
+    for (std::size_t i = 0; i < n; ++i)
+      if (m[i] && valid[i]) unshadowed[l * n + i] = 1, ++e.unshadowedPixels;
+  }
+  e.visibilityExceptUnshadowed = e.unshadowedPixels ? compareImages(va, vb, unshadowed, validL) : e.visibility;
   e.visibilityOutsideBand = compareImages(va, vb, band, validL);
   e.shaded = compareImages(frame.color, ref.color, {}, valid);
   e.shadedOutsideBand = compareImages(frame.color, ref.color, anyBand, valid);
@@ -115,7 +123,9 @@ nlohmann::json errorsJson(const TechniqueErrors& e) {
   };
   nlohmann::json j{{"visibility", stats(e.visibility)}, {"visibilityOutsideBand", stats(e.visibilityOutsideBand)},
                    {"shaded", stats(e.shaded)}, {"shadedOutsideBand", stats(e.shadedOutsideBand)},
-                   {"misclassifiedPixelsOutsideBand", e.misclassifiedPixels}};
+                   {"misclassifiedPixelsOutsideBand", e.misclassifiedPixels},
+                   {"unshadowedPixels", e.unshadowedPixels},
+                   {"visibilityExceptUnshadowed", stats(e.visibilityExceptUnshadowed)}};
   if (e.sampleAgreement >= 0.0) j["sampleAgreementOutsideBand"] = e.sampleAgreement;
   return j;
 }
@@ -459,6 +469,18 @@ CompareResult compareTechniques(gl::Context& context, const Scene& scene, const 
                  errorHeatMap(f.lights[0].visibility, against->lights[0].visibility, 0.25f));
         run.heat = base + "_heat.png";
       }
+      // Pixels left unshadowed by design (outside the shadow maps' frustum), white on black.
+      std::vector<std::uint8_t> any(f.gbuffer.valid.size(), 0);
+      bool some = false;
+      for (const auto& l : f.lights)
+        for (std::size_t i = 0; i < l.unshadowed.size() && i < any.size(); ++i) some |= (any[i] |= l.unshadowed[i]) != 0;
+      if (some) {
+        Image mask(f.color.width, f.color.height, 3);
+        for (std::size_t i = 0; i < any.size(); ++i)
+          for (int c = 0; c < 3; ++c) mask.data[i * 3 + std::size_t(c)] = any[i] ? 1.0f : 0.0f;
+        writePng((dir / (base + "_unshadowed.png")).string(), mask);
+        run.unshadowedMask = base + "_unshadowed.png";
+      }
       if (pi != 0) return;
       for (std::size_t i = 0; i < result.insets.size(); ++i) {
         const Inset& r = result.insets[i];
@@ -621,6 +643,7 @@ nlohmann::json CompareResult::json() const {
                      {"errors", errorsJson(r.errors)},
                      {"image", r.image},
                      {"heat", r.heat},
+                     {"unshadowedMask", r.unshadowedMask},
                      {"insets", r.insetImages},
                      {"status", r.failed ? "failed" : "ok"}};
     if (r.failed) {

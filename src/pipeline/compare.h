@@ -34,6 +34,11 @@ struct TechniqueErrors {
   std::int64_t samplePairs = 0;
   // Pixels whose visibility decision differs (|dV| > 0.5 / N) outside the band.
   std::int64_t misclassifiedPixels = 0;
+  // Pixels the technique left unshadowed by design (LightResult::unshadowed: shadow-map
+  // receivers beyond max-angle), summed over lights, and the visibility error over the other
+  // surface pixels (equal to `visibility` when there are none).
+  std::int64_t unshadowedPixels = 0;
+  ErrorStats visibilityExceptUnshadowed;
 };
 
 // Errors of `frame` against `reference` (same scene, settings and samples).
@@ -113,6 +118,7 @@ struct CompareRun {
   bool failed = false;
   std::string failure;
   std::string image, heat;  // file names in the output folder, "" if not written
+  std::string unshadowedMask;  // white where frame 0 left a pixel unshadowed in any light, "" if none
   std::vector<std::string> insetImages;
   // The error the plot uses: visibility RMSE against the converged reference if measured,
   // else against the same-sample one.

@@ -330,6 +330,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
                    wantSamples ? &perSample_ : nullptr, &lr.perSample};
     gpu_->bindGBuffer();
     technique.renderVisibility(pass);
+    lr.unshadowed = technique.unshadowedPixels();
     gl::Context::checkErrors("visibility");
 
     // Interleaved sampling (DCS paper 5.2, Algorithm 2): the gather filter over the K x K sets.

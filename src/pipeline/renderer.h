@@ -47,6 +47,7 @@ struct LightResult {
   Image visibility;              // RGB, eq. 2
   std::vector<float> perSample;  // [pixel * N + k] transmittance, empty if not provided
   int samples = 0;
+  std::vector<std::uint8_t> unshadowed;  // Technique::unshadowedPixels() for this light
 };
 
 struct FrameResult {

@@ -430,9 +430,16 @@ img.missing { outline: 3px solid red; min-width: 64px; min-height: 64px; }
       h += "<figure><div class=\"pair\"><img src=\"" + escape(run.image) + "\"" + size + " alt=\"" + escape(run.technique) + "\">";
       if (!run.heat.empty())
         h += "<img src=\"" + escape(run.heat) + "\"" + size + " alt=\"" + escape(run.technique) + " error\">";
+      if (!run.unshadowedMask.empty())
+        h += "<img src=\"" + escape(run.unshadowedMask) + "\"" + size + " alt=\"" + escape(run.technique) +
+             " pixels left unshadowed\">";
       h += "</div><figcaption><b>" + escape(run.technique) + (run.reference ? " (reference)" : "") + "</b> " +
            fmt::format("{:.1f} ms", run.total.median);
       if (!run.reference) h += fmt::format(", vis RMSE {:.4f}", run.errors.visibility.rmse);
+      if (run.errors.unshadowedPixels > 0)
+        h += fmt::format("; {} pixels left unshadowed (outside its maps, white in the third image), vis RMSE {:.4f} "
+                         "without them",
+                         run.errors.unshadowedPixels, run.errors.visibilityExceptUnshadowed.rmse);
       if (run.converged) h += fmt::format(", vs converged {:.4f}", run.converged->visibility.rmse);
       h += "</figcaption></figure>\n";
     }

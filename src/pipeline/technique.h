@@ -63,6 +63,10 @@ class Technique {
   virtual std::size_t memoryBytes() const { return 0; }
   // Numbers about the last frame worth reporting (edges drawn, counter base, passes, ...).
   virtual std::vector<std::pair<std::string, double>> statistics() const { return {}; }
+  // Per pixel of the last light (top row first), 1 where the technique left the visibility
+  // unshadowed by design rather than computing it (shadow maps: receivers beyond max-angle);
+  // empty when there are none. compare counts them and writes their mask (issue 14).
+  virtual std::vector<std::uint8_t> unshadowedPixels() const { return {}; }
 
  private:
   static std::uint64_t nextSerial() {

@@ -29,6 +29,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -52,6 +53,18 @@ struct GpuIncidence {
   glm::vec4 third;  // xyz third vertex, w the triangle's orientation along the edge (+-1)
   glm::vec4 normal;  // the triangle's plane: n (its winding), w = d with n . x + d = 0
 };
+// A triangle the path from the light centre to a sample passes through (shaders/dcs_init.frag).
+struct GpuPathCrossing {
+  glm::vec4 plane;  // the triangle's plane as in GpuIncidence::normal
+  glm::ivec4 meta;  // x the centre's side, y the sample's side (+-1, 0 on it), z 1 for the closed rule, w units
+};
+// The triangle's plane n . x + d = 0 in its own winding, as the wedges store it (one expression,
+// so the init pass and the wedges decide a point's side of it alike).
+glm::vec4 trianglePlane(const std::vector<glm::vec3>& P, const glm::uvec3& tri) {
+  glm::dvec3 a(P[tri.x]), b(P[tri.y]), c(P[tri.z]);
+  glm::dvec3 n = glm::cross(b - a, c - a);
+  return glm::vec4(glm::vec3(n), float(-glm::dot(n, a)));
+}
 struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
   std::uint32_t boundMax = 0;  // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
@@ -142,14 +155,15 @@ class DepthComplexitySampling final : public Technique {
           const auto& inc = topo.incidences[e.firstIncidence + k];
           const glm::uvec3& tri = topo.weldedTriangles[inc.triangle];
           std::uint32_t third = tri.x + tri.y + tri.z - e.v0 - e.v1;
-          glm::dvec3 a(P[tri.x]), b(P[tri.y]), c(P[tri.z]);
-          glm::dvec3 n = glm::cross(b - a, c - a);
-          incidences.push_back({glm::vec4(P[third], float(inc.orientation)), glm::vec4(glm::vec3(n), float(-glm::dot(n, a)))});
+          incidences.push_back({glm::vec4(P[third], float(inc.orientation)), trianglePlane(P, tri)});
         }
         edges.push_back(g);
       }
     }
     edgeBuffer_ = gl::Buffer(edges);
+    edges_ = std::move(edges);
+    edgeRules_.clear();
+    for (auto& m : volumes_.meshes()) edgeRules_.push_back(m.rule);
     incidenceBuffer_ = gl::Buffer(incidences);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
     profileBuffer_ = gl::Buffer(sizeof(Profile), nullptr);
@@ -160,21 +174,77 @@ class DepthComplexitySampling final : public Technique {
     programs_.clear();
     luts_.clear();
     boundCache_.clear();
+    warnedCoplanar_.clear();
     counters_ = gl::Texture();
     emptyVao_ = gl::VertexArray::create();
   }
 
-  void renderVisibility(LightPass& pass) override {
+  void renderVisibility(LightPass& lightPass) override {
+    // The integration origin (hard cases 27-28): the light centre, unless it lies exactly on a
+    // mesh edge or vertex (a light centred on a box's edge or corner). There a path from it to
+    // a sample starts on the border of the surface, where neither the crossing of one triangle
+    // (dcs_init.frag) nor an edge update (a wedge whose plane holds the start) describes the
+    // jump; any point of the light can serve as the origin of the integration (DCS 4.2: D(s) =
+    // D(x) + the changes from x to s), so a point next to the centre, off every border, does.
+    Light origin = lightPass.light;
+    stats_.shiftedOrigin = false;
+    if (origin.shape != LightShape::Point && volumes_.onMeshBorder(glm::dvec3(origin.position))) {
+      origin.position = offBorder(lightPass.light);
+      stats_.shiftedOrigin = true;
+    }
+    LightPass pass{lightPass.scene, origin, lightPass.lightIndex, lightPass.samples, lightPass.gpu, lightPass.timer,
+                   lightPass.cpuGBuffer, lightPass.visibility, lightPass.perSample, lightPass.cpuPerSample};
     const Light& light = pass.light;
-    // The paper's 2D covered-sample modes need a planar light; others use the exact test.
-    const int coverage = dcs::edgeLutSupports(light) ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;
+    // The paper's 2D covered-sample modes need a planar light (and its centre as the origin);
+    // others use the exact test.
+    const int coverage = dcs::edgeLutSupports(light) && !stats_.shiftedOrigin ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;
     stats_.coverage = coverage;
     const GpuLut* lut = coverage != PENUMBRA_DCS_COVERAGE_EXACT ? &lutFor(pass) : nullptr;
-    volumes_.count(pass);  // D(c): stages "silhouettes", "shadow volume"
+    float radius = 0.0f;
+    std::vector<glm::vec3> corners = lightCorners(lightPass.light, radius);
+    radius += glm::length(origin.position - lightPass.light.position);  // around the origin
+    // Hard cases 27-29: the closed meshes the light touches or enters are counted per triangle
+    // (every crossing), and the paths from the centre to the samples that pass through a
+    // triangle get their jump in the init pass (ShadowVolumeCounter::place).
+    ShadowVolumeCounter::Placement placed;
+    pass.timer.time("dcs placement", [&] {
+      placed = volumes_.place(glm::dvec3(light.position), &pass.samples.positions, double(radius),
+                              glm::dvec3(pass.gpu.cameraPosition()));
+      useRules(placed.rules);
+    });
+    stats_.perTriangleMeshes = placed.perTriangleMeshes;
+    stats_.coplanarTriangles = placed.coplanarTriangles;
+    if (placed.coplanarTriangles > 0 && warnedCoplanar_.insert(pass.lightIndex).second)
+      PLOG_WARN("dcs: light '{}' lies in the plane of {} triangles: where its samples cross such a face's border the counts "
+                "may differ from the reference (a path along a surface is not resolved exactly)",
+                light.name, placed.coplanarTriangles);
+    stats_.pathCrossings = placed.crossings.size();
+    int maxPathGain = 0;  // the most a sample's path crossings can add to its count
+    {
+      std::vector<GpuPathCrossing> gpuCrossings;
+      for (std::size_t k = 0; k + 1 < placed.firstCrossing.size(); ++k) {
+        int gain = 0;
+        for (std::uint32_t j = placed.firstCrossing[k]; j < placed.firstCrossing[k + 1]; ++j) {
+          const auto& x = placed.crossings[j];
+          const auto& m = volumes_.meshes()[x.mesh];
+          gain += m.units;
+          gpuCrossings.push_back({trianglePlane(m.topology.weldedPositions, m.topology.weldedTriangles[x.at.triangle]),
+                                  glm::ivec4(x.at.sideC, x.at.sideS,
+                                             placed.rules[x.mesh] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0, m.units)});
+        }
+        maxPathGain = std::max(maxPathGain, gain);
+      }
+      if (!gpuCrossings.empty()) {
+        pathFirstBuffer_ = gl::Buffer(placed.firstCrossing);
+        pathBuffer_ = gl::Buffer(gpuCrossings);
+      }
+    }
+    const bool hasPathCrossings = !placed.crossings.empty();
+    volumes_.count(pass, placed.rules);  // D(c): stages "silhouettes", "shadow volume"
 
     std::vector<int> edgeIds;
     pass.timer.time("dcs edges", [&] {
-      geo::LightExtent extent = extentOf(light);
+      geo::LightExtent extent = extentOf(lightPass.light);
       if (options_.gpuSilhouettes && options_.silhouettes == SilhouetteMode::Accurate) {
         edgeIds = gpuAccurateSilhouette(extent);
         return;
@@ -184,9 +254,9 @@ class DepthComplexitySampling final : public Technique {
         const auto& m = meshes[mi];
         if (m.units == 0) continue;  // never occludes
         if (options_.silhouettes == SilhouetteMode::Accurate) {
-          for (auto e : geo::extractAccurateSilhouette(m.topology, extent, m.rule)) edgeIds.push_back(int(edgeOffset_[mi] + e));
+          for (auto e : geo::extractAccurateSilhouette(m.topology, extent, placed.rules[mi])) edgeIds.push_back(int(edgeOffset_[mi] + e));
         } else {
-          for (auto& s : geo::extractPointSilhouette(m.topology, glm::dvec3(light.position), m.rule).sides)
+          for (auto& s : geo::extractPointSilhouette(m.topology, glm::dvec3(light.position), placed.rules[mi]).sides)
             edgeIds.push_back(int(edgeOffset_[mi] + s.edge));
         }
       }
@@ -198,8 +268,6 @@ class DepthComplexitySampling final : public Technique {
     gl::Buffer idBuffer(edgeIds);
     gl::VertexArray idVao = gl::VertexArray::create();
     idVao.vertexBuffer(idBuffer, sizeof(int)).attributeInt(0, 1, 0);
-    float radius = 0.0f;
-    std::vector<glm::vec3> corners = lightCorners(light, radius);
     edgeBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGES);
     incidenceBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
 
@@ -266,7 +334,7 @@ class DepthComplexitySampling final : public Technique {
     if (cached != boundCache_.end()) {
       maxCount = cached->second;
     } else if (options_.firstFrameBound >= 0) {
-      maxCount = options_.firstFrameBound + kBias;
+      maxCount = options_.firstFrameBound + kBias + maxPathGain;
     } else {
       maxCount = pass.timer.time("dcs bound", [&] {
         boundFbo_.bind();
@@ -281,8 +349,9 @@ class DepthComplexitySampling final : public Technique {
         for (std::size_t i = 0; i < dc.data.size(); ++i) m = std::max(m, std::round(dc.data[i]) + bound.data[i]);
         // Float sums of positive integers never round below 2^24 once past it: a bound too
         // deep for every base is seen as such (and refused) before an int could overflow.
-        if (!(double(m) + kBias <= double(kMaxExactCount))) refuseDepth(light, double(m));
-        return int(m) + kBias;
+        if (!(double(m) + kBias + double(maxPathGain) <= double(kMaxExactCount)))
+          refuseDepth(light, double(m) + double(maxPathGain));
+        return int(m) + kBias + maxPathGain;
       });
     }
 
@@ -309,12 +378,20 @@ class DepthComplexitySampling final : public Technique {
           glDisable(GL_BLEND);
           glDisable(GL_DEPTH_TEST);
           volumes_.counter().bind(PENUMBRA_UNIT_COUNTER);
+          pass.gpu.bindGBuffer();
           progs.init.use();
           progs.init.set("digitSum", float(sum));
+          progs.init.set("passFirst", first);
           progs.init.set("passCount", count);
+          progs.init.set("pathCrossings", hasPathCrossings ? 1 : 0);
+          if (hasPathCrossings) {
+            setLightUniforms(progs.init, light, pass.samples);
+            progs.init.set("eyePosition", pass.gpu.cameraPosition());
+            pathFirstBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PATH_FIRST);
+            pathBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PATH);
+          }
           emptyVao_.bind();
           glDrawArrays(GL_TRIANGLES, 0, 3);
-          pass.gpu.bindGBuffer();
           wedgeState();
           progs.wedge.set("passFirst", first);
           progs.wedge.set("passCount", count);
@@ -426,7 +503,11 @@ class DepthComplexitySampling final : public Technique {
             {"opacityCoding", double(coding_.mode)},
             {"coverageMode", double(stats_.coverage)},
             {"opaqueUnits", double(coding_.opaqueUnits)},
-            {"opacityLayerError", coding_.maxLayerError}};
+            {"opacityLayerError", coding_.maxLayerError},
+            {"closedMeshesPerTriangle", double(stats_.perTriangleMeshes)},
+            {"pathCrossings", double(stats_.pathCrossings)},
+            {"shiftedOrigin", stats_.shiftedOrigin ? 1.0 : 0.0},
+            {"coplanarTriangles", double(stats_.coplanarTriangles)}};
     if (options_.profile) {
       const Profile& p = stats_.profile;
       for (auto [name, value] : {std::pair{"profileRectangleEdges", p.rectangleEdges}, {"profileWedgeEdges", p.wedgeEdges},
@@ -491,7 +572,42 @@ class DepthComplexitySampling final : public Technique {
     std::uint32_t maxCount = 0, boundMaxCount = 0, negativePixels = 0, inconsistentPixels = 0;
     std::uint32_t reruns = 0;  // counter passes run again because the previous frame's bound failed
     int coverage = PENUMBRA_DCS_COVERAGE_EXACT;  // the covered-sample mode of the last light
+    std::size_t perTriangleMeshes = 0;  // closed meshes the light touches or enters (counted per triangle)
+    std::size_t pathCrossings = 0;      // (sample, triangle) pairs: a centre-to-sample path through a triangle
+    std::size_t coplanarTriangles = 0;  // triangles in the light's plane (Placement)
+    bool shiftedOrigin = false;         // the light centre lies on a mesh edge or vertex: integrated from next to it
   };
+
+  // A point of the light 1% of its size from the centre (well-conditioned volume sides through
+  // the edges at the centre), off every mesh edge and vertex.
+  glm::vec3 offBorder(const Light& l) const {
+    const float size = l.shape == LightShape::Rect ? 0.5f * std::min(l.size.x, l.size.y) : l.size.x;
+    const glm::vec3 t = l.tangent, b = l.bitangent(), n = l.normal;
+    glm::vec3 x = l.position;
+    for (int k = 0; k < 8; ++k) {
+      // Directions away from the axes and from each other (golden-angle turns), inside the
+      // light: in its plane for rect and disk, any for a sphere.
+      const float a = 0.3f + 2.39996f * float(k);
+      glm::vec3 d = std::cos(a) * t + std::sin(a) * b;
+      if (l.shape == LightShape::Sphere) d = glm::normalize(d + 0.5f * n);
+      x = l.position + (0.01f * float(1 + k)) * size * d;
+      if (!volumes_.onMeshBorder(glm::dvec3(x))) return x;
+    }
+    return x;
+  }
+
+  // The closed-rule flag of each edge (meta.z) as `rules` says for this light; the edge buffer
+  // is written again only when a mesh's rule changes.
+  void useRules(const std::vector<geo::VolumeRule>& rules) {
+    if (rules == edgeRules_) return;
+    const auto& meshes = volumes_.meshes();
+    for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
+      std::size_t end = mi + 1 < meshes.size() ? edgeOffset_[mi + 1] : edges_.size();
+      for (std::size_t e = edgeOffset_[mi]; e < end; ++e) edges_[e].meta.z = rules[mi] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0;
+    }
+    edgeBuffer_.write(edges_.data(), edges_.size() * sizeof(GpuEdge));
+    edgeRules_ = rules;
+  }
 
   Programs& programsFor(const dcs::PackingPlan& plan, int coverage) {
     int key = (plan.layout * 16 + plan.targets) * 4 + coverage;
@@ -589,12 +705,16 @@ class DepthComplexitySampling final : public Technique {
   std::vector<std::uint32_t> edgeOffset_;
   float wedgeMargin_ = 0.0f;
   gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_, profileBuffer_;
+  std::vector<GpuEdge> edges_;             // edgeBuffer_'s contents
+  std::vector<geo::VolumeRule> edgeRules_;  // the rule per mesh edgeBuffer_ holds
+  gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (shaders/dcs_init.frag)
   gl::Texture bound_, checksum_, counters_;
   gl::Framebuffer boundFbo_, counterFbo_;
   gl::Program silhouetteProgram_;
   std::map<int, gl::Program> boundPrograms_;  // by covered-sample mode
   std::map<int, Programs> programs_;
   std::map<std::uint64_t, GpuLut> luts_;  // by sample-pattern hash
+  std::set<int> warnedCoplanar_;  // lights warned about (once each)
   std::map<int, int> boundCache_;  // light index -> the last frame's measured bound (+ bias)
   gl::VertexArray emptyVao_;
   Stats stats_;

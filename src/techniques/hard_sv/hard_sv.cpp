@@ -21,7 +21,11 @@ class HardShadowVolumes final : public Technique {
   }
 
   void renderVisibility(LightPass& pass) override {
-    volumes_.count(pass);
+    // The hard shadow of the centre: its placement alone decides the closed meshes' rule.
+    const ShadowVolumeCounter::Placement placed =
+        volumes_.place(glm::dvec3(pass.light.position), nullptr, 0.0, glm::dvec3(pass.gpu.cameraPosition()));
+    perTriangleMeshes_ = placed.perTriangleMeshes;
+    volumes_.count(pass, placed.rules);
     pass.timer.time("resolve", [&] {
       volumes_.counter().bind(PENUMBRA_UNIT_COUNTER);
       resolveVisibility(pass, resolve_);
@@ -30,9 +34,14 @@ class HardShadowVolumes final : public Technique {
 
   std::size_t memoryBytes() const override { return volumes_.counter().bytes(); }
 
+  std::vector<std::pair<std::string, double>> statistics() const override {
+    return {{"closedMeshesPerTriangle", double(perTriangleMeshes_)}};
+  }
+
  private:
   ShadowVolumeCounter volumes_;
   gl::Program resolve_;
+  std::size_t perTriangleMeshes_ = 0;
 };
 
 }  // namespace

@@ -52,16 +52,27 @@ void renderDepthView(LightPass& pass, const MapFrame& frame, const glm::vec3& ey
   glDisable(GL_DEPTH_TEST);
 }
 
-float NearestOccluder::get(const Scene& scene, int lightIndex, const glm::vec3& centre, const MapFrame& f) {
-  auto key = std::make_pair(lightIndex, std::array<float, 3>{f.axis.x, f.axis.y, f.axis.z});
+float NearestOccluder::get(const Scene& scene, int lightIndex, const glm::vec3& centre, const MapFrame& f, bool surfaces) {
+  auto key = std::make_tuple(lightIndex, std::array<float, 3>{f.axis.x, f.axis.y, f.axis.z}, surfaces);
   auto it = cache_.find(key);
   if (it != cache_.end()) return it->second;
   float nearest = std::numeric_limits<float>::infinity();
-  for (auto& m : scene.meshes)
-    for (auto& v : m.mesh.positions) {
-      float d = glm::dot(v - centre, f.axis) - f.sampleAxialMax;
-      if (d > f.zNear) nearest = std::min(nearest, d);
+  auto depth = [&](const glm::vec3& v) { return glm::dot(v - centre, f.axis) - f.sampleAxialMax; };
+  for (auto& m : scene.meshes) {
+    if (!surfaces) {
+      for (auto& v : m.mesh.positions) {
+        float d = depth(v);
+        if (d > f.zNear) nearest = std::min(nearest, d);
+      }
+      continue;
     }
+    for (auto& t : m.mesh.triangles) {
+      const float a = depth(m.mesh.positions[t.x]), b = depth(m.mesh.positions[t.y]), c = depth(m.mesh.positions[t.z]);
+      const float lo = std::min({a, b, c}), hi = std::max({a, b, c});
+      if (hi <= f.zNear) continue;  // behind the samples' near plane
+      nearest = std::min(nearest, lo > f.zNear ? lo : f.zNear);
+    }
+  }
   return cache_.emplace(key, std::isfinite(nearest) ? nearest : 1.0f).first->second;
 }
 
@@ -116,6 +127,8 @@ MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSamp
     if (oneSided && depth <= 0.0f) continue;  // behind the light: it emits nothing there
     if (depth <= f.zNear || lateral > tanMax * depth) {
       ++f.outsidePixels;
+      if (f.outsideMask.empty()) f.outsideMask.assign(g.position.size(), 0);
+      f.outsideMask[i] = 1;
       continue;
     }
     tanHalf = std::max(tanHalf, lateral / depth);

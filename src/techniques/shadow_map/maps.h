@@ -48,6 +48,7 @@ struct MapFrame {
   // Surface pixels beyond maxHalfAngle or behind an isotropic light's samples (left unshadowed);
   // pixels behind a one-sided light, which it does not light, are not counted.
   std::size_t outsidePixels = 0;
+  std::vector<std::uint8_t> outsideMask;  // per G-buffer pixel: 1 for the outsidePixels
 };
 MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSampleSet& samples,
                          const CpuGBuffer& gbuffer, const MapOptions& options);
@@ -63,12 +64,16 @@ void renderDepthView(LightPass& pass, const MapFrame& frame, const glm::vec3& ey
 // Distance beyond the samples (along the axis) of the nearest scene vertex in front of them:
 // where the samples' near plane could sit without clipping an occluder (VWSS eq. 3's z_n, the
 // pcss blocker-search plane). Cached per light and axis (one pass over the vertices).
+// `surfaces`: the nearest point of any triangle instead, the near plane itself for a triangle
+// that reaches from behind the samples to in front of them (a light inside a tube or a box,
+// hard case 29: the walls pass the light closer than any vertex), as a bound on every
+// occluder's depth (vssm's depth range).
 class NearestOccluder {
  public:
-  float get(const Scene& scene, int lightIndex, const glm::vec3& centre, const MapFrame& frame);
+  float get(const Scene& scene, int lightIndex, const glm::vec3& centre, const MapFrame& frame, bool surfaces = false);
 
  private:
-  std::map<std::pair<int, std::array<float, 3>>, float> cache_;
+  std::map<std::tuple<int, std::array<float, 3>, bool>, float> cache_;
 };
 
 // Triangles of meshes whose material is semi-opaque (opacity in (0, 1)).
@@ -95,6 +100,7 @@ class MultiViewTechnique : public Technique {
     return maps_.bytes() + semiCount_.bytes() + semiLayers_.bytes() + extraBytes();
   }
   std::vector<std::pair<std::string, double>> statistics() const override;
+  std::vector<std::uint8_t> unshadowedPixels() const override { return frame_.outsideMask; }
 
  protected:
   // Fill the maps for `frame`: ensureMaps() then render into them.

@@ -23,6 +23,7 @@ class SingleViewTechnique : public Technique {
   void renderVisibility(LightPass& pass) override;
   std::size_t memoryBytes() const override { return depth_.bytes() + extraBytes(); }
   std::vector<std::pair<std::string, double>> statistics() const override;
+  std::vector<std::uint8_t> unshadowedPixels() const override { return frame_.outsideMask; }
 
  protected:
   virtual void renderShadow(LightPass& pass) = 0;
@@ -33,6 +34,10 @@ class SingleViewTechnique : public Technique {
   const MapFrame& frame() const { return frame_; }
   const gl::Texture& depth() const { return depth_; }
   float searchNear() const { return searchNear_; }       // nearest occluder's view depth
+  // The nearest triangle point's view depth (NearestOccluder surfaces: a bound on every occluder).
+  float nearestSurface(const LightPass& pass) {
+    return nearest_.get(pass.scene, pass.lightIndex, pass.light.position, frame_, true);
+  }
   float lightHalfSize() const { return halfSize_; }      // the parallel-planes light size
   // Binds the map raw (PENUMBRA_UNIT_PCSS_DEPTH) and through the comparison sampler
   // (PENUMBRA_UNIT_PCSS_COMPARE).

@@ -34,13 +34,75 @@ void ShadowVolumeCounter::prepare(const Scene& scene, GpuScene& gpu, const std::
   fbo_ = gl::Framebuffer({&counter_}, &gpu.depth());
 }
 
-void ShadowVolumeCounter::count(LightPass& pass) {
+ShadowVolumeCounter::Placement ShadowVolumeCounter::place(const glm::dvec3& centre, const std::vector<glm::vec3>* samples,
+                                                          double radius, const glm::dvec3& eye) const {
+  Placement out;
+  const std::size_t n = samples ? samples->size() : 0;
+  std::vector<std::vector<Placement::Crossing>> perSample(n);
+  for (std::uint32_t mi = 0; mi < meshes_.size(); ++mi) {
+    const MeshVolumes& m = meshes_[mi];
+    out.rules.push_back(m.rule);
+    if (m.units == 0) continue;
+    std::vector<geo::PathCrossing> found;
+    std::vector<std::size_t> foundStart(n + 1, 0);
+    if (n > 0) {
+      std::vector<std::uint32_t> near = geo::trianglesNearBall(m.topology, centre, radius);
+      for (std::uint32_t t : near) {
+        bool inPlane = geo::triangleFacing(m.topology, t, centre) == 0;
+        for (std::size_t k = 0; k < n && inPlane; ++k) inPlane = geo::triangleFacing(m.topology, t, glm::dvec3((*samples)[k])) == 0;
+        out.coplanarTriangles += inPlane;
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        foundStart[k] = found.size();
+        if (!near.empty()) geo::pathCrossings(m.topology, near, centre, glm::dvec3((*samples)[k]), found);
+      }
+      foundStart[n] = found.size();
+      for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t j = foundStart[k]; j < foundStart[k + 1]; ++j) perSample[k].push_back({mi, found[j]});
+    }
+    if (m.rule != geo::VolumeRule::ClosedFrontFaces) continue;
+    const geo::PointLocation atEye = geo::locatePoint(m.topology, eye), atCentre = geo::locatePoint(m.topology, centre);
+    bool closedRule = !atEye.onSurface && !atCentre.onSurface && atCentre.winding <= atEye.winding;
+    // A sample's winding number: the centre's plus one per entry (from the side the normal
+    // points to), minus one per exit, along the path; a path ending on a triangle (side 0) puts
+    // the sample on the surface.
+    for (std::size_t k = 0; k < n && closedRule; ++k) {
+      int w = atCentre.winding;
+      for (std::size_t j = foundStart[k]; j < foundStart[k + 1]; ++j) {
+        if (found[j].sideS == 0) closedRule = false;
+        w += found[j].sideC > 0 && found[j].sideS < 0 ? 1 : (found[j].sideC < 0 && found[j].sideS > 0 ? -1 : 0);
+      }
+      closedRule = closedRule && w <= atEye.winding;
+    }
+    if (!closedRule) {
+      out.rules[mi] = geo::VolumeRule::PerTriangle;
+      ++out.perTriangleMeshes;
+    }
+  }
+  out.firstCrossing.reserve(n + 1);
+  for (std::size_t k = 0; k < n; ++k) {
+    out.firstCrossing.push_back(std::uint32_t(out.crossings.size()));
+    out.crossings.insert(out.crossings.end(), perSample[k].begin(), perSample[k].end());
+  }
+  out.firstCrossing.push_back(std::uint32_t(out.crossings.size()));
+  return out;
+}
+
+bool ShadowVolumeCounter::onMeshBorder(const glm::dvec3& x) const {
+  for (const MeshVolumes& m : meshes_)
+    if (m.units != 0 && geo::onTriangleBorder(m.topology, x)) return true;
+  return false;
+}
+
+void ShadowVolumeCounter::count(LightPass& pass, const std::vector<geo::VolumeRule>& rules) {
+  PENUMBRA_CHECK(rules.size() == meshes_.size(), "ShadowVolumeCounter: one volume rule per mesh");
   glm::dvec3 light(pass.light.position);
   std::vector<glm::vec4> sideVerts, capVerts;
   pass.timer.time("silhouettes", [&] {
-    for (auto& m : meshes_) {
+    for (std::size_t mi = 0; mi < meshes_.size(); ++mi) {
+      const MeshVolumes& m = meshes_[mi];
       if (m.units == 0) continue;
-      auto sil = geo::extractPointSilhouette(m.topology, light, m.rule);
+      auto sil = geo::extractPointSilhouette(m.topology, light, rules[mi]);
       const auto& P = m.topology.weldedPositions;
       for (auto& s : sil.sides) {
         const auto& e = m.topology.edges[s.edge];

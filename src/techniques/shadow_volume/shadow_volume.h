@@ -27,7 +27,7 @@ class ShadowVolumeCounter {
  public:
   struct MeshVolumes {
     geo::EdgeTopology topology;
-    geo::VolumeRule rule;
+    geo::VolumeRule rule;  // for a light outside (place() may give a closed mesh PerTriangle)
     int units = 1;  // what one volume of the mesh adds to the count (0: the mesh never occludes)
   };
 
@@ -37,10 +37,45 @@ class ShadowVolumeCounter {
   // one volume per triangle whatever its topology, so the count is the number of surface
   // crossings between the point and the light, as the reference attenuates once per crossing.
   void prepare(const Scene& scene, GpuScene& gpu, const std::vector<int>& units = {}, int opaqueUnits = 1);
+
+  // Where a light lies against the meshes (hard cases 27-29), decided on the CPU in double
+  // (geometry/silhouette.h locatePoint, pathCrossings). The closed-mesh rule (front-facing caps,
+  // the count of closed objects entered) is right for a light point x only when no visible point
+  // lies deeper inside the mesh than x: #front - #back = w(p) - w(x) along the segment x -> p,
+  // w the winding number, so #front = 0 forces #back = 0 exactly when w(x) <= w(p). Every
+  // visible point is seen from the camera, so w(p) = w(eye) (the segment from the eye to p
+  // crosses nothing). A closed mesh therefore keeps the closed rule when the centre and every
+  // sample lie off its surface with a winding number at most the eye's, and gets one volume per
+  // triangle (every crossing counts, right for any point) otherwise: a light centre inside, on a
+  // face, an edge or a vertex, samples inside or on it. `crossings[k]` (dcs): the triangles the
+  // straight path from the centre to sample k passes through, where the depth complexity jumps
+  // without crossing an edge (shaders/dcs_init.frag).
+  struct Placement {
+    std::vector<geo::VolumeRule> rules;  // per mesh
+    struct Crossing {
+      std::uint32_t mesh;
+      geo::PathCrossing at;
+    };
+    std::vector<std::uint32_t> firstCrossing;  // per sample, then the end: a range of `crossings`
+    std::vector<Crossing> crossings;
+    std::size_t perTriangleMeshes = 0;  // closed meshes given one volume per triangle for this light
+    // Triangles in whose plane the centre and every sample lie (a light lying on a face): a
+    // path across such a face's border is not resolved exactly (dcs warns).
+    std::size_t coplanarTriangles = 0;
+  };
+  // `samples` (null: the centre only, hard-sv) and the ball of `radius` around `centre` that
+  // holds them.
+  Placement place(const glm::dvec3& centre, const std::vector<glm::vec3>* samples, double radius,
+                  const glm::dvec3& eye) const;
+
+  // x lies exactly on an edge or a vertex of an occluding mesh (geo::onTriangleBorder).
+  bool onMeshBorder(const glm::dvec3& x) const;
+
   // Fills counter() with the number of volumes (from pass.light.position) containing each
-  // visible point: the count of closed objects plus open surfaces between it and the light.
-  // Times the stages "silhouettes" and "shadow volume".
-  void count(LightPass& pass);
+  // visible point: the count of closed objects plus open surfaces between it and the light,
+  // each mesh counted by rules[mesh] (place()). Times the stages "silhouettes" and "shadow
+  // volume".
+  void count(LightPass& pass, const std::vector<geo::VolumeRule>& rules);
 
   const gl::Texture& counter() const { return counter_; }
   const std::vector<MeshVolumes>& meshes() const { return meshes_; }

@@ -27,7 +27,10 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
       glm::vec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
       far = std::max(far, glm::dot(corner - pass.light.position, f.axis));
     }
-    depthMin_ = std::min(searchNear(), far);
+    // The nearest triangle point, not vertex: walls passing the light (a light inside a tube,
+    // hard case 29) are nearer than any of their vertices, and clamped to a vertex's depth they
+    // would occlude nothing.
+    depthMin_ = std::min(nearestSurface(pass), far);
     depthMax_ = std::max(far, depthMin_ * 1.001f + 1e-6f);
     // Threshold = 1e-4 r (section 6), r the scene's bounding radius, as a variance of the
     // normalised depth; the contact fallback's epsilon = 0.01 r.

@@ -6,6 +6,7 @@
 
 
 #include "core/log.h"
+#include "geometry/silhouette.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
 #include "techniques/shadow_map/maps.h"
@@ -16,7 +17,7 @@ namespace {
 struct VwssOptions {
   VwssMode mode = VwssMode::Buffered;
   shadow_map::SplatOptions splat;
-  bool backFaces = false;
+  int backFaces = -1;  // 0 cull, 1 keep, -1 (default) keep unless culling provably drops nothing
   double scale = 0.0;  // 0: eq. 3
 };
 
@@ -38,6 +39,19 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
     nearest_ = {};
     points_ = gl::Buffer();
     capacity_ = 0;
+    occluders_.clear();
+    if (o_.backFaces >= 0) return;
+    for (const auto& m : scene.meshes) {
+      if (scene.materials[std::size_t(m.material)].opacity < 1.0f) continue;  // not in the opaque maps
+      Occluder o;
+      o.topology = geo::buildEdgeTopology(m.mesh);
+      double volume = 0.0;  // six times the signed volume: > 0 for a closed mesh wound outwards
+      const auto& P = o.topology.weldedPositions;
+      for (const auto& t : o.topology.weldedTriangles)
+        volume += glm::dot(glm::dvec3(P[t.x]), glm::cross(glm::dvec3(P[t.y]), glm::dvec3(P[t.z])));
+      o.closedOutwards = o.topology.closed && volume > 0.0;
+      occluders_.push_back(std::move(o));
+    }
   }
 
  protected:
@@ -76,11 +90,12 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
       sourceFboSize_ = sourceSize_;
     }
 
+    keptBackFaces_ = o_.backFaces == 1 || (o_.backFaces < 0 && backFacesNeeded(pass, eye));
     auto generate = [&](const gl::Program& prog) {
       sourceFbo_.bind();
       glDisable(GL_DEPTH_TEST);
       glDisable(GL_BLEND);
-      if (o_.backFaces) {
+      if (keptBackFaces_) {
         glDisable(GL_CULL_FACE);
       } else {
         glEnable(GL_CULL_FACE);
@@ -176,9 +191,63 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
     out.emplace_back("z_n", zn_);
     out.emplace_back("maps per thread", o_.splat.mapsPerThread);
     out.emplace_back("point passes", double(dispatches_));
+    out.emplace_back("back faces kept", keptBackFaces_ ? 1.0 : 0.0);
   }
 
  private:
+  struct Occluder {
+    geo::EdgeTopology topology;
+    bool closedOutwards = false;
+  };
+
+  // Hard case 29: may culling back faces (as seen from the central eye) drop a surface that is
+  // the nearest occluder of some sample? A culled triangle t (facing away from the eye) is never
+  // the first surface a ray from a sample s meets when s lies strictly behind t's plane and
+  // outside t's mesh, that mesh closed and wound outwards: the first surface of a closed mesh
+  // met from outside faces the ray's origin. So culling is safe when every triangle either
+  // faces the eye (or is edge-on to it: it rasterises nothing either way) or has the whole light
+  // behind its plane, in a closed outward mesh the light lies entirely outside of (its centre's
+  // winding number 0, no path from the centre to a sample through it). Otherwise (a light below
+  // an open floor, inside a tube or a box, straddling a face) back faces are kept. In double, as
+  // the shadow volumes decide facing (geometry/silhouette.h).
+  bool backFacesNeeded(const LightPass& pass, const glm::vec3& eyeF) const {
+    const Light& light = pass.light;
+    const glm::dvec3 eye(eyeF), centre(light.position);
+    geo::LightExtent extent;
+    extent.centre = centre;
+    extent.normal = light.normal;
+    extent.tangent = light.tangent;
+    extent.bitangent = light.bitangent();
+    double reach = 0.0;
+    for (const glm::vec3& x : pass.samples.positions) reach = std::max(reach, glm::length(glm::dvec3(x) - centre));
+    // The samples' ball: conservative for every shape (a sample lies in it).
+    extent.kind = reach > 0.0 ? geo::LightExtent::Kind::Sphere : geo::LightExtent::Kind::Point;
+    extent.radius = reach;
+    for (const Occluder& o : occluders_) {
+      bool lightOutside = false;
+      if (o.closedOutwards) {
+        const geo::PointLocation at = geo::locatePoint(o.topology, centre);
+        lightOutside = !at.onSurface && at.winding == 0;
+        if (lightOutside && reach > 0.0) {
+          std::vector<std::uint32_t> near = geo::trianglesNearBall(o.topology, centre, reach);
+          std::vector<geo::PathCrossing> crossings;
+          for (std::size_t k = 0; k < pass.samples.positions.size() && crossings.empty() && !near.empty(); ++k)
+            geo::pathCrossings(o.topology, near, centre, glm::dvec3(pass.samples.positions[k]), crossings);
+          lightOutside = crossings.empty();
+        }
+      }
+      const auto& P = o.topology.weldedPositions;
+      for (const auto& t : o.topology.weldedTriangles) {
+        const glm::dvec3 a(P[t.x]);
+        const glm::dvec3 n = glm::cross(glm::dvec3(P[t.y]) - a, glm::dvec3(P[t.z]) - a);
+        if (glm::dot(n, eye - a) >= 0.0) continue;  // drawn (or edge-on)
+        if (lightOutside && geo::classifyLight(extent, n, a) < 0) continue;  // never a first hit
+        return true;
+      }
+    }
+    return false;
+  }
+
   const gl::Program& program(const std::string& key, const std::vector<std::string>& files,
                              const std::vector<std::string>& defs) {
     auto it = programs_.find(key);
@@ -187,6 +256,8 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
   }
 
   VwssOptions o_;
+  std::vector<Occluder> occluders_;  // opaque meshes, for the back-face decision (backfaces unset)
+  bool keptBackFaces_ = false;
   std::map<std::string, gl::Program> programs_;
   shadow_map::NearestOccluder nearest_;
   gl::Buffer points_;
@@ -208,7 +279,7 @@ std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueParams& para
   VwssOptions o;
   o.mode = mode;
   if (mode == VwssMode::Buffered) o.splat.mapsPerThread = params.getInt("k", 8, 0, 4096);
-  o.backFaces = params.getBool("backfaces", false);
+  o.backFaces = params.getInt("backfaces", -1, 0, 1);
   o.scale = params.getDouble("scale", 0.0, 0.0, 64.0);
   return std::make_unique<ViewWarpedSoftShadows>(shadow_map::readMapOptions(params), shadow_map::readPcfTaps(params), o);
 }

@@ -1,6 +1,6 @@
 // `vwss`: view-warped soft shadows (VWSS paper, section 3). The occluders are rasterised once
 // from a central view moved back along the light normal until its frustum holds every light
-// sample's (eq. 1-2), at a resolution raised by eq. 3, depth test off and back faces culled:
+// sample's (eq. 1-2), at a resolution raised by eq. 3, depth test off and back faces culled (unless needed, hard case 29):
 // every fragment is a point. Buffered: the points go to a storage buffer and a compute shader
 // splats each into several sample maps per thread with atomicMax (Listing 2); unbuffered: the
 // point-generation fragment shader splats directly (Figure 3); graphics: the buffered points
@@ -17,7 +17,8 @@ namespace penumbra {
 enum class VwssMode { Buffered, Unbuffered, Graphics };
 
 // Parameters (besides the map ones of shadow_map/maps.h): k (maps per compute thread: 1 serial,
-// 0 all, default 8 as Listing 2), backfaces (1: keep back faces, section 3.1's option), scale
+// 0 all, default 8 as Listing 2), backfaces (1: keep back faces, section 3.1's option; 0: cull
+// them; unset: keep them unless culling provably drops no nearest occluder, hard case 29), scale
 // (point-generation resolution factor; 0: eq. 3).
 std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueParams& params, VwssMode mode);
 
