@@ -362,7 +362,9 @@ void readObject(Context& ctx, const Json& item, int index) {
     if (it == ctx.materialByName.end()) {
       std::string known;
       for (const auto& [k, v] : ctx.materialByName) known += (known.empty() ? "" : ", ") + k;
-      ctx.fail(f.at("material"), "unknown material '" + m + "' (known: " + known + ")");
+      ctx.fail(f.at("material"), "unknown material '" + m + "' (" +
+                                     (known.empty() ? "the scene's \"materials\" defines none"
+                                                    : "known: " + known) + ")");
     }
     material = it->second;
   }
@@ -538,6 +540,70 @@ void readCamera(Context& ctx, const Json& item) {
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
+
+Json parseSceneJson(const std::string& text, const std::string& path) {
+  // One frame per open object or array: the keys seen so far (objects) or the element index
+  // (arrays), so that a duplicate is reported with its path, e.g. objects[1].spin.
+  struct Frame {
+    bool array = false;
+    long index = -1;
+    std::set<std::string> keys;
+    std::string key;  // the current member's key (objects)
+  };
+  std::vector<Frame> stack;
+  auto pathOf = [&](std::size_t frames) {
+    std::string p;
+    for (std::size_t i = 0; i < frames; ++i) {
+      const Frame& f = stack[i];
+      if (f.array) p += "[" + std::to_string(f.index) + "]";
+      else if (i + 1 < frames || !f.key.empty()) p += (p.empty() ? "" : ".") + f.key;
+    }
+    return p;
+  };
+  // A value starts: inside an array it is the next element.
+  auto valueStarts = [&] {
+    if (!stack.empty() && stack.back().array) ++stack.back().index;
+  };
+  const Json::parser_callback_t callback = [&](int, Json::parse_event_t event, Json& parsed) {
+    switch (event) {
+      case Json::parse_event_t::object_start:
+      case Json::parse_event_t::array_start:
+        valueStarts();
+        stack.push_back({event == Json::parse_event_t::array_start, -1, {}, {}});
+        break;
+      case Json::parse_event_t::key: {
+        Frame& f = stack.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second) {
+          f.key.clear();
+          const std::string where = pathOf(stack.size());
+          throw Error(path, (where.empty() ? "scene" : where) + ": duplicate key '" +
+                                parsed.get<std::string>() +
+                                "' (JSON would keep only the last one; give it once)");
+        }
+        break;
+      }
+      case Json::parse_event_t::object_end:
+      case Json::parse_event_t::array_end:
+        stack.pop_back();
+        break;
+      case Json::parse_event_t::value:
+        valueStarts();
+        break;
+    }
+    return true;
+  };
+  try {
+    return Json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+  } catch (const Json::exception& e) {
+    // parse_error, and out_of_range 406 for a number beyond double ("1e+315", found by
+    // fuzzing: tests/fuzz/regressions/json/), which is not a parse_error.
+    std::string what = e.what();
+    // nlohmann prefixes "[json.exception.parse_error.101] ": keep the readable part.
+    if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    throw Error(path, "invalid JSON: " + what);
+  }
+}
 
 void applyOverrides(Json& doc, const std::vector<std::string>& overrides) {
   for (const std::string& pair : overrides) {
