@@ -569,5 +569,29 @@ TEST(SceneBadInputs, MisleadingMessagesSayWhatIsWrong) {
   expectError([&] { loadScene(known); }, known, "unknown material 'red' (known: blue)");
 }
 
+// Issue 14 sections 5 and 6: an area light float cannot hold. Size 1e19 reached Embree and
+// aborted (its rays are valid up to 1.8e18); 1e-30 was refused as needing "a positive size".
+// Both bounds come from float (sqrt(FLT_MAX / 12) for squared distances; 4 float spacings at
+// the light's position), not from the scene's size.
+TEST(SceneBadInputs, LightExtentsFloatCannotHoldAreRefusedSayingSo) {
+  const std::string cube = test::sourcePath("scenes/hard/01-cube-on-plane.json");
+  expectError([&] { loadScene(cube, {"lights.0.size=1e19"}); }, cube,
+              "lights[0] 'key': size [1e+19, 1e+19] is beyond what float can hold");
+  expectError([&] { loadScene(cube, {"lights.0.size=1e-30"}); }, cube,
+              "size [1e-30, 1e-30] is below what float resolves at the light's position");
+  expectError([&] { loadScene(cube, {"lights.0.type=disk", "lights.0.radius=1e-30"}); }, cube,
+              "radius 1e-30 is below what float resolves");
+  // Relative to the position: 1e-5 resolves at |position| 4 (4 spacings = 1.9e-6), not at 1e3
+  // (2.4e-4).
+  EXPECT_NO_THROW(loadScene(cube, {"lights.0.size=1e-5"}));
+  expectError([&] { loadScene(cube, {"lights.0.size=1e-5", "lights.0.position=[0,1000,0]"}); },
+              cube, "is below what float resolves at the light's position");
+  // Just inside the upper bound: loads (rendered by scenes/hard/31-huge-light.json).
+  EXPECT_NO_THROW(loadScene(cube, {"lights.0.size=7e18"}));
+  // The reach counts from the origin: a smaller light far out is refused too.
+  expectError([&] { loadScene(cube, {"lights.0.size=1e18", "lights.0.position=[0,5e18,0]"}); },
+              cube, "the light reaches 5.71e+18 from the origin");
+}
+
 }  // namespace
 }  // namespace penumbra
