@@ -544,7 +544,18 @@ TriangleMesh loadPly(const std::string& path, std::string_view text, MeshReport&
 
 // ---- STL ---------------------------------------------------------------------------------
 
-TriangleMesh loadStl(std::string_view text, MeshReport& report) {
+// Whether `text` reads as an ascii STL: "solid" first and at least one "vertex" line (binary
+// files may begin with "solid" too, so the keyword alone decides nothing).
+bool looksAsciiStl(std::string_view text) {
+  std::string_view t = text;
+  std::string_view line;
+  if (!nextLine(t, line) || !equalsLower(nextToken(line), "solid")) return false;
+  while (nextLine(t, line))
+    if (equalsLower(nextToken(line), "vertex")) return true;
+  return false;
+}
+
+TriangleMesh loadStl(const std::string& path, std::string_view text, MeshReport& report) {
   TriangleMesh mesh;
   FaceList faces;
   // Binary iff the size matches the facet count exactly: binary files may begin with "solid".
@@ -552,7 +563,23 @@ TriangleMesh loadStl(std::string_view text, MeshReport& report) {
   if (text.size() >= 84)
     ValueReader(text.substr(80), PlyFormat::BinaryLittle).read({4, 'u'}, count);
   const auto facetCount = static_cast<std::uint64_t>(count);
-  if (text.size() >= 84 && 84 + 50 * facetCount == text.size()) {
+  const bool binary = text.size() >= 84 && 84 + 50 * facetCount == text.size();
+  if (!binary && !looksAsciiStl(text)) {
+    // Neither: a binary file whose header count disagrees with its size. Say how many facets
+    // each claims rather than parse it as ascii and report "0 triangles, 0 dropped".
+    if (text.empty()) throw Error(path, "empty file");
+    if (text.size() < 84)
+      throw Error(path, "not an STL file: " + str(text.size()) +
+                            " bytes, shorter than a binary header (84) and no ascii 'solid' with vertices");
+    const std::uint64_t held = (text.size() - 84) / 50, extra = (text.size() - 84) % 50;
+    auto triangles = [](std::uint64_t n) { return str(n) + (n == 1 ? " triangle" : " triangles"); };
+    throw Error(path, "binary STL header claims " + triangles(facetCount) + " (" +
+                          str(84 + 50 * facetCount) + " bytes), the file has " + str(text.size()) +
+                          " bytes (" + triangles(held) +
+                          (extra ? " and " + str(extra) + " bytes more" : std::string()) + ")" +
+                          (facetCount > held ? ": truncated" : ""));
+  }
+  if (binary) {
     mesh.positions.reserve(3 * facetCount);
     ValueReader in(text.substr(84), PlyFormat::BinaryLittle);
     double v[12], attribute;
@@ -588,10 +615,7 @@ TriangleMesh loadStl(std::string_view text, MeshReport& report) {
 }
 
 std::string readFile(const std::string& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) throw Error(path, "file not found");
-  if (std::filesystem::is_directory(status)) throw Error(path, "is a directory, not a mesh file");
+  if (const std::string why = fileProblem(path); !why.empty()) throw Error(path, why);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, "cannot open file");
   std::string data;
@@ -622,7 +646,7 @@ TriangleMesh loadMeshFile(const std::string& path, MeshReport& report) {
   else if (ext == ".ply")
     mesh = loadPly(path, data, report);
   else
-    mesh = loadStl(data, report);
+    mesh = loadStl(path, data, report);
   cleanMesh(mesh, report);
   if (mesh.triangles.empty()) throw Error(path, "no triangles left (" + report.summary() + ")");
   return mesh;

@@ -30,9 +30,27 @@ expect 1 "/etc/hostname" -- "$P" render -o /etc/hostname/x.png
 expect 2 "\-\-backend" -- "$P" render --backend vulkan -o "$T/x.png"
 expect 2 "\-\-shape" -- "$P" lut --shape triangle -o "$T"
 expect 2 "\-\-line" -- "$P" lut --line 3 -o "$T"
-expect 1 "does not exist" -- "$P" lut -o "$T/no/such/dir"
 expect 0 "" -- "$P" lut --samples 8 --line 16 --cube 4 -o "$T"
 test -s "$T/edge_rect_stratified_correlated_n8_seed1.lut" || { echo "FAIL: lut wrote no table"; fail=1; }
+# Issue 14 section 6: lut creates a missing output folder as compare does (it refused it),
+# and a device or a file given as a folder says so (it said "does not exist").
+expect 0 "" -- "$P" lut --samples 4 --line 16 --cube 4 -o "$T/new/lut/dir"
+test -s "$T/new/lut/dir/edge_rect_stratified_correlated_n4_seed1.lut" || { echo "FAIL: lut did not create its folder"; fail=1; }
+expect 1 "'/dev/null' is a device, socket or pipe, not a folder" -- "$P" lut -o /dev/null
+expect 1 "'/dev/null' is a device, socket or pipe, not a folder" -- "$P" compare -W 16 -H 16 -o /dev/null
+expect 1 "'/dev/null' is a device, socket or pipe, not a folder" -- "$P" render -o /dev/null/x.png
+printf x > "$T/afile"
+expect 1 "cannot create folder '$T/afile/sub'" -- "$P" lut -o "$T/afile/sub"
+# --param naming no technique's key lists what the run's techniques know, never the key itself.
+expect 2 "parameter 'bogus' (they take no parameters)" -- "$P" render -t none -W 16 -H 16 --param bogus=1 -o "$T/p.png"
+expect 2 "parameter 'bogus' (known: pcf, map," -- "$P" render -t mvr -W 16 -H 16 --param bogus=1 -o "$T/p.png"
+if grep -q "known:.*bogus" "$T/err"; then echo "FAIL: --param lists the unknown key as known"; fail=1; fi
+# --log is accepted after the subcommand too; an unknown level is refused (spdlog read it as off).
+expect 2 "\-\-log: bogus not in" -- "$P" info --log bogus
+expect 0 "" -- "$P" info --log off
+# A folder given as a mesh: "is a folder", not "not found".
+mkdir "$T/folder.obj"
+expect 1 "folder.obj: is a folder, not a file" -- "$P" info "$T/folder.obj"
 # Bad inputs (hard-cases.md, "Bad inputs: expected behaviour"), all refused before any GL work.
 expect 2 "\-W/\-H" -- "$P" render -W 0 -H 0 -o "$T/x.png"
 expect 2 "\-\-samples" -- "$P" render --samples 129 -o "$T/x.png"
@@ -54,6 +72,8 @@ expect 1 "bad.gltf: buffer 0: uri '../x.bin' leaves its folder" -- "$P" info "$T
 "$P" render -W 32 -H 32 --samples 1 -o "$T/probe.png" 2>"$T/err"; rc=$?
 if [ "$rc" -eq 77 ]; then echo "no GL context: skipping rendering cases"; [ $fail -eq 0 ] && exit 77; exit 1; fi
 expect 0 "" -- "$P" render -W 64 -H 64 --samples 4 -o "$T/a.exr"
+expect 0 "" -- "$P" render -W 16 -H 16 --samples 1 -o "$T/quiet.png" --log warn
+if [ -s "$T/err" ]; then echo "FAIL: render --log warn (after the subcommand) still logged"; cat "$T/err"; fail=1; fi
 test -s "$T/a.exr" || { echo "FAIL: no EXR written"; fail=1; }
 expect 2 "\-W" -- "$P" render -W 0 -H 64 -o "$T/b.png"
 expect 0 "" -- "$P" compare -W 64 -H 64 --samples 4 --techniques hard-sv,none -o "$T/cmp"

@@ -145,7 +145,7 @@ TEST(GeometryIo, NanInAsciiPlyDropsOnlyItsFace) {
 }
 
 TEST(GeometryIo, BadFilesThrowNamingTheFile) {
-  expectLoadError(dataPath("does_not_exist.obj"), "not found");
+  expectLoadError(dataPath("does_not_exist.obj"), "no such file");
   expectLoadError(dataPath("cube.xyz"), "unsupported mesh format");
   expectLoadError(dataPath("huge_header.off"), "1000000000 vertices");
   expectLoadError(dataPath("huge_header.ply"), "1000000000 vertex");
@@ -153,10 +153,10 @@ TEST(GeometryIo, BadFilesThrowNamingTheFile) {
   expectLoadError(dataPath("truncated.ply"), "truncated");
   const std::string folder = tempPath("folder.obj");
   fs::create_directories(folder);
-  expectLoadError(folder, "directory");
+  expectLoadError(folder, "is a folder, not a file");
   const std::string empty = tempPath("empty.stl");
   writeBytes(empty, "");
-  expectLoadError(empty, "no triangles");
+  expectLoadError(empty, "empty file");
   const std::string noFaces = tempPath("points.obj");
   writeBytes(noFaces, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 5\n");
   expectLoadError(noFaces, "no triangles left (0 triangles, 1 dropped (1 invalid index)");

@@ -391,7 +391,39 @@ TEST(SceneBadInputs, HeadersClaimingABillionElementsAreRejectedBeforeAllocating)
   stl.append(reinterpret_cast<const char*>(&facets), 4);
   stl += std::string(50, '\0');  // one facet: not binary by size, and no ascii facet either
   const std::string stlPath = dir.file("facets.stl", stl);
-  expectError([&] { loadScene(stlPath); }, stlPath, "no triangles left");
+  expectError([&] { loadScene(stlPath); }, stlPath,
+              "binary STL header claims 1000000000 triangles (50000000084 bytes), the file has "
+              "134 bytes (1 triangle): truncated");
+}
+
+// Issue 14 section 6: a binary STL whose count disagrees with its size was read as ascii and
+// reported "0 triangles, 0 dropped" (no triangles left); the message now gives both counts,
+// also for a header beginning with "solid" (as many exporters write) and for extra bytes.
+TEST(SceneBadInputs, BinaryStlWhoseCountDisagreesWithItsSizeSaysBoth) {
+  test::TempDir dir;
+  auto binaryStl = [](const std::string& header, std::uint32_t claimed, int facets, int extra) {
+    std::string stl = header + std::string(80 - header.size(), ' ');
+    stl.append(reinterpret_cast<const char*>(&claimed), 4);
+    const float tri[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0};
+    for (int f = 0; f < facets; ++f) {
+      stl.append(reinterpret_cast<const char*>(tri), sizeof tri);
+      stl += std::string(2, '\0');
+    }
+    return stl + std::string(std::size_t(extra), '\0');
+  };
+  const std::string truncated = dir.file("truncated.stl", binaryStl("solid exported", 5, 2, 0));
+  expectError([&] { loadScene(truncated); }, truncated,
+              "binary STL header claims 5 triangles (334 bytes), the file has 184 bytes (2 "
+              "triangles): truncated");
+  const std::string longer = dir.file("longer.stl", binaryStl("", 1, 2, 7));
+  expectError([&] { loadScene(longer); }, longer,
+              "binary STL header claims 1 triangle (134 bytes), the file has 191 bytes (2 "
+              "triangles and 7 bytes more)");
+  const std::string tiny = dir.file("tiny.stl", "not a mesh");
+  expectError([&] { loadScene(tiny); }, tiny, "not an STL file: 10 bytes");
+  // The same bytes with a matching count load.
+  const Scene ok = loadScene(dir.file("ok.stl", binaryStl("solid exported", 2, 2, 0)));
+  EXPECT_EQ(ok.meshes.size(), 2u);  // the mesh and the bare file's floor
 }
 
 // Two vertex elements: the second would add positions without the first one's normals (found
@@ -494,6 +526,71 @@ TEST(SceneBadInputs, ZeroSizedLightsAreRejectedForEveryShape) {
   bool warned = false;
   for (const std::string& w : m.warnings) warned = warned || w.find("node 1: singular") != std::string::npos;
   EXPECT_TRUE(warned);
+}
+
+// Issue 14 section 6: a key given twice in a scene file kept the last value silently. Refused
+// with the key, the file and where it is; comments still parse.
+TEST(SceneBadInputs, DuplicateKeysAreRefusedWithTheKeyAndWhere) {
+  test::TempDir dir;
+  const std::string shape = dir.file(
+      "shape.json", R"({"objects": [{"shape": "box", "shape": "sphere"}], "lights": [{}]})");
+  expectError([&] { loadScene(shape); }, shape, "objects[0]: duplicate key 'shape'");
+  const std::string nested = dir.file("nested.json", R"({
+    "objects": [{"shape": "box"},
+                {"shape": "box", "spin": {"axis": [0, 1, 0], /* again: */ "axis": [1, 0, 0]}}],
+    "lights": [{}]})");
+  expectError([&] { loadScene(nested); }, nested, "objects[1].spin: duplicate key 'axis'");
+  const std::string top =
+      dir.file("top.json", R"({"lights": [{}], "objects": [{"shape": "box"}], "lights": []})");
+  expectError([&] { loadScene(top); }, top, "scene: duplicate key 'lights'");
+  // The same key in sibling objects is not a duplicate.
+  const std::string ok = dir.file(
+      "ok.json", R"({"objects": [{"shape": "box"}, {"shape": "box", "translate": [2, 0, 0]}],
+                     "lights": [{"position": [0, 4, 0]}, {"position": [1, 4, 0]}]})");
+  EXPECT_EQ(loadScene(ok).meshes.size(), 2u);
+}
+
+// Issue 14 section 6: a folder given as a mesh said "not found"; a material name with no
+// materials defined listed "(known: )".
+TEST(SceneBadInputs, MisleadingMessagesSayWhatIsWrong) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir.path() + "/folder.obj");
+  const std::string scene =
+      dir.file("folder.json", R"({"objects": [{"file": "folder.obj"}], "lights": [{}]})");
+  expectError([&] { loadScene(scene); }, scene, "'folder.obj' (");
+  expectError([&] { loadScene(scene); }, scene, "folder.obj) is a folder, not a file");
+  expectError([&] { loadScene(dir.path() + "/folder.obj"); }, "folder.obj", "is a folder, not a file");
+  const std::string red =
+      dir.file("red.json", R"({"objects": [{"shape": "box", "material": "red"}], "lights": [{}]})");
+  expectError([&] { loadScene(red); }, red,
+              "unknown material 'red' (the scene's \"materials\" defines none)");
+  const std::string known = dir.file("known.json", R"({"materials": [{"name": "blue"}],
+      "objects": [{"shape": "box", "material": "red"}], "lights": [{}]})");
+  expectError([&] { loadScene(known); }, known, "unknown material 'red' (known: blue)");
+}
+
+// Issue 14 sections 5 and 6: an area light float cannot hold. Size 1e19 reached Embree and
+// aborted (its rays are valid up to 1.8e18); 1e-30 was refused as needing "a positive size".
+// Both bounds come from float (sqrt(FLT_MAX / 12) for squared distances; 4 float spacings at
+// the light's position), not from the scene's size.
+TEST(SceneBadInputs, LightExtentsFloatCannotHoldAreRefusedSayingSo) {
+  const std::string cube = test::sourcePath("scenes/hard/01-cube-on-plane.json");
+  expectError([&] { loadScene(cube, {"lights.0.size=1e19"}); }, cube,
+              "lights[0] 'key': size [1e+19, 1e+19] is beyond what float can hold");
+  expectError([&] { loadScene(cube, {"lights.0.size=1e-30"}); }, cube,
+              "size [1e-30, 1e-30] is below what float resolves at the light's position");
+  expectError([&] { loadScene(cube, {"lights.0.type=disk", "lights.0.radius=1e-30"}); }, cube,
+              "radius 1e-30 is below what float resolves");
+  // Relative to the position: 1e-5 resolves at |position| 4 (4 spacings = 1.9e-6), not at 1e3
+  // (2.4e-4).
+  EXPECT_NO_THROW(loadScene(cube, {"lights.0.size=1e-5"}));
+  expectError([&] { loadScene(cube, {"lights.0.size=1e-5", "lights.0.position=[0,1000,0]"}); },
+              cube, "is below what float resolves at the light's position");
+  // Just inside the upper bound: loads (rendered by scenes/hard/31-huge-light.json).
+  EXPECT_NO_THROW(loadScene(cube, {"lights.0.size=7e18"}));
+  // The reach counts from the origin: a smaller light far out is refused too.
+  expectError([&] { loadScene(cube, {"lights.0.size=1e18", "lights.0.position=[0,5e18,0]"}); },
+              cube, "the light reaches 5.71e+18 from the origin");
 }
 
 }  // namespace

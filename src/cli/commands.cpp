@@ -64,11 +64,23 @@ RenderSettings settingsFor(const CommonOptions& o, const Scene& scene) {
   return s;
 }
 
-// Fails before any rendering when `path`'s folder is missing or not writable.
-void checkWritableFolder(const fs::path& dir, const std::string& what) {
+// Fails before any rendering when folder `dir` is missing, is not a folder, or is not writable;
+// `create`: a missing folder (and its parents) is created first, as compare, lut and bench do.
+void checkWritableFolder(const fs::path& dir, const std::string& what, bool create = false) {
   fs::path d = dir.empty() ? fs::path(".") : dir;
   std::error_code ec;
-  if (!fs::is_directory(d, ec)) throw Error(what, "folder '" + d.string() + "' does not exist");
+  fs::file_status st = fs::status(d, ec);
+  if (st.type() == fs::file_type::not_found && create) {
+    fs::create_directories(d, ec);
+    // A component above it that is a file: say so rather than "does not exist".
+    if (ec) throw Error(what, "cannot create folder '" + d.string() + "': " + ec.message());
+    st = fs::status(d, ec);
+  }
+  if (st.type() == fs::file_type::not_found) throw Error(what, "folder '" + d.string() + "' does not exist");
+  if (st.type() != fs::file_type::directory) {
+    const char* kind = st.type() == fs::file_type::regular ? "a file" : "a device, socket or pipe";
+    throw Error(what, "'" + d.string() + "' is " + kind + ", not a folder");
+  }
   if (::access(d.c_str(), W_OK) != 0) throw Error(what, "folder '" + d.string() + "' is not writable");
 }
 
@@ -174,9 +186,7 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
   Scene scene = loadSceneFor(o);
   scene.makeCameraRelative();  // in place: each Renderer would otherwise translate a copy
   options.outDir = c.outDir.empty() ? (fs::path("out") / scene.name).string() : c.outDir;
-  std::error_code ec;
-  fs::create_directories(options.outDir, ec);
-  checkWritableFolder(options.outDir, options.outDir);
+  checkWritableFolder(options.outDir, options.outDir, /*create=*/true);
   RenderSettings settings = settingsFor(o, scene);
   auto context = gl::Context::create(gl::parseBackend(o.backend));
   PLOG_INFO("renderer: {} ({})", context->renderer(), context->version());
@@ -277,9 +287,7 @@ int bench(const BenchOptions& b) {
     renderer = context->renderer(), version = context->version();
   }
   const std::string dir = b.outDir.empty() ? (fs::path("bench/results") / machineName(renderer)).string() : b.outDir;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  checkWritableFolder(dir, dir);
+  checkWritableFolder(dir, dir, /*create=*/true);
   const std::string machine = fmt::format(
       "date      {}\ncpu       {}\ncores     {}\nmemory    {}\nos        {}\nrenderer  {}\ngl        {}\nbackend   {}\nsuite     {}\n",
       utcNow(), firstLine("/proc/cpuinfo", "model name"), std::thread::hardware_concurrency(),
@@ -326,7 +334,6 @@ int lut(const CommonOptions& o, const LutOptions& l) {
   if (l.shape != "rect" && l.shape != "disk") throw Error("--shape", "must be rect or disk, got '" + l.shape + "'", ExitCode::Usage);
   if (l.cube < 1 || l.cube > 1024) throw Error("--cube", "must be in 1..1024", ExitCode::Usage);
   if (l.line < 2 || l.line > 4096 || l.line % 2) throw Error("--line", "must be even, in 2..4096", ExitCode::Usage);
-  checkWritableFolder(l.outDir, "--output");
   Scene scene;
   if (!o.scene.empty()) {
     scene = loadSceneFor(o);
@@ -334,6 +341,7 @@ int lut(const CommonOptions& o, const LutOptions& l) {
     scene.lights.push_back(dcs::unitLight(l.shape == "rect" ? LightShape::Rect : LightShape::Disk));
   }
   RenderSettings s = settingsFor(o, scene);
+  checkWritableFolder(l.outDir, "--output", /*create=*/true);  // after the checks: no folder for a refused run
   json written = json::array();
   std::vector<std::string> done;
   for (const Light& light : scene.lights) {

@@ -38,7 +38,12 @@ int main(int argc, char** argv) {
   CLI::App app{"penumbra: soft shadows from area lights, measured against a ray-traced reference"};
   app.require_subcommand(1);
   std::string logLevel = "info";
-  app.add_option("--log", logLevel, "log level: trace, debug, info, warn, error, off");
+  // spdlog reads an unknown level as "off": refuse it instead of silencing every message.
+  app.add_option("--log", logLevel, "log level: trace, debug, info, warn, error, off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+  // Subcommands made below inherit this: an option of the main command (--log) is accepted
+  // after the subcommand too (`penumbra render --log debug`), as README lists it.
+  app.fallthrough();
 
   cli::CommonOptions o;
   bool listJson = false;

@@ -29,6 +29,11 @@ class Error : public std::runtime_error {
   ExitCode code_;
 };
 
+// Why `path` cannot be read as an input file, or "" when it is a regular file: "no such file",
+// "is a folder, not a file", "is not a regular file (a device, socket or pipe)", or the system's
+// reason ("permission denied" on a folder above it). Every loader words a bad path the same way.
+std::string fileProblem(const std::string& path);
+
 [[noreturn]] void checkFailed(const char* expr, const char* file, int line, const std::string& msg);
 
 }  // namespace penumbra

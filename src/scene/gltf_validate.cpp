@@ -44,8 +44,8 @@ std::uint32_t readU32(const unsigned char* p) {
 }
 
 std::vector<unsigned char> readBinary(const std::string& path) {
+  if (const std::string why = fileProblem(path); !why.empty()) throw Error(path, why);
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw Error(path, "no such file");
   const std::uint64_t size = fs::file_size(path, ec);
   if (ec) throw Error(path, "cannot read: " + ec.message());
   if (size == 0) throw Error(path, "empty file");

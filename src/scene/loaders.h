@@ -80,6 +80,12 @@ Json framingCamera(glm::vec3 lo, glm::vec3 hi);
 
 // "key=value" overrides (see scene.h) applied to the document in place. Throws
 // penumbra::Error("--set", ...) on a malformed pair or an array index out of range.
+// Parses a scene file's JSON (// and /* */ comments allowed). JSON lets an object repeat a key
+// and nlohmann keeps the last silently; a repeated key here throws penumbra::Error(path,
+// "<item>: duplicate key '<key>'") naming where it is (`objects[1]`, `lights[0].spin`). Invalid
+// JSON throws Error(path, "invalid JSON: ...").
+Json parseSceneJson(const std::string& text, const std::string& path);
+
 void applyOverrides(Json& doc, const std::vector<std::string>& overrides);
 
 // Interprets a scene document. `where` names it in messages (the file, or "<default scene>");

@@ -368,9 +368,10 @@ std::string resolveSceneReference(const std::string& reference, const std::strin
                            " (paths are relative to the scene file's folder)");
   }
   const std::string resolved = (fs::path(root) / relative).lexically_normal().string();
-  std::error_code ec;
-  if (!fs::is_regular_file(resolved, ec)) {
-    throw Error(where, context + ": '" + reference + "' not found (looked for " + resolved + ")");
+  if (const std::string why = fileProblem(resolved); !why.empty()) {
+    throw Error(where, context + ": '" + reference + "' " +
+                           (why == "no such file" ? "not found (looked for " + resolved + ")"
+                                                  : "(" + resolved + ") " + why));
   }
   if (!isInsideFolder(resolved, root)) {
     throw Error(where, context + ": '" + reference + "' resolves outside " + root);
@@ -403,8 +404,8 @@ Model loadGeometryFile(const std::string& path) {
 namespace {
 
 std::string readTextFile(const std::string& path) {
+  if (const std::string why = fileProblem(path); !why.empty()) throw Error(path, why);
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw Error(path, "no such file");
   const auto size = fs::file_size(path, ec);
   if (ec) throw Error(path, "cannot read: " + ec.message());
   if (size > (64u << 20)) throw Error(path, "scene file larger than 64 MiB");
@@ -428,21 +429,11 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   Json doc;
   if (ext == ".json") {
     const std::string text = readTextFile(path);
-    try {
-      doc = Json::parse(text, nullptr, true, /*ignore_comments=*/true);
-    } catch (const Json::exception& e) {
-      // parse_error, and out_of_range 406 for a number beyond double ("1e+315", found by
-      // fuzzing: tests/fuzz/regressions/json/), which is not a parse_error.
-      std::string what = e.what();
-      // nlohmann prefixes "[json.exception.parse_error.101] ": keep the readable part.
-      if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-      throw Error(path, "invalid JSON: " + what);
-    }
+    doc = detail::parseSceneJson(text, path);
     if (!doc.is_object()) throw Error(path, "a scene file must hold a JSON object");
     if (!doc.contains("name")) doc["name"] = stem;
   } else if (detail::isGeometryExtension(ext)) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw Error(path, "no such file");
+    if (const std::string why = fileProblem(path); !why.empty()) throw Error(path, why);
     // Loaded once here for its bounds; interpretScene loads it again, which keeps a single
     // code path for placement (bare files are small compared with the cost of rendering).
     detail::Model model = detail::loadGeometryFile(path);

@@ -1,6 +1,10 @@
 // The scene description interpreter and --set overrides. The format is documented in
 // docs/scene-format.md; every key read here is listed there.
+#include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
@@ -125,12 +129,9 @@ class Fields {
     for (int i = 0; i < n; ++i) out[i] = toFloat(v[std::size_t(i)], context);
     return out;
   }
-  static std::string fmtFloat(float x) {
-    std::string s = std::to_string(x);
-    while (s.size() > 1 && s.back() == '0') s.pop_back();
-    if (!s.empty() && s.back() == '.') s.pop_back();
-    return s;
-  }
+  // Shortest form that reads back as the same float ("0.5", "1e-30"; std::to_string printed
+  // 1e-30 as "0.000000", which made a tiny size read as zero).
+  static std::string fmtFloat(float x) { return fmt::format("{}", x); }
 
  private:
   Context& ctx_;
@@ -362,7 +363,9 @@ void readObject(Context& ctx, const Json& item, int index) {
     if (it == ctx.materialByName.end()) {
       std::string known;
       for (const auto& [k, v] : ctx.materialByName) known += (known.empty() ? "" : ", ") + k;
-      ctx.fail(f.at("material"), "unknown material '" + m + "' (known: " + known + ")");
+      ctx.fail(f.at("material"), "unknown material '" + m + "' (" +
+                                     (known.empty() ? "the scene's \"materials\" defines none"
+                                                    : "known: " + known) + ")");
     }
     material = it->second;
   }
@@ -535,9 +538,113 @@ void readCamera(Context& ctx, const Json& item) {
   if (!(c.zNear > 0.0f)) ctx.fail("camera.near", "must be positive");
 }
 
+// Why float cannot hold the area light `l`, or "" (issue 14 sections 5 and 6: a
+// light of size 1e19 tripped an Embree assertion; one of 1e-30 was said to need "a positive
+// size"). Both bounds are relative to float itself, not to a chosen scene size:
+// - too large: every technique forms s - p between a light sample s and a surface point p and
+//   its squared length; with |components| <= R (the light's reach from the origin; geometry
+//   beyond float's range is dropped and counted by the mesh loaders) that is at most
+//   3 (2R)^2 = 12 R^2, which must stay below FLT_MAX, so R < sqrt(FLT_MAX / 12) ~ 5.3e18 (and
+//   the area, at most (2R)^2, stays finite);
+// - too small: the samples lie within the light's half-extent e of its centre c, which is
+//   stored as a float; with e below 4 float spacings (ulps) of c's largest coordinate fewer than
+//   9 representable positions span the light per axis, so its samples round onto a few points,
+//   and an area below FLT_MIN underflows to 0. Either way the light is a point light in
+//   disguise. (The bound is on c's own float spacing, so it holds wherever the light is.)
+std::string lightExtentProblem(const Light& l) {
+  const double w = l.size.x, h = l.shape == LightShape::Rect ? l.size.y : l.size.x;
+  const double reachOfSize = l.shape == LightShape::Rect ? 0.5 * std::hypot(w, h) : w;
+  const double halfMin = l.shape == LightShape::Rect ? 0.5 * std::min(w, h) : w;
+  const glm::dvec3 c = glm::abs(glm::dvec3(l.position));
+  const double centre = std::max({c.x, c.y, c.z});
+  const double reach = centre + reachOfSize;
+  const double maxReach = std::sqrt(double(std::numeric_limits<float>::max()) / 12.0);
+  const std::string size = l.shape == LightShape::Rect ? fmt::format("size [{:g}, {:g}]", w, h)
+                                                       : fmt::format("radius {:g}", w);
+  if (reach > maxReach)
+    return fmt::format("{} is beyond what float can hold: the light reaches {:.3g} from the "
+                       "origin, and squared distances across it overflow float above "
+                       "sqrt(FLT_MAX / 12) = {:.3g}",
+                       size, reach, maxReach);
+  const float centreF = float(centre);
+  const double ulp = double(std::nextafter(centreF, std::numeric_limits<float>::infinity()) - centreF);
+  const double area = double(l.area());
+  if (halfMin < 4.0 * ulp || !(area >= double(std::numeric_limits<float>::min())))
+    return fmt::format("{} is below what float resolves at the light's position: its samples "
+                       "would collapse onto its centre (half-extent {:.3g}; 4 float spacings at "
+                       "|position| {:.3g} are {:.3g}; area {:.3g}); use a point light or a larger "
+                       "size",
+                       size, halfMin, centre, 4.0 * ulp, area);
+  return {};
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
+
+Json parseSceneJson(const std::string& text, const std::string& path) {
+  // One frame per open object or array: the keys seen so far (objects) or the element index
+  // (arrays), so that a duplicate is reported with its path, e.g. objects[1].spin.
+  struct Frame {
+    bool array = false;
+    long index = -1;
+    std::set<std::string> keys;
+    std::string key;  // the current member's key (objects)
+  };
+  std::vector<Frame> stack;
+  auto pathOf = [&](std::size_t frames) {
+    std::string p;
+    for (std::size_t i = 0; i < frames; ++i) {
+      const Frame& f = stack[i];
+      if (f.array) p += "[" + std::to_string(f.index) + "]";
+      else if (i + 1 < frames || !f.key.empty()) p += (p.empty() ? "" : ".") + f.key;
+    }
+    return p;
+  };
+  // A value starts: inside an array it is the next element.
+  auto valueStarts = [&] {
+    if (!stack.empty() && stack.back().array) ++stack.back().index;
+  };
+  const Json::parser_callback_t callback = [&](int, Json::parse_event_t event, Json& parsed) {
+    switch (event) {
+      case Json::parse_event_t::object_start:
+      case Json::parse_event_t::array_start:
+        valueStarts();
+        stack.push_back({event == Json::parse_event_t::array_start, -1, {}, {}});
+        break;
+      case Json::parse_event_t::key: {
+        Frame& f = stack.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second) {
+          f.key.clear();
+          const std::string where = pathOf(stack.size());
+          throw Error(path, (where.empty() ? "scene" : where) + ": duplicate key '" +
+                                parsed.get<std::string>() +
+                                "' (JSON would keep only the last one; give it once)");
+        }
+        break;
+      }
+      case Json::parse_event_t::object_end:
+      case Json::parse_event_t::array_end:
+        stack.pop_back();
+        break;
+      case Json::parse_event_t::value:
+        valueStarts();
+        break;
+    }
+    return true;
+  };
+  try {
+    return Json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+  } catch (const Json::exception& e) {
+    // parse_error, and out_of_range 406 for a number beyond double ("1e+315", found by
+    // fuzzing: tests/fuzz/regressions/json/), which is not a parse_error.
+    std::string what = e.what();
+    // nlohmann prefixes "[json.exception.parse_error.101] ": keep the readable part.
+    if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    throw Error(path, "invalid JSON: " + what);
+  }
+}
 
 void applyOverrides(Json& doc, const std::vector<std::string>& overrides) {
   for (const std::string& pair : overrides) {
@@ -641,7 +748,9 @@ Scene interpretScene(const Json& doc, const std::string& where, const std::strin
                         isFinite(glm::vec3(l.size, 0.0f)) && isFinite(l.color) &&
                         std::isfinite(l.intensity);
     if (!finite) ctx.fail(context, "has a NaN or infinite parameter");
-    if (l.isArea() && !(l.area() > 0.0f)) ctx.fail(context, "an area light needs a positive size");
+    if (l.isArea()) {
+      if (const std::string why = lightExtentProblem(l); !why.empty()) ctx.fail(context, why);
+    }
   }
   if (scene.meshes.empty()) ctx.warn(where + ": the scene has no geometry");
   if (scene.lights.empty()) ctx.warn(where + ": the scene has no lights");

@@ -114,7 +114,10 @@ TechniqueParams::TechniqueParams(const std::vector<std::string>& keyValues) {
     if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
       throw Error("--param", "expected key=value, got '" + kv + "'", ExitCode::Usage);
     std::string key = kv.substr(0, eq);
-    if (find(key)) throw Error("--param", "key '" + key + "' given twice", ExitCode::Usage);
+    // A plain lookup, not find(): find() records the key as one a technique knows, which made
+    // an unread key list itself as known ("(known: bogus)").
+    for (auto& [k, v] : values_)
+      if (k == key) throw Error("--param", "key '" + key + "' given twice", ExitCode::Usage);
     values_.emplace_back(key, kv.substr(eq + 1));
   }
 }
@@ -172,8 +175,9 @@ void TechniqueParams::checkConsumed() const {
     if (std::find(consumed_.begin(), consumed_.end(), k) == consumed_.end()) {
       std::string known;
       for (auto& n : known_) known += (known.empty() ? "" : ", ") + n;
-      throw Error("--param", "no technique of this run has a parameter '" + k + "' (known: " +
-                                 (known.empty() ? "none" : known) + ")", ExitCode::Usage);
+      throw Error("--param", "no technique of this run has a parameter '" + k + "' (" +
+                                 (known.empty() ? "they take no parameters" : "known: " + known) + ")",
+                  ExitCode::Usage);
     }
 }
 

@@ -67,12 +67,14 @@ void occlusionFilter(const RTCFilterFunctionNArguments* args) {
     const unsigned id = RTCRayN_id(args->ray, args->N, i);
     const unsigned geomID = RTCHitN_geomID(args->hit, args->N, i);
     const unsigned primID = RTCHitN_primID(args->hit, args->N, i);
-    const float t = RTCRayN_tfar(args->ray, args->N, i);  // the hit distance during the filter
+    // The hit distance during the filter, in units of the ray's direction: up to 1 (or 2^k for
+    // a direction makeRay shortened), hence the tolerance below relative to t.
+    const float t = RTCRayN_tfar(args->ray, args->N, i);
     std::vector<CountedHit>& hits = ctx->scratch->hits[id];
     float& tr = ctx->scratch->transmittance[id];
     bool seen = false;
     for (const CountedHit& h : hits) {
-      if (h.geomID == geomID && (h.primID == primID || std::abs(h.t - t) <= 1e-6f)) {
+      if (h.geomID == geomID && (h.primID == primID || std::abs(h.t - t) <= 1e-6f * std::max(1.0f, t))) {
         seen = true;
         break;
       }
@@ -86,12 +88,27 @@ void occlusionFilter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-RTCRay makeRay(const glm::vec3& o, const glm::vec3& d, unsigned id) {
+// Embree accepts ray origins and directions with |components| <= FLT_LARGE (1.844e18, its
+// RayK::valid(); beyond it a debug build aborts, issue 14 section 5: a light of size 1e19). A
+// segment towards a sample that far is shortened by an exact power of two 2^k and tfar grows by
+// the same 2^k: the ray's points o + t d are the same floats, so the hit (and the shadow) are
+// exactly those of the unscaled segment. The scene loader refuses lights beyond float's range.
+constexpr float kMaxDirection = 0x1p60f;  // 1.15e18 < FLT_LARGE
+
+RTCRay makeRay(const glm::vec3& o, glm::vec3 d, unsigned id) {
   RTCRay ray;
+  float tfar = kTFar;
+  const float longest = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+  if (longest > kMaxDirection) {
+    int e = 0;
+    std::frexp(longest / kMaxDirection, &e);  // 2^(e-1) <= longest / 2^60 < 2^e
+    d = glm::vec3(std::ldexp(d.x, -e), std::ldexp(d.y, -e), std::ldexp(d.z, -e));
+    tfar = std::ldexp(kTFar, e);
+  }
   ray.org_x = o.x, ray.org_y = o.y, ray.org_z = o.z;
   ray.dir_x = d.x, ray.dir_y = d.y, ray.dir_z = d.z;
   ray.tnear = 0.0f;
-  ray.tfar = kTFar;
+  ray.tfar = tfar;
   ray.time = 0.0f;
   ray.mask = ~0u;
   ray.id = id;
