@@ -140,7 +140,7 @@ class DepthComplexitySampling final : public Technique {
     edgeBuffer_ = gl::Buffer(edges);
     incidenceBuffer_ = gl::Buffer(incidences);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
-    profileBuffer_ = gl::Buffer(sizeof(Profile), nullptr);
+    profileImage_ = gl::Texture::make2D(GL_R32UI, 6, 1);
     bound_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
     boundFbo_ = gl::Framebuffer({&bound_}, &gpu.depth());
     checksum_ = gl::Texture::make2D(GL_RG32F, gpu.width(), gpu.height());
@@ -279,9 +279,8 @@ class DepthComplexitySampling final : public Technique {
       GpuStatus status;
       statusBuffer_.write(&status, sizeof status);
       statusBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_STATUS);
-      Profile profile;
-      profileBuffer_.write(&profile, sizeof profile);
-      profileBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PROFILE);
+      profileImage_.clear(glm::vec4(0.0f));
+      profileImage_.bindImage(PENUMBRA_IMAGE_DCS_PROFILE, GL_READ_WRITE);
       Programs& progs = programsFor(plan, coverage);
       ensureCounters(plan, pass.gpu);
       const gl::Program& resolve = pass.perSample ? progs.resolvePerSample : progs.resolve;
@@ -330,7 +329,10 @@ class DepthComplexitySampling final : public Technique {
         });
       }
       statusBuffer_.read(&status, sizeof status);
-      if (options_.profile) profileBuffer_.read(&stats_.profile, sizeof stats_.profile);
+      if (options_.profile) {
+        const std::vector<std::uint32_t> c = profileImage_.readUint();  // shaders/common_dcs.glsl prof*
+        stats_.profile = {c[0], c[1], c[2], c[3], c[4], c[5]};
+      }
       return status;
     };
 
@@ -443,7 +445,7 @@ class DepthComplexitySampling final : public Technique {
     std::sort(ids.begin(), ids.end());
     return std::vector<int>(ids.begin(), ids.end());
   }
-  // shaders/common_dcs.glsl, DcsProfile.
+  // shaders/common_dcs.glsl, dcsProfile (texel k: prof* = k).
   struct Profile {
     std::uint32_t rectangleEdges = 0, wedgeEdges = 0, fragments = 0, inPlane = 0, weighted = 0, updating = 0;
   };
@@ -551,7 +553,8 @@ class DepthComplexitySampling final : public Technique {
   dcs::OpacityCoding coding_;
   ShadowVolumeCounter volumes_;
   std::vector<std::uint32_t> edgeOffset_;
-  gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_, profileBuffer_;
+  gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_;
+  gl::Texture profileImage_;
   gl::Texture bound_, checksum_, counters_;
   gl::Framebuffer boundFbo_, counterFbo_;
   gl::Program silhouetteProgram_;
