@@ -36,16 +36,16 @@ layout(std430, binding = PENUMBRA_SSBO_DCS_INCIDENCES) readonly buffer DcsIncide
 };
 
 #ifdef DCS_PROFILE
-// Where the wedge pass spends its fragments (dcs.cpp reads them into the statistics).
-layout(std430, binding = PENUMBRA_SSBO_DCS_PROFILE) buffer DcsProfile {
-  uint profRectangleEdges;  // edges drawn as their screen rectangle (dcs_wedge.geom fallback)
-  uint profWedgeEdges;      // edges drawn as their wedge polyhedron
-  uint profFragments;       // wedge fragments that passed the depth test on a surface
-  uint profInPlane;         // ... whose plane(p, e) crosses the light
-  uint profWeighted;        // ... with m_e(p) != 0
-  uint profUpdating;        // ... that change at least one counter
-};
-#define PROFILE_COUNT(x) atomicAdd(x, 1u)
+// Where the wedge pass spends its fragments (dcs.cpp reads them into the statistics). An image,
+// not a storage block: written by the geometry and the fragment stage (shared.h, bindings).
+layout(binding = PENUMBRA_IMAGE_DCS_PROFILE, r32ui) uniform coherent uimage2D dcsProfile;
+const int profRectangleEdges = 0;  // edges drawn as their screen rectangle (dcs_wedge.geom fallback)
+const int profWedgeEdges = 1;      // edges drawn as their wedge polyhedron
+const int profFragments = 2;       // wedge fragments that passed the depth test on a surface
+const int profInPlane = 3;         // ... whose plane(p, e) crosses the light
+const int profWeighted = 4;        // ... with m_e(p) != 0
+const int profUpdating = 5;        // ... that change at least one counter
+#define PROFILE_COUNT(x) imageAtomicAdd(dcsProfile, ivec2(x, 0), 1u)
 #else
 #define PROFILE_COUNT(x)
 #endif

@@ -46,17 +46,24 @@
 #define PENUMBRA_IMAGE_SHADOW_MAPS 1    // R32UI 2D array: point-rendered depth maps (atomicMax)
 #define PENUMBRA_IMAGE_SEMI_COUNT 2     // R32UI 2D array: semi-opaque surfaces a texel (atomicAdd)
 #define PENUMBRA_IMAGE_SEMI_LAYERS 3    // R32UI 2D array: their entries (depth and opacity)
+#define PENUMBRA_IMAGE_SEMI_STATUS 4    // R32UI 1 x 1: most semi-opaque surfaces on one map texel
+#define PENUMBRA_IMAGE_DCS_PROFILE 5    // R32UI 6 x 1: dcs wedge counters (PENUMBRA_DCS_PROFILE=1)
 
 // ---- shader storage / uniform buffer bindings ----------------------------------------------
+// A graphics program (vertex/geometry/fragment) that writes a storage block declares storage
+// blocks in that one stage only (gl::Program refuses others): Mesa 22.3's GLSL linker computes
+// each stage's write mask with the program-wide block index, so with blocks in two stages the
+// writing stage's block can be marked read-only, and zink then neither waits for its writes
+// before a glGetBufferSubData nor orders them before later reads, which glMemoryBarrier
+// guarantees (GL 4.5 7.12.2, BUFFER_UPDATE and SHADER_STORAGE barrier bits). Counters that
+// several stages write are images (their write access is given at bind time).
 #define PENUMBRA_SSBO_LIGHT_SAMPLES 0   // vec4 position (xyz), per set then sample
 #define PENUMBRA_SSBO_SAMPLE_RADIANCE 1 // vec4 normalised luminance L_i (rgb) of eq. 2
 #define PENUMBRA_SSBO_DCS_EDGES 2       // dcs: edges (endpoints, incidence range, rule)
 #define PENUMBRA_SSBO_DCS_INCIDENCES 3  // dcs: incident triangles (third vertex, plane normal)
 #define PENUMBRA_SSBO_DCS_STATUS 4      // dcs: resolve status (overflowing pixels)
-#define PENUMBRA_SSBO_DCS_PROFILE 5     // dcs: wedge counters (PENUMBRA_DCS_PROFILE=1)
 #define PENUMBRA_SSBO_DCS_PACKED 6      // dcs: packed sample positions (edge_lut.h), naive mode
 #define PENUMBRA_SSBO_POINTS 7          // vwss: point count, then xyz world positions (3 floats each)
-#define PENUMBRA_SSBO_SEMI_STATUS 8     // multi-view maps: most semi-opaque surfaces on one texel
 #define PENUMBRA_SSBO_VSSM_SAT 9        // vssm: summed-area table of the depth moments, a texel a pair
 #define PENUMBRA_SSBO_VSSM_HSM 10       // vssm: min-max hierarchical shadow map, all levels, a texel a pair
 #define PENUMBRA_SSBO_DCS_PATH_FIRST 11  // dcs: per light sample, the first of its path crossings (then the end)

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cctype>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -107,6 +108,14 @@ class EglContext final : public Context {
 class OSMesaBackend final : public Context {
  public:
   OSMesaBackend() : Context(Backend::OSMesa) {
+    // OSMesa renders with Mesa's software rasterisers only (llvmpipe, softpipe): Mesa 22.3's
+    // OSMesaCreateContextAttribs dereferences a null screen (SIGSEGV) when GALLIUM_DRIVER names
+    // another driver (zink, or a typo), so say so instead of calling it.
+    if (const char* d = std::getenv("GALLIUM_DRIVER")) {
+      const std::string driver(d);
+      if (!driver.empty() && driver != "llvmpipe" && driver != "softpipe")
+        noContext("OSMesa: GALLIUM_DRIVER=" + driver + " is not one of OSMesa's drivers (llvmpipe, softpipe)");
+    }
     const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
                            OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 4,
                            OSMESA_CONTEXT_MINOR_VERSION, 5, 0};

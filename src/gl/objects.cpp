@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <regex>
 #include <sstream>
 
 #include <unistd.h>
@@ -472,6 +473,32 @@ GLenum stageOf(const std::string& file) {
   throw Error(file, "unknown shader stage (.vert .frag .geom .comp)");
 }
 
+// shared.h, "shader storage bindings": in a graphics program that writes a storage block, only
+// one stage may declare storage blocks (Mesa 22.3 marks the writing stage's block read-only
+// otherwise, and zink then skips the waits and barriers its writes need). Read from the
+// stages' text, since the GL reports neither unused declarations (which trigger it too) nor
+// readonly: conservative across #if branches, which is what keeps every stage's layout plain.
+void checkStorageBlockStages(const std::vector<std::string>& files, const std::vector<std::string>& sources) {
+  static const std::regex decl(R"(^\s*layout\s*\([^)]*\)\s*((?:\w+\s+)*)buffer\s+(\w+))");
+  int declaring = 0;
+  std::string writer;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (stageOf(files[i]) == GL_COMPUTE_SHADER) return;  // a single stage
+    std::istringstream in(sources[i]);
+    bool any = false;
+    for (std::string line; std::getline(in, line);) {
+      std::smatch m;
+      if (!std::regex_search(line, m, decl)) continue;
+      any = true;
+      if (m[1].str().find("readonly") == std::string::npos) writer = m[2].str() + " (" + files[i] + ")";
+    }
+    declaring += any ? 1 : 0;
+  }
+  if (!writer.empty() && declaring > 1)
+    throw Error("shaders/" + files.front(), "storage block " + writer + " is writable while " + std::to_string(declaring) +
+                                               " stages declare storage blocks (shaders/shared.h, storage bindings)");
+}
+
 }  // namespace
 
 Program::Program(const std::vector<std::string>& files, const std::vector<std::string>& defines) {
@@ -485,11 +512,13 @@ Program::Program(const std::vector<std::string>& files, const std::vector<std::s
     }
   } stages;
   std::vector<GLuint>& shaders = stages.ids;
+  std::vector<std::string> sources;
   for (auto& file : files) {
     std::string header = "#version 450 core\n";
     for (auto& d : defines) header += "#define " + d + "\n";
     std::vector<std::string> seen{"shared.h"};
     std::string src = header + shaderSource("shared.h") + "#line 1\n" + resolveIncludes(shaderSource(file), seen);
+    sources.push_back(src);
     GLuint sh = glCreateShader(stageOf(file));
     detail::objectCreated(Kind::Shader);
     const char* p = src.c_str();
@@ -520,6 +549,7 @@ Program::Program(const std::vector<std::string>& files, const std::vector<std::s
     for (auto& c : msg) if (c == '\n') c = ' ';
     throw Error("shaders/" + files.front(), "link error: " + msg);
   }
+  checkStorageBlockStages(files, sources);
 }
 
 void Program::use() const { glUseProgram(id()); }

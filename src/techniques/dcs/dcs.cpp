@@ -166,7 +166,7 @@ class DepthComplexitySampling final : public Technique {
     for (auto& m : volumes_.meshes()) edgeRules_.push_back(m.rule);
     incidenceBuffer_ = gl::Buffer(incidences);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
-    profileBuffer_ = gl::Buffer(sizeof(Profile), nullptr);
+    profileImage_ = gl::Texture::make2D(GL_R32UI, 6, 1);
     bound_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
     boundFbo_ = gl::Framebuffer({&bound_}, &gpu.depth());
     checksum_ = gl::Texture::make2D(GL_RG32F, gpu.width(), gpu.height());
@@ -362,9 +362,8 @@ class DepthComplexitySampling final : public Technique {
       GpuStatus status;
       statusBuffer_.write(&status, sizeof status);
       statusBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_STATUS);
-      Profile profile;
-      profileBuffer_.write(&profile, sizeof profile);
-      profileBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PROFILE);
+      profileImage_.clear(glm::vec4(0.0f));
+      profileImage_.bindImage(PENUMBRA_IMAGE_DCS_PROFILE, GL_READ_WRITE);
       Programs& progs = programsFor(plan, coverage);
       ensureCounters(plan, pass.gpu);
       const gl::Program& resolve = pass.perSample ? progs.resolvePerSample : progs.resolve;
@@ -421,7 +420,10 @@ class DepthComplexitySampling final : public Technique {
         });
       }
       statusBuffer_.read(&status, sizeof status);
-      if (options_.profile) profileBuffer_.read(&stats_.profile, sizeof stats_.profile);
+      if (options_.profile) {
+        const std::vector<std::uint32_t> c = profileImage_.readUint();  // shaders/common_dcs.glsl prof*
+        stats_.profile = {c[0], c[1], c[2], c[3], c[4], c[5]};
+      }
       return status;
     };
 
@@ -560,7 +562,7 @@ class DepthComplexitySampling final : public Technique {
                                    "(opaque surfaces are {} units each: {})",
                                    light.name, count, kMaxExactCount, coding_.opaqueUnits, coding_.describe()));
   }
-  // shaders/common_dcs.glsl, DcsProfile.
+  // shaders/common_dcs.glsl, dcsProfile (texel k: prof* = k).
   struct Profile {
     std::uint32_t rectangleEdges = 0, wedgeEdges = 0, fragments = 0, inPlane = 0, weighted = 0, updating = 0;
   };
@@ -704,7 +706,8 @@ class DepthComplexitySampling final : public Technique {
   ShadowVolumeCounter volumes_;
   std::vector<std::uint32_t> edgeOffset_;
   float wedgeMargin_ = 0.0f;
-  gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_, profileBuffer_;
+  gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_;
+  gl::Texture profileImage_;
   std::vector<GpuEdge> edges_;             // edgeBuffer_'s contents
   std::vector<geo::VolumeRule> edgeRules_;  // the rule per mesh edgeBuffer_ holds
   gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (shaders/dcs_init.frag)

@@ -170,7 +170,7 @@ void MultiViewTechnique::prepare(const Scene& scene, GpuScene&) {
 void MultiViewTechnique::renderSemiOpaque(LightPass& pass, const MapFrame& frame) {
   if (!semiProgram_) {
     semiProgram_ = gl::Program({"mvr_depth.vert", "mvr_depth.geom", "shadow_map_transmittance.frag"}, {"LAYERED"});
-    semiStatus_ = gl::Buffer(sizeof(std::uint32_t), nullptr);
+    semiStatus_ = gl::Texture::make2D(GL_R32UI, 1, 1);
     semiFbo_ = gl::Framebuffer();
   }
   semiReruns_ = 0;
@@ -190,9 +190,8 @@ void MultiViewTechnique::renderSemiOpaque(LightPass& pass, const MapFrame& frame
       semiFbo_ = gl::Framebuffer::empty(frame.size, frame.size, frame.layers);
     }
     semiCount_.clear(glm::vec4(0.0f));
-    const std::uint32_t zero = 0;
-    semiStatus_.write(&zero, sizeof(zero));
-    semiStatus_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SEMI_STATUS);
+    semiStatus_.clear(glm::vec4(0.0f));
+    semiStatus_.bindImage(PENUMBRA_IMAGE_SEMI_STATUS, GL_READ_WRITE);
     semiCount_.bindImage(PENUMBRA_IMAGE_SEMI_COUNT, GL_READ_WRITE);
     semiLayers_.bindImage(PENUMBRA_IMAGE_SEMI_LAYERS, GL_WRITE_ONLY);
     semiFbo_.bind();
@@ -204,8 +203,7 @@ void MultiViewTechnique::renderSemiOpaque(LightPass& pass, const MapFrame& frame
     semiProgram_.set("semiSlots", slots);
     pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::SemiOpaque, &semiProgram_);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    std::uint32_t most = 0;
-    semiStatus_.read(&most, sizeof(most));
+    const std::uint32_t most = semiStatus_.readUint().front();
     if (int(most) <= slots) {
       semiSlots_ = std::max(slots, int(most));
       return;

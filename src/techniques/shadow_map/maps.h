@@ -127,7 +127,7 @@ class MultiViewTechnique : public Technique {
   gl::Texture semiCount_, semiLayers_;
   gl::Framebuffer semiFbo_;
   gl::Program semiProgram_;
-  gl::Buffer semiStatus_;
+  gl::Texture semiStatus_;  // 1 x 1 R32UI image (shaders/shadow_map_transmittance.frag)
   int semiSlots_ = 0, semiReruns_ = 0;
 };
 
