@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/memory.h"
 #include "geometry/mesh.h"
 
 namespace penumbra::geo {
@@ -647,6 +648,10 @@ TriangleMesh loadMeshFile(const std::string& path, MeshReport& report) {
     mesh = loadPly(path, data, report);
   else
     mesh = loadStl(path, data, report);
+  // Cleaning needs several times the parsed mesh (welding, sorted half-edges): refuse a mesh
+  // this process cannot clean before starting, rather than die of std::bad_alloc in it.
+  checkMemory(path, "cleaning " + str(mesh.triangles.size()) + " triangles",
+              double(mesh.triangles.size()) * kCleanBytesPerTriangle);
   cleanMesh(mesh, report);
   if (mesh.triangles.empty()) throw Error(path, "no triangles left (" + report.summary() + ")");
   return mesh;

@@ -46,6 +46,9 @@ TEST(SceneFiles, EveryShippedSceneLoadsWithoutWarnings) {
     for (const auto& entry : std::filesystem::directory_iterator(sourcePath(folder))) {
       if (entry.path().extension() != ".json") continue;
       if (entry.path().filename() == "engine.json" && !assimpInstalled()) continue;
+      // 22.6 M triangles, 4 GiB and ~7 s to load: tests/cli_test.sh loads it under a memory
+      // limit (refused before it is built) instead of in the suite.
+      if (entry.path().filename() == "31-big-sphere.json") continue;
       SCOPED_TRACE(entry.path().string());
       const Scene s = loadScene(entry.path().string());
       // Non-manifold and flipped meshes are reported by their mesh reports, not as warnings

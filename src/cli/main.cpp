@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <new>
 
 #include "cli/commands.h"
 #include "core/error.h"
@@ -124,6 +125,11 @@ int main(int argc, char** argv) {
   } catch (const Error& e) {
     std::fprintf(stderr, "penumbra: %s\n", e.what());
     return int(e.exitCode());
+  } catch (const std::bad_alloc&) {
+    // What the up-front estimates (core/memory.h) did not foresee: still one line, exit 1.
+    std::fprintf(stderr, "penumbra: out of memory: the scene, image or technique needs more memory "
+                         "than this process may allocate (physical memory or ulimit)\n");
+    return int(ExitCode::Error);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "penumbra: %s\n", e.what());
     return int(ExitCode::Error);

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/memory.h"
 #include "sampling/shared.hpp"
 
 namespace penumbra {
@@ -79,7 +80,7 @@ struct GVertex {
 };
 }  // namespace
 
-GpuScene::GpuScene(const Scene& scene, int width, int height)
+GpuScene::GpuScene(const Scene& scene, int width, int height, std::size_t maxVertexBufferBytes)
     : scene_(scene), width_(width), height_(height) {
   float aspect = float(width) / float(height);
   clipFromWorld_ = clipFromViewReversedInfinite(scene.camera, aspect) * viewFromWorld(scene.camera);
@@ -87,10 +88,34 @@ GpuScene::GpuScene(const Scene& scene, int width, int height)
 
   // Triangles are expanded (not indexed) so each vertex carries its face normal: the G-buffer
   // holds geometric normals, the ones the horizon rule and the reference's ray offset use.
+  // They go into vertex buffers of at most maxVertexBufferBytes (whole triangles), each filled
+  // from one staging array that is reused, so neither a GL size nor the staging memory grows
+  // with the scene (issue 14 section 5: one 2.1 GiB buffer crashed llvmpipe).
+  const std::size_t triangles = scene.triangleCount();
+  // On a software renderer the GL's buffers are this process's memory: check their total
+  // before making them (each one alone is also checked by gl::Buffer).
+  if (gl::limits().maxAllocationBytes > 0)
+    checkMemory("GPU memory", fmt::format("the vertex buffers of {} triangles", triangles),
+                double(triangles) * kGpuBytesPerTriangle);
+  const std::size_t chunkVertices = 3 * std::max<std::size_t>(1, maxVertexBufferBytes / (3 * sizeof(GVertex)));
   std::vector<GVertex> verts;
-  verts.reserve(scene.triangleCount() * 3);
+  verts.reserve(std::min(chunkVertices, 3 * triangles));
+  auto flush = [&] {
+    if (verts.empty()) return;
+    Chunk c;
+    c.vertices = gl::Buffer(verts);
+    c.vao = gl::VertexArray::create();
+    c.vao.vertexBuffer(c.vertices, sizeof(GVertex))
+        .attribute(0, 3, offsetof(GVertex, position))
+        .attribute(1, 3, offsetof(GVertex, normal))
+        .attribute(2, 2, offsetof(GVertex, uv))
+        .attribute(3, 1, offsetof(GVertex, plane));
+    c.count = GLsizei(verts.size());
+    chunks_.push_back(std::move(c));
+    verts.clear();
+  };
   for (auto& m : scene.meshes) {
-    Draw d{GLint(verts.size()), 0, m.material};
+    Draw d{int(chunks_.size()), GLint(verts.size()), 0, m.material};
     const auto& mesh = m.mesh;
     bool hasUv = mesh.uvs.size() == mesh.positions.size();
     for (auto& t : mesh.triangles) {
@@ -104,19 +129,18 @@ GpuScene::GpuScene(const Scene& scene, int width, int height)
                            glm::dot(glm::dvec3(n), glm::dvec3(p[2]))) / 3.0);
       for (int i = 0; i < 3; ++i)
         verts.push_back({p[i], n, hasUv ? mesh.uvs[t[i]] : glm::vec2(0.0f), plane});
+      if (verts.size() == chunkVertices) {  // the chunk is full: the mesh goes on in the next
+        d.count = GLsizei(verts.size()) - d.first;
+        if (d.count > 0) draws_.push_back(d);
+        flush();
+        d = Draw{int(chunks_.size()), 0, 0, m.material};
+      }
     }
     d.count = GLsizei(verts.size()) - d.first;
     if (d.count > 0) draws_.push_back(d);
   }
-  vertexCount_ = GLsizei(verts.size());
+  flush();
   for (auto& d : draws_) allOpaque_ = allOpaque_ && scene.materials[std::size_t(d.material)].opacity >= 1.0f;
-  vertices_ = gl::Buffer(verts);
-  vao_ = gl::VertexArray::create();
-  vao_.vertexBuffer(vertices_, sizeof(GVertex))
-      .attribute(0, 3, offsetof(GVertex, position))
-      .attribute(1, 3, offsetof(GVertex, normal))
-      .attribute(2, 2, offsetof(GVertex, uv))
-      .attribute(3, 1, offsetof(GVertex, plane));
 
   for (auto& t : scene.textures) {
     auto tex = gl::Texture::make2D(GL_RGBA32F, t.image.width, t.image.height);
@@ -144,8 +168,9 @@ GpuScene::GpuScene(const Scene& scene, int width, int height)
 }
 
 void GpuScene::drawGBuffer(const gl::Program& program) const {
-  vao_.bind();
+  int bound = -1;
   for (auto& d : draws_) {
+    if (d.chunk != bound) chunks_[std::size_t(bound = d.chunk)].vao.bind();
     const Material& mat = scene_.materials[std::size_t(d.material)];
     program.set("baseColor", mat.baseColor);
     program.set("opacity", mat.opacity);
@@ -158,15 +183,19 @@ void GpuScene::drawGBuffer(const gl::Program& program) const {
 }
 
 void GpuScene::drawTriangles(GLsizei instances, Occluders which, const gl::Program* program) const {
-  vao_.bind();
-  if (which == Occluders::Opaque && allOpaque_) {
-    if (vertexCount_ > 0) glDrawArraysInstanced(GL_TRIANGLES, 0, vertexCount_, instances);
+  if (which == Occluders::Opaque && allOpaque_) {  // one draw per chunk covers every occluder
+    for (auto& c : chunks_) {
+      c.vao.bind();
+      glDrawArraysInstanced(GL_TRIANGLES, 0, c.count, instances);
+    }
     return;
   }
+  int bound = -1;
   for (auto& d : draws_) {
     float opacity = scene_.materials[std::size_t(d.material)].opacity;
     bool semi = opacity > 0.0f && opacity < 1.0f;
     if (opacity <= 0.0f || semi != (which == Occluders::SemiOpaque)) continue;
+    if (d.chunk != bound) chunks_[std::size_t(bound = d.chunk)].vao.bind();
     if (program) program->set("opacity", opacity);
     glDrawArraysInstanced(GL_TRIANGLES, d.first, d.count, instances);
   }
@@ -215,7 +244,9 @@ CpuGBuffer GpuScene::readGBuffer() const {
 }
 
 std::size_t GpuScene::memoryBytes() const {
-  return position_.bytes() + normal_.bytes() + albedo_.bytes() + depth_.bytes() + vertices_.size();
+  std::size_t bytes = position_.bytes() + normal_.bytes() + albedo_.bytes() + depth_.bytes();
+  for (auto& c : chunks_) bytes += c.vertices.size();
+  return bytes;
 }
 
 // ---- Renderer --------------------------------------------------------------------------------
@@ -238,7 +269,7 @@ Renderer::Renderer(gl::Context& context, const Scene& given, const RenderSetting
     throw Error("-W/-H", "image size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                              " outside 1.." + std::to_string(maxSize), ExitCode::Usage);
   if (scene.lights.empty()) throw Error(scene.sourcePath.empty() ? scene.name : scene.sourcePath, "scene has no light");
-  gpu_ = std::make_unique<GpuScene>(scene, settings.width, settings.height);
+  gpu_ = std::make_unique<GpuScene>(scene, settings.width, settings.height, settings.maxVertexBufferBytes);
   color_ = gl::Texture::make2D(GL_RGBA32F, settings.width, settings.height);
   visibility_ = gl::Texture::make2D(GL_RGBA32F, settings.width, settings.height);
 

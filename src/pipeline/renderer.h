@@ -41,6 +41,11 @@ struct RenderSettings {
   // of shaders/pipeline_filter.frag on the visibility buffer (and, for eq. 6, on each light's
   // shaded contribution). Per-sample results stay unfiltered.
   bool interleaveFilter = true;
+  // The largest vertex buffer GpuScene makes; a bigger scene is split into several buffers
+  // (one draw per buffer and material). GL sizes and offsets are GLsizei/GLint (2^31 - 1) and
+  // llvmpipe's vertex fetch crashed on a 2.1 GiB buffer (issue 14 section 5), so the default
+  // stays far below; tests set it small to exercise the split.
+  std::size_t maxVertexBufferBytes = std::size_t(256) << 20;
 };
 
 struct LightResult {
@@ -62,7 +67,9 @@ struct FrameResult {
 // Geometry uploaded once per scene, the camera, and the G-buffer for one output size.
 class GpuScene {
  public:
-  GpuScene(const Scene& scene, int width, int height);
+  // maxVertexBufferBytes: see RenderSettings.
+  GpuScene(const Scene& scene, int width, int height,
+           std::size_t maxVertexBufferBytes = RenderSettings{}.maxVertexBufferBytes);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -88,7 +95,15 @@ class GpuScene {
   std::size_t memoryBytes() const;
 
  private:
+  // One vertex buffer of at most maxVertexBufferBytes and its vertex array.
+  struct Chunk {
+    gl::Buffer vertices;
+    gl::VertexArray vao;
+    GLsizei count = 0;
+  };
+  // The part of a mesh in one chunk.
   struct Draw {
+    int chunk;
     GLint first;
     GLsizei count;
     int material;
@@ -97,10 +112,8 @@ class GpuScene {
   int width_, height_;
   glm::mat4 clipFromWorld_;
   glm::vec3 cameraPos_;
-  gl::Buffer vertices_;
-  gl::VertexArray vao_;
+  std::vector<Chunk> chunks_;
   std::vector<Draw> draws_;
-  GLsizei vertexCount_ = 0;
   bool allOpaque_ = true;  // every material of opacity 1: one draw covers every (opaque) occluder
   std::vector<gl::Texture> materialTextures_;  // parallel to scene.textures
   gl::Texture position_, normal_, albedo_, depth_;
