@@ -10,7 +10,8 @@ PACKAGES="cmake ninja-build g++ pkg-config
   libegl-dev libegl-mesa0 libgl1-mesa-dri libopengl-dev libosmesa6-dev
   libglm-dev libopenmesh-dev libtinygltf-dev libopenexr-dev libimath-dev libembree-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libpng-dev
-  libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels chromium"
+  libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels chromium
+  mesa-vulkan-drivers"
 missing=""
 for p in $PACKAGES; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

@@ -5,8 +5,12 @@
 #include <map>
 
 
+#include <fmt/format.h>
+
+#include "core/error.h"
 #include "core/log.h"
 #include "geometry/silhouette.h"
+#include "gl/objects.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
 #include "techniques/shadow_map/maps.h"
@@ -19,6 +23,7 @@ struct VwssOptions {
   shadow_map::SplatOptions splat;
   int backFaces = -1;  // 0 cull, 1 keep, -1 (default) keep unless culling provably drops nothing
   double scale = 0.0;  // 0: eq. 3
+  long passPoints = 0;  // most points one generation pass holds; 0: the GL's storage-block limit
 };
 
 const char* modeName(VwssMode m) {
@@ -122,60 +127,140 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
       return;
     }
 
-    // Buffered: points into the buffer; grown and regenerated if it overflowed.
-    pass.timer.time(name() + " points", [&] {
-      const gl::Program& prog = program("points", {"vwss_points.vert", "vwss_points.frag"}, {});
-      regrown_ = 0;
-      // A point a source pixel to start with (the buffer grows when overdraw needs more).
-      if (capacity_ == 0) capacity_ = std::max<std::size_t>(std::size_t(sourceSize_) * sourceSize_, 1u << 16);
-      for (;;) {
-        if (points_.size() < 16 + 12 * capacity_) points_ = gl::Buffer(16 + 12 * capacity_, nullptr);
-        const std::uint32_t zero[4] = {0, 0, 0, 0};
-        points_.write(zero, sizeof(zero));
-        points_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_POINTS);
-        prog.set("pointCapacity", unsigned(capacity_));
-        generate(prog);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        std::uint32_t count = 0;
-        points_.read(&count, sizeof(count));
-        pointCount_ = count;
-        if (count <= capacity_) break;
-        capacity_ = std::size_t(double(count) * 1.25);
-        ++regrown_;
+    // Buffered: points into the buffer, grown and regenerated if it overflowed, then splatted.
+    // One storage block holds at most GL_MAX_SHADER_STORAGE_BLOCK_SIZE bytes (llvmpipe 128 MiB:
+    // 11.2 M points; eq. 3 can ask for far more for a large light close to an occluder): then
+    // the central view is cut into bands of rows (scissor), each generated and splatted on its
+    // own, halved until its points fit. The maps are the same (an atomicMax z-buffer does not
+    // depend on the order its points arrive in), only the passes are more.
+    const gl::Program& pointsProg = program("points", {"vwss_points.vert", "vwss_points.frag"}, {});
+    const std::size_t passLimit = passPointLimit();
+    regrown_ = 0, bands_ = 0, dispatches_ = 0;
+    pointCount_ = 0;
+    // A point a source pixel to start with (the buffer grows when overdraw needs more).
+    if (capacity_ == 0) capacity_ = std::max<std::size_t>(std::size_t(sourceSize_) * sourceSize_, 1u << 16);
+    capacity_ = std::min(capacity_, passLimit);
+    std::vector<std::pair<int, int>> todo = {{0, sourceSize_}};  // bands [y0, y1) of source rows
+    while (!todo.empty()) {
+      const auto [y0, y1] = todo.back();
+      todo.pop_back();
+      const bool whole = y0 == 0 && y1 == sourceSize_;
+      std::size_t count = 0;
+      pass.timer.time(name() + " points", [&] {
+        for (;;) {
+          if (points_.size() < 16 + 12 * capacity_) {
+            points_ = gl::Buffer();
+            points_ = gl::Buffer(16 + 12 * capacity_, nullptr);
+          }
+          const std::uint32_t zero[4] = {0, 0, 0, 0};
+          points_.write(zero, sizeof(zero));
+          points_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_POINTS);
+          pointsProg.set("pointCapacity", unsigned(capacity_));
+          if (!whole) {
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(0, y0, sourceSize_, y1 - y0);
+          }
+          generate(pointsProg);
+          glDisable(GL_SCISSOR_TEST);
+          glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+          std::uint32_t n = 0;
+          points_.read(&n, sizeof(n));
+          count = n;
+          if (count <= capacity_ || count > passLimit) break;
+          capacity_ = std::min(passLimit, std::size_t(double(count) * 1.25));
+          ++regrown_;
+        }
+      });
+      if (count > capacity_) {  // more than one pass can hold: halve the band
+        if (y1 - y0 < 2)
+          throw Error(name(), fmt::format("one row of the {}^2 point-generation view holds {} points, more than one pass "
+                                          "of this GL's storage blocks holds ({}); use a smaller --param scale",
+                                          sourceSize_, count, passLimit));
+        const int mid = y0 + (y1 - y0) / 2;
+        todo.push_back({mid, y1});
+        todo.push_back({y0, mid});
+        continue;
       }
-    });
+      ++bands_;
+      pointCount_ += count;
+      pass.timer.time(name() + " depth maps", [&] { splat(pass, frame, *maps, count); });
+    }
+    if (pointCount_ == 0) checkNoOccluderInView(pass.scene, frame, eye, centralNear);
+  }
 
-    pass.timer.time(name() + " depth maps", [&] {
-      points_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_POINTS);
-      if (o_.mode == VwssMode::Graphics) {
-        const gl::Program& prog = program("draw", {"vwss_points_draw.vert", "depth_only.frag"}, {});
-        prog.use();
-        shadow_map::setMapUniforms(prog, frame);
-        prog.set("pointCapacity", unsigned(capacity_));
-        if (layerFbosFor_ != maps->id()) {
-          layerFbos_.clear();
-          for (int l = 0; l < frame.layers; ++l) layerFbos_.emplace_back(std::vector<gl::Framebuffer::Attachment>{}, maps, l);
-          layerFbosFor_ = maps->id();
-        }
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_GREATER);
-        glDepthMask(GL_TRUE);
-        if (!emptyVao_) emptyVao_ = gl::VertexArray::create();
-        emptyVao_.bind();
-        for (int l = 0; l < frame.layers; ++l) {
-          layerFbos_[std::size_t(l)].bind();
-          prog.set("layer", l);
-          glDrawArrays(GL_POINTS, 0, GLsizei(pointCount_));
-        }
-        glDisable(GL_DEPTH_TEST);
-        dispatches_ = frame.layers;
-      } else {
-        const gl::Program& prog = program("splat", {"shadow_map_reproject.comp"}, {});
-        shadow_map::setMapUniforms(prog, frame);
-        prog.set("pointCapacity", unsigned(capacity_));
-        dispatches_ = shadow_map::splatMaps(prog, *maps, pointCount_, frame.layers, o_.splat);
+  // The points in the buffer into the maps: compute splats (Listing 2) or GL_POINTS draws.
+  void splat(LightPass&, const shadow_map::MapFrame& frame, const gl::Texture& maps, std::size_t count) {
+    points_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_POINTS);
+    if (o_.mode == VwssMode::Graphics) {
+      const gl::Program& prog = program("draw", {"vwss_points_draw.vert", "depth_only.frag"}, {});
+      prog.use();
+      shadow_map::setMapUniforms(prog, frame);
+      prog.set("pointCapacity", unsigned(capacity_));
+      if (layerFbosFor_ != maps.id()) {
+        layerFbos_.clear();
+        for (int l = 0; l < frame.layers; ++l) layerFbos_.emplace_back(std::vector<gl::Framebuffer::Attachment>{}, &maps, l);
+        layerFbosFor_ = maps.id();
       }
-    });
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_GREATER);
+      glDepthMask(GL_TRUE);
+      if (!emptyVao_) emptyVao_ = gl::VertexArray::create();
+      emptyVao_.bind();
+      for (int l = 0; l < frame.layers; ++l) {
+        layerFbos_[std::size_t(l)].bind();
+        prog.set("layer", l);
+        glDrawArrays(GL_POINTS, 0, GLsizei(count));
+      }
+      glDisable(GL_DEPTH_TEST);
+      glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+      dispatches_ += frame.layers;
+    } else {
+      const gl::Program& prog = program("splat", {"shadow_map_reproject.comp"}, {});
+      shadow_map::setMapUniforms(prog, frame);
+      prog.set("pointCapacity", unsigned(capacity_));
+      dispatches_ += shadow_map::splatMaps(prog, maps, count, frame.layers, o_.splat);
+    }
+  }
+
+  // Points one generation pass may hold: the storage-block limit (a count, 3 floats a point,
+  // after the 16-byte header), or --param pass-points when smaller.
+  std::size_t passPointLimit() const {
+    const GLint64 block = gl::limits().maxStorageBlockSize;
+    std::size_t limit = block > 16 ? std::size_t(block - 16) / 12 : std::size_t(1) << 24;
+    if (o_.passPoints > 0) limit = std::min(limit, std::size_t(o_.passPoints));
+    return limit;
+  }
+
+  // Self-check: no point at all is an error when an opaque front-facing triangle (any, with
+  // backfaces=1) lies inside the central view with an inscribed circle of at least one source
+  // pixel in radius, since the rasteriser must then give it a fragment (a disc of diameter
+  // sqrt(2) pixels holds a pixel centre). Such a pass lost its fragments or their stores.
+  void checkNoOccluderInView(const Scene& scene, const shadow_map::MapFrame& frame, const glm::vec3& eye,
+                             float centralNear) const {
+    auto project = [&](const glm::vec3& p, glm::vec2& px) {
+      const glm::vec3 r = p - eye;
+      const float w = glm::dot(r, frame.axis);
+      if (!(w > centralNear)) return false;
+      const glm::vec2 ndc(glm::dot(r, frame.right) / (frame.tanHalf * w), glm::dot(r, frame.up) / (frame.tanHalf * w));
+      if (!(std::abs(ndc.x) < 1.0f && std::abs(ndc.y) < 1.0f)) return false;
+      px = (ndc * 0.5f + 0.5f) * float(sourceSize_);
+      return true;
+    };
+    for (auto& m : scene.meshes) {
+      if (scene.materials[std::size_t(m.material)].opacity < 1.0f) continue;  // drawn as Occluders::Opaque only
+      for (auto& t : m.mesh.triangles) {
+        const glm::vec3 a = m.mesh.positions[t[0]], b = m.mesh.positions[t[1]], c = m.mesh.positions[t[2]];
+        if (!o_.backFaces && glm::dot(glm::cross(b - a, c - a), eye - a) <= 0.0f) continue;  // culled
+        glm::vec2 pa, pb, pc;
+        if (!project(a, pa) || !project(b, pb) || !project(c, pc)) continue;
+        const float area = 0.5f * std::abs((pb.x - pa.x) * (pc.y - pa.y) - (pc.x - pa.x) * (pb.y - pa.y));
+        const float perimeter = glm::length(pb - pa) + glm::length(pc - pb) + glm::length(pa - pc);
+        if (perimeter > 0.0f && 2.0f * area / perimeter >= 1.0f)
+          throw Error(name(), fmt::format("the point-generation pass produced no point although occluder triangles "
+                                          "cover its {}^2 view (the GL ran no fragment or lost its storage writes)",
+                                          sourceSize_));
+      }
+    }
   }
 
   std::size_t extraBytes() const override { return points_.size(); }
@@ -192,6 +277,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
     out.emplace_back("maps per thread", o_.splat.mapsPerThread);
     out.emplace_back("point passes", double(dispatches_));
     out.emplace_back("back faces kept", keptBackFaces_ ? 1.0 : 0.0);
+    out.emplace_back("point bands", double(bands_));
   }
 
  private:
@@ -262,7 +348,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
   shadow_map::NearestOccluder nearest_;
   gl::Buffer points_;
   std::size_t capacity_ = 0, pointCount_ = 0;
-  int regrown_ = 0, dispatches_ = 0;
+  int regrown_ = 0, dispatches_ = 0, bands_ = 0;
   gl::Framebuffer sourceFbo_;
   int sourceFboSize_ = 0, sourceSize_ = 0;
   std::vector<gl::Framebuffer> layerFbos_;
@@ -281,6 +367,7 @@ std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueParams& para
   if (mode == VwssMode::Buffered) o.splat.mapsPerThread = params.getInt("k", 8, 0, 4096);
   o.backFaces = params.getInt("backfaces", -1, 0, 1);
   o.scale = params.getDouble("scale", 0.0, 0.0, 64.0);
+  if (mode != VwssMode::Unbuffered) o.passPoints = params.getInt("pass-points", 0, 0, 1 << 30);
   return std::make_unique<ViewWarpedSoftShadows>(shadow_map::readMapOptions(params), shadow_map::readPcfTaps(params), o);
 }
 
