@@ -593,5 +593,23 @@ TEST(SceneBadInputs, LightExtentsFloatCannotHoldAreRefusedSayingSo) {
               cube, "the light reaches 5.71e+18 from the origin");
 }
 
+// Issue 14 section 6: OBJ mtllib/usemtl were ignored without a word (a red Kd rendered grey, a
+// missing .mtl was never mentioned). Materials are not read yet; until then both are warnings.
+TEST(SceneBadInputs, ObjMaterialsAreNeverIgnoredSilently) {
+  test::TempDir dir;
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  dir.file("red.mtl", "newmtl red\nKd 1 0 0\n");
+  const std::string withLib = dir.file("red.obj", "mtllib red.mtl\nusemtl red\n" + tri);
+  const Scene a = loadScene(withLib);
+  EXPECT_TRUE(hasWarning(a, withLib + ": OBJ materials are not read: 1 mtllib and 1 usemtl material (red) ignored"));
+  EXPECT_FALSE(hasWarning(a, "mtllib 'red.mtl':"));  // it exists
+  const std::string missing = dir.file("missing.obj", "mtllib gone.mtl\nusemtl a\nusemtl b\n" + tri);
+  const Scene b = loadScene(missing);
+  EXPECT_TRUE(hasWarning(b, missing + ": mtllib 'gone.mtl': no such file"));
+  EXPECT_TRUE(hasWarning(b, "2 usemtl materials (a, b) ignored"));
+  const Scene c = loadScene(dir.file("plain.obj", tri));
+  EXPECT_FALSE(hasWarning(c, "OBJ materials"));
+}
+
 }  // namespace
 }  // namespace penumbra
