@@ -82,10 +82,13 @@ MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSamp
   f.size = options.size;
   f.layers = samples.setCount * samples.count;
   const glm::vec3 c = light.position;
-  glm::vec3 lo, hi;
-  scene.bounds(lo, hi);
-  const float radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
-  f.zNear = std::max(1e-5f * radius, 1e-7f);
+  // The maps' near plane: 16 float epsilons of the samples' positions (shared.h
+  // penumbraSurfaceEpsilon), the distance below which a depth from a sample is rounding, not
+  // geometry; it used to be 1e-5 of the scene's radius, which clipped occluders near the light in
+  // a large scene. Reversed depth near / d keeps its relative precision at any near.
+  float sampleEps = shared::penumbraSurfaceEpsilon(c);
+  for (const glm::vec3& s : samples.positions) sampleEps = std::max(sampleEps, shared::penumbraSurfaceEpsilon(s));
+  f.zNear = 16.0f * sampleEps;
 
   glm::vec3 hint = light.tangent;
   if (light.shape == LightShape::Rect || light.shape == LightShape::Disk) {
@@ -97,7 +100,7 @@ MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSamp
     for (std::size_t i = 0; i < g.position.size(); ++i)
       if (g.valid[i]) sum += glm::dvec3(g.position[i]), ++n;
     glm::vec3 towards = n ? glm::vec3(sum / double(n)) - c : glm::vec3(0.0f);
-    f.axis = glm::length(towards) > 1e-6f * radius ? glm::normalize(towards) : glm::vec3(0.0f, -1.0f, 0.0f);
+    f.axis = glm::length(towards) > f.zNear ? glm::normalize(towards) : glm::vec3(0.0f, -1.0f, 0.0f);
     hint = std::abs(f.axis.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
   }
   f.right = hint - f.axis * glm::dot(hint, f.axis);
