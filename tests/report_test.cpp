@@ -98,21 +98,22 @@ CompareResult handMade() {
   return r;
 }
 
+// CSV columns of a line, counting commas outside quotes.
+std::size_t columns(const std::string& l) {
+  std::size_t n = 1;
+  bool quoted = false;
+  for (char c : l) {
+    if (c == '"') quoted = !quoted;
+    n += !quoted && c == ',';
+  }
+  return n;
+}
+
 TEST(Report, CsvHasOneRowPerRunAndFixedColumns) {
   CompareResult r = handMade();
   std::istringstream csv(reportCsv(r));
   std::string line;
   std::getline(csv, line);
-  // Columns outside quotes.
-  auto columns = [](const std::string& l) {
-    std::size_t n = 1;
-    bool quoted = false;
-    for (char c : l) {
-      if (c == '"') quoted = !quoted;
-      n += !quoted && c == ',';
-    }
-    return n;
-  };
   const std::size_t header = columns(line);
   EXPECT_GT(header, 25u);
   int rows = 0;
@@ -169,15 +170,6 @@ TEST(Report, AFailedRunIsARowEverywhere) {
   std::string header, line, last;
   std::getline(lines, header);
   EXPECT_EQ(header.substr(header.size() - 18), "image,status,error") << header;
-  auto columns = [](const std::string& l) {  // outside quotes
-    std::size_t n = 1;
-    bool quoted = false;
-    for (char c : l) {
-      if (c == '"') quoted = !quoted;
-      n += !quoted && c == ',';
-    }
-    return n;
-  };
   int ok = 0;
   while (std::getline(lines, line)) {
     EXPECT_EQ(columns(line), columns(header)) << line;
