@@ -82,4 +82,20 @@ EdgeTopology buildEdgeTopology(const TriangleMesh& mesh);
 // claiming more data than the file holds, or no triangle left.
 TriangleMesh loadMeshFile(const std::string& path, MeshReport& report);
 
+// An OBJ file split by material: the faces after each `usemtl NAME` (the name is the rest of the
+// line, spaces included) form one part per name, in order of first use; faces before any
+// usemtl form the part with material "". Each part is cleaned and counted on its own (a part
+// may be left with no triangles: its report says why). `libraries` are the `mtllib` arguments
+// as written. Throws like loadMeshFile, and when no part has a triangle left.
+struct ObjPart {
+  std::string material;
+  TriangleMesh mesh;
+  MeshReport report;
+};
+struct ObjFile {
+  std::vector<std::string> libraries;
+  std::vector<ObjPart> parts;
+};
+ObjFile loadObjFile(const std::string& path);
+
 }  // namespace penumbra::geo

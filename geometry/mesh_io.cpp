@@ -169,10 +169,27 @@ std::int64_t objIndex(std::string_view token, std::size_t count) {
   return resolved >= 0 ? resolved : kInvalid;
 }
 
-TriangleMesh loadObj(std::string_view text, MeshReport& report) {
+// An OBJ file as written: faces keep their material group (the `usemtl` in force, 0 = none).
+struct ObjData {
   std::vector<glm::vec3> v, vn;
   std::vector<glm::vec2> vt;
   FaceList faces;  // three entries per corner: v, vt, vn
+  std::vector<std::uint32_t> faceGroup;
+  std::vector<std::string> groups{""};  // usemtl names in order of first use; [0] = none
+  std::vector<std::string> libraries;   // mtllib arguments, as written
+};
+
+// The rest of a statement without surrounding blanks: material names may contain spaces
+// ("usemtl Material name with many, many spaces", tests/fuzz/corpus/obj).
+std::string_view trimmed(std::string_view s) {
+  while (!s.empty() && isSpace(s.front())) s.remove_prefix(1);
+  while (!s.empty() && isSpace(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+ObjData parseObj(std::string_view text) {
+  ObjData d;
+  std::uint32_t group = 0;
   std::string_view line;
   while (nextLine(text, line)) {
     line = line.substr(0, line.find('#'));  // some writers put comments after a statement
@@ -180,26 +197,45 @@ TriangleMesh loadObj(std::string_view text, MeshReport& report) {
     if (key == "v" || key == "vn") {
       double c[3];
       for (double& x : c) x = parseFloat(nextToken(line));
-      (key == "v" ? v : vn).push_back(toVec3(c));
+      (key == "v" ? d.v : d.vn).push_back(toVec3(c));
     } else if (key == "vt") {
       const std::string_view u = nextToken(line), w = nextToken(line);
-      vt.emplace_back(u.empty() ? 0.0 : parseFloat(u), w.empty() ? 0.0 : parseFloat(w));
+      d.vt.emplace_back(u.empty() ? 0.0 : parseFloat(u), w.empty() ? 0.0 : parseFloat(w));
     } else if (key == "f") {
       for (std::string_view corner = nextToken(line); !corner.empty(); corner = nextToken(line)) {
         const std::size_t s1 = corner.find('/');
         const std::string_view rest =
             s1 == std::string_view::npos ? std::string_view{} : corner.substr(s1 + 1);
         const std::size_t s2 = rest.find('/');
-        const std::int64_t iv = objIndex(corner.substr(0, s1), v.size());
-        faces.indices.push_back(iv == kAbsent ? kInvalid : iv);
-        faces.indices.push_back(objIndex(rest.substr(0, s2), vt.size()));
-        faces.indices.push_back(
-            s2 == std::string_view::npos ? kAbsent : objIndex(rest.substr(s2 + 1), vn.size()));
+        const std::int64_t iv = objIndex(corner.substr(0, s1), d.v.size());
+        d.faces.indices.push_back(iv == kAbsent ? kInvalid : iv);
+        d.faces.indices.push_back(objIndex(rest.substr(0, s2), d.vt.size()));
+        d.faces.indices.push_back(
+            s2 == std::string_view::npos ? kAbsent : objIndex(rest.substr(s2 + 1), d.vn.size()));
       }
-      faces.close();
-    }  // other statements (o, g, s, usemtl, l, p, ...) carry nothing a shadow needs
+      d.faces.close();
+      d.faceGroup.push_back(group);
+    } else if (key == "usemtl") {
+      const std::string name(trimmed(line));
+      const auto it = std::find(d.groups.begin(), d.groups.end(), name);
+      group = std::uint32_t(it - d.groups.begin());
+      if (it == d.groups.end()) d.groups.push_back(name);
+    } else if (key == "mtllib") {
+      if (const std::string_view rest = trimmed(line); !rest.empty())
+        d.libraries.emplace_back(rest);
+    }  // other statements (o, g, s, l, p, ...) carry nothing a shadow needs
   }
+  return d;
+}
+
+// The mesh of the faces of `group` (all faces when group < 0), counted in `report`.
+TriangleMesh buildObjMesh(const ObjData& d, std::int64_t group, MeshReport& report) {
+  const auto &v = d.v, &vn = d.vn;
+  const auto& vt = d.vt;
+  const FaceList& faces = d.faces;
+  const auto& faceGroup = d.faceGroup;
   report.inputVertices = v.size();
+  const auto inGroup = [&](std::size_t f) { return group < 0 || std::int64_t(faceGroup[f]) == group; };
 
   // Attributes are kept only when every used corner has a valid one: the mesh stores one
   // normal and uv per position, and a half-filled array would be worse than none.
@@ -207,6 +243,7 @@ TriangleMesh loadObj(std::string_view text, MeshReport& report) {
   std::vector<std::int64_t> face;
   bool allUv = !vt.empty(), allNormal = !vn.empty(), anyFace = false;
   for (std::size_t f = 0; f < faces.size(); ++f) {
+    if (!inGroup(f)) continue;
     const std::span<const std::int64_t> corners = faces[f];
     face.clear();
     for (std::size_t k = 0; k < corners.size(); k += 3) face.push_back(corners[k]);
@@ -251,6 +288,10 @@ TriangleMesh loadObj(std::string_view text, MeshReport& report) {
     fanTriangulate(face, mesh, report);
   }
   return mesh;
+}
+
+TriangleMesh loadObj(std::string_view text, MeshReport& report) {
+  return buildObjMesh(parseObj(text), -1, report);
 }
 
 // ---- OFF ---------------------------------------------------------------------------------
@@ -629,7 +670,43 @@ std::string readFile(const std::string& path) {
   return data;
 }
 
+void checkCleaningMemory(const std::string& path, const TriangleMesh& mesh) {
+  // Cleaning needs several times the parsed mesh (welding, sorted half-edges): refuse a mesh
+  // this process cannot clean before starting, rather than die of std::bad_alloc in it.
+  checkMemory(path, "cleaning " + str(mesh.triangles.size()) + " triangles",
+              double(mesh.triangles.size()) * kCleanBytesPerTriangle);
+}
+
 }  // namespace
+
+ObjFile loadObjFile(const std::string& path) {
+  const ObjData d = parseObj(readFile(path));
+  ObjFile out;
+  out.libraries = d.libraries;
+  std::vector<std::uint8_t> used(d.groups.size(), 0);
+  for (std::uint32_t g : d.faceGroup) used[g] = 1;
+  MeshReport total;
+  std::size_t kept = 0;
+  for (std::size_t g = 0; g < d.groups.size(); ++g) {
+    // A usemtl followed by no face makes no part; faces before any usemtl are group 0.
+    if (!used[g]) continue;
+    ObjPart part;
+    part.material = d.groups[g];
+    part.mesh = buildObjMesh(d, std::int64_t(g), part.report);
+    checkCleaningMemory(path, part.mesh);
+    cleanMesh(part.mesh, part.report);
+    kept += part.mesh.triangles.size();
+    total.inputFaces += part.report.inputFaces;
+    total.polygonsTriangulated += part.report.polygonsTriangulated;
+    total.droppedInvalidIndex += part.report.droppedInvalidIndex;
+    total.droppedDegenerate += part.report.droppedDegenerate;
+    total.droppedNonFinite += part.report.droppedNonFinite;
+    total.droppedDuplicate += part.report.droppedDuplicate;
+    out.parts.push_back(std::move(part));
+  }
+  if (kept == 0) throw Error(path, "no triangles left (" + total.summary() + ")");
+  return out;
+}
 
 TriangleMesh loadMeshFile(const std::string& path, MeshReport& report) {
   report = MeshReport{};
@@ -648,10 +725,7 @@ TriangleMesh loadMeshFile(const std::string& path, MeshReport& report) {
     mesh = loadPly(path, data, report);
   else
     mesh = loadStl(path, data, report);
-  // Cleaning needs several times the parsed mesh (welding, sorted half-edges): refuse a mesh
-  // this process cannot clean before starting, rather than die of std::bad_alloc in it.
-  checkMemory(path, "cleaning " + str(mesh.triangles.size()) + " triangles",
-              double(mesh.triangles.size()) * kCleanBytesPerTriangle);
+  checkCleaningMemory(path, mesh);
   cleanMesh(mesh, report);
   if (mesh.triangles.empty()) throw Error(path, "no triangles left (" + report.summary() + ")");
   return mesh;

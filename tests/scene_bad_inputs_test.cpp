@@ -593,22 +593,119 @@ TEST(SceneBadInputs, LightExtentsFloatCannotHoldAreRefusedSayingSo) {
               cube, "the light reaches 5.71e+18 from the origin");
 }
 
-// Issue 14 section 6: OBJ mtllib/usemtl were ignored without a word (a red Kd rendered grey, a
-// missing .mtl was never mentioned). Materials are not read yet; until then both are warnings.
-TEST(SceneBadInputs, ObjMaterialsAreNeverIgnoredSilently) {
+// Issue 14 section 6: OBJ mtllib/usemtl were ignored (a red Kd rendered grey). Faces after
+// `usemtl NAME` now get that material's Kd, map_Kd and d / Tr, one mesh per material.
+const Material& materialOf(const Scene& s, const std::string& meshSuffix) {
+  for (const SceneMesh& m : s.meshes)
+    if (m.name.size() >= meshSuffix.size() &&
+        m.name.compare(m.name.size() - meshSuffix.size(), meshSuffix.size(), meshSuffix) == 0)
+      return s.materials.at(std::size_t(m.material));
+  ADD_FAILURE() << "no mesh named *" << meshSuffix;
+  return s.materials.at(0);
+}
+
+const SceneMesh* meshNamed(const Scene& s, const std::string& suffix) {
+  for (const SceneMesh& m : s.meshes)
+    if (m.name.size() >= suffix.size() &&
+        m.name.compare(m.name.size() - suffix.size(), suffix.size(), suffix) == 0)
+      return &m;
+  return nullptr;
+}
+
+TEST(SceneBadInputs, ObjMaterialsGiveEachFaceItsKdOpacityAndTexture) {
+  test::TempDir dir;
+  Image png(2, 2, 4, 1.0f);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) png.at(x, y, 1) = png.at(x, y, 2) = 0.0f;  // red, opaque
+  dir.file("tex/.keep", "");  // the texture's folder
+  writePng(dir.path() + "/tex/red.png", png);
+  dir.file("m.mtl",
+           "newmtl red\nKd 1 0 0\nKs 0.5 0.5 0.5\nNs 10\n"
+           "newmtl half\nKd 0.2 0.4 0.6\nd 0.5\nKs 1 1 1\n"
+           "newmtl tr\nTr 0.25\n"
+           "newmtl textured\nmap_Kd tex/red.png\nmap_Bump tex/red.png\n");
+  // Two red triangles apart (the second after another material), one for each other material,
+  // and one degenerate face of `half` dropped and counted in that mesh only.
+  const std::string obj = dir.file(
+      "m.obj",
+      "mtllib m.mtl\n"
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 3 0 0\nv 2 1 0\nv 4 0 0\nv 5 0 0\nv 4 1 0\n"
+      "v 6 0 0\nv 7 0 0\nv 6 1 0\nv 8 0 0\nv 9 0 0\nv 8 1 0\nvt 0 0\n"
+      "usemtl red\nf 1 2 3\nusemtl half\nf 4 5 6\nf 4 4 5\nusemtl red\nf 13 14 15\n"
+      "usemtl tr\nf 7 8 9\nusemtl textured\nf 10/1 11/1 12/1\nusemtl nosuch\nf 1 3 2\n");
+  const Scene s = loadScene(obj);
+  const SceneMesh* red = meshNamed(s, "m.obj#red");
+  ASSERT_NE(red, nullptr);
+  EXPECT_EQ(red->mesh.triangles.size(), 2u);
+  EXPECT_EQ(red->report.droppedTotal(), 0u);
+  const Material& r = materialOf(s, "m.obj#red");
+  EXPECT_NEAR(r.baseColor.r, 1.0f, 1e-6f);
+  EXPECT_NEAR(r.baseColor.g, 0.0f, 1e-6f);
+  EXPECT_NEAR(r.opacity, 1.0f, 1e-6f);
+  EXPECT_EQ(r.alphaMode, AlphaMode::Opaque);
+  const Material& half = materialOf(s, "m.obj#half");
+  EXPECT_NEAR(half.opacity, 0.5f, 1e-6f);
+  EXPECT_EQ(half.alphaMode, AlphaMode::Blend);
+  EXPECT_NEAR(half.baseColor.b, 0.6f, 1e-6f);
+  const SceneMesh* halfMesh = meshNamed(s, "m.obj#half");
+  ASSERT_NE(halfMesh, nullptr);
+  EXPECT_EQ(halfMesh->mesh.triangles.size(), 1u);
+  EXPECT_EQ(halfMesh->report.droppedDegenerate, 1u);
+  EXPECT_TRUE(hasWarning(s, obj + "#half: 1 triangle, 1 dropped (1 degenerate)"));
+  EXPECT_NEAR(materialOf(s, "m.obj#tr").opacity, 0.75f, 1e-6f);
+  EXPECT_NEAR(materialOf(s, "m.obj#tr").baseColor.r, 0.8f, 1e-6f);  // no Kd: the default
+  const Material& tex = materialOf(s, "m.obj#textured");
+  ASSERT_GE(tex.baseColorTexture, 0);
+  const Image& img = s.textures.at(std::size_t(tex.baseColorTexture)).image;
+  ASSERT_EQ(img.width, 2);
+  EXPECT_NEAR(img.at(1, 1, 0), 1.0f, 1e-3f);
+  EXPECT_NEAR(img.at(1, 1, 1), 0.0f, 1e-3f);
+  ASSERT_FALSE(meshNamed(s, "m.obj#textured")->mesh.uvs.empty());
+  // The unknown name keeps its faces, with the default material, and says so.
+  EXPECT_EQ(meshNamed(s, "m.obj#nosuch")->material, 0);
+  EXPECT_TRUE(hasWarning(s, obj + ": usemtl 'nosuch': no such material in "));
+  EXPECT_TRUE(hasWarning(s, "m.mtl: 'Ks' not used (penumbra reads Kd, map_Kd, d and Tr), in 2 "
+                            "materials (red, half)"));
+  EXPECT_TRUE(hasWarning(s, "m.mtl: 'Ns' not used"));
+  EXPECT_TRUE(hasWarning(s, "m.mtl: 'map_Bump' not used"));
+  EXPECT_FALSE(hasWarning(s, "'Kd' not used"));
+  EXPECT_FALSE(hasWarning(s, "'d' not used"));
+  std::size_t triangles = 0;
+  for (const SceneMesh& m : s.meshes) triangles += m.mesh.triangles.size();
+  EXPECT_EQ(triangles, 6u + 2u);  // the OBJ's six kept faces and the bare-file floor
+}
+
+TEST(SceneBadInputs, ObjMaterialProblemsAreWarnedAndTheObjectMaterialWins) {
   test::TempDir dir;
   const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-  dir.file("red.mtl", "newmtl red\nKd 1 0 0\n");
-  const std::string withLib = dir.file("red.obj", "mtllib red.mtl\nusemtl red\n" + tri);
-  const Scene a = loadScene(withLib);
-  EXPECT_TRUE(hasWarning(a, withLib + ": OBJ materials are not read: 1 mtllib and 1 usemtl material (red) ignored"));
-  EXPECT_FALSE(hasWarning(a, "mtllib 'red.mtl':"));  // it exists
-  const std::string missing = dir.file("missing.obj", "mtllib gone.mtl\nusemtl a\nusemtl b\n" + tri);
+  const std::string missing = dir.file("missing.obj", "mtllib gone.mtl\nusemtl a\n" + tri);
   const Scene b = loadScene(missing);
   EXPECT_TRUE(hasWarning(b, missing + ": mtllib 'gone.mtl': no such file"));
-  EXPECT_TRUE(hasWarning(b, "2 usemtl materials (a, b) ignored"));
+  EXPECT_TRUE(hasWarning(b, missing + ": usemtl 'a': no material library was read"));
+  const std::string outside = dir.file("sub/out.obj", "mtllib ../m.mtl\nusemtl a\n" + tri);
+  dir.file("m.mtl", "newmtl a\nKd 1 0 0\n");
+  EXPECT_TRUE(hasWarning(loadScene(outside), "mtllib '../m.mtl': leaves its folder ('..')"));
+  dir.file("t.mtl", "newmtl a\nKd 1 0 0\nmap_Kd /etc/passwd.png\nd 2\n");
+  const std::string obj = dir.file("t.obj", "mtllib t.mtl\nusemtl a\n" + tri);
+  const Scene t = loadScene(obj);
+  EXPECT_TRUE(hasWarning(t, "material 'a': map_Kd '/etc/passwd.png' is an absolute path"));
+  EXPECT_TRUE(hasWarning(t, "material 'a': d '2' is not a number in [0, 1]; ignored"));
+  EXPECT_NEAR(materialOf(t, "t.obj#a").opacity, 1.0f, 1e-6f);
+  EXPECT_EQ(materialOf(t, "t.obj#a").baseColorTexture, -1);
+  // A scene file's "material" replaces the OBJ's; its "opacity" overrides the OBJ's opacity.
+  const std::string scene = dir.file(
+      "s.json", R"({"materials": [{"name": "blue", "baseColor": [0, 0, 1]}],
+                    "objects": [{"file": "t.obj", "material": "blue"},
+                                {"file": "t.obj", "opacity": 0.3}],
+                    "lights": [{"position": [0, 4, 0]}]})");
+  const Scene j = loadScene(scene);
+  ASSERT_EQ(j.meshes.size(), 2u);
+  EXPECT_NEAR(j.materials.at(std::size_t(j.meshes[0].material)).baseColor.b, 1.0f, 1e-6f);
+  const Material& faded = j.materials.at(std::size_t(j.meshes[1].material));
+  EXPECT_NEAR(faded.baseColor.r, 1.0f, 1e-6f);
+  EXPECT_NEAR(faded.opacity, 0.3f, 1e-6f);
   const Scene c = loadScene(dir.file("plain.obj", tri));
-  EXPECT_FALSE(hasWarning(c, "OBJ materials"));
+  EXPECT_FALSE(hasWarning(c, "mtl"));
 }
 
 }  // namespace

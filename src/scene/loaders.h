@@ -43,6 +43,16 @@ void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& j
 // channels converted from sRGB. Returns false with `why` set if it cannot.
 bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std::string& why);
 
+// A texture file (.png sRGB-decoded, .exr linear) already resolved: what scene-file materials,
+// lights and OBJ materials (map_Kd) load. EXR NaN/Inf texels are replaced by 0 and counted in
+// `warnings`. Throws penumbra::Error naming the file.
+Image readTextureFile(const std::string& path, std::vector<std::string>& warnings);
+
+// An OBJ file with its materials (obj_materials.cpp): the faces split by `usemtl` into one mesh
+// per material, the `mtllib` files' Kd, map_Kd, d and Tr read into materials, everything else
+// in them warned about.
+Model loadObjModel(const std::string& path);
+
 // Any supported geometry file by extension: glTF through loadGltf, OBJ/PLY/OFF/STL through
 // geo::loadMeshFile.
 Model loadGeometryFile(const std::string& path);

@@ -8,10 +8,10 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
-#include <set>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/image_io.h"
 #include "scene/loaders.h"
 
 namespace penumbra {
@@ -380,44 +380,24 @@ std::string resolveSceneReference(const std::string& reference, const std::strin
   return resolved;
 }
 
-// OBJ materials are not read yet (issue 14 section 6): the mesh renders with the default (or
-// the object's) material. Never silently: `mtllib` and `usemtl` lines are counted and warned
-// about, and a material library that is missing is named.
-std::vector<std::string> objMaterialWarnings(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::vector<std::string> libraries;
-  std::set<std::string> used;
-  while (std::getline(in, line)) {
-    std::istringstream words(line);
-    std::string key, name;
-    words >> key;
-    if (key == "mtllib") {
-      while (words >> name) libraries.push_back(name);
-    } else if (key == "usemtl" && words >> name) {
-      used.insert(name);
-    }
+Image readTextureFile(const std::string& path, std::vector<std::string>& warnings) {
+  if (lowerExtension(path) == ".exr") {
+    // NaN/Inf texels are replaced by 0; the scene's warnings say how many, as `penumbra info`
+    // prints them (hard-cases.md, bad inputs: EXR textures "sanitised with a warning").
+    int sanitized = 0;
+    Image image = readExr(path, &sanitized);
+    if (sanitized > 0)
+      warnings.push_back(path + ": replaced " + std::to_string(sanitized) +
+                         " non-finite texels with 0");
+    return image;
   }
-  std::vector<std::string> out;
-  if (libraries.empty() && used.empty()) return out;
-  const fs::path folder = fs::path(path).parent_path();
-  for (const std::string& lib : libraries) {
-    const std::string resolved = (folder / lib).string();
-    if (const std::string why = fileProblem(resolved); !why.empty())
-      out.push_back(path + ": mtllib '" + lib + "': " + why + " (" + resolved + ")");
-  }
-  std::string names;
-  for (const std::string& n : used) names += (names.empty() ? "" : ", ") + n;
-  out.push_back(path + ": OBJ materials are not read: " + std::to_string(libraries.size()) +
-                " mtllib and " + std::to_string(used.size()) + " usemtl material" +
-                (used.size() == 1 ? "" : "s") + (names.empty() ? "" : " (" + names + ")") +
-                " ignored; the mesh uses the object's or the default material");
-  return out;
+  return readTexture(path, /*srgb=*/true);
 }
 
 Model loadGeometryFile(const std::string& path) {
   const std::string ext = lowerExtension(path);
   if (ext == ".gltf" || ext == ".glb") return loadGltf(path);
+  if (ext == ".obj") return loadObjModel(path);
   if (!isGeometryExtension(ext)) {
     throw Error(path, "unsupported geometry format '" + ext +
                           "' (expected .gltf, .glb, .obj, .ply, .off or .stl)");
@@ -430,9 +410,6 @@ Model loadGeometryFile(const std::string& path) {
   if (sm.report.droppedTotal() > 0 || sm.report.duplicatedVertices > 0 ||
       sm.report.hugeCoordinates > 0) {
     model.warnings.push_back(path + ": " + sm.report.summary());
-  }
-  if (ext == ".obj") {
-    for (const std::string& w : objMaterialWarnings(path)) model.warnings.push_back(w);
   }
   model.meshes.push_back(std::move(sm));
   return model;

@@ -181,16 +181,10 @@ int loadTexture(Context& ctx, const std::string& reference, const std::string& c
   texture.source = key;
   if (procedural) {
     texture.image = stainedGlassImage(64);
-  } else if (lowerExtension(key) == ".exr") {
-    // NaN/Inf texels are replaced by 0; the scene's warnings say how many, as `penumbra info`
-    // prints them (hard-cases.md, bad inputs: EXR textures "sanitised with a warning").
-    int sanitized = 0;
-    texture.image = readExr(key, &sanitized);
-    if (sanitized > 0) {
-      ctx.warn(key + ": replaced " + std::to_string(sanitized) + " non-finite texels with 0");
-    }
   } else {
-    texture.image = readTexture(key, /*srgb=*/true);
+    std::vector<std::string> warnings;
+    texture.image = readTextureFile(key, warnings);
+    for (const std::string& w : warnings) ctx.warn(w);
   }
   if (texture.image.empty()) ctx.fail(context, "texture '" + reference + "' is empty");
   const int index = int(ctx.scene.textures.size());
