@@ -1,6 +1,7 @@
 #include "pipeline/compare.h"
 
 #include <algorithm>
+#include <optional>
 #include <cctype>
 #include <cmath>
 #include <ctime>
@@ -342,9 +343,13 @@ Image crop(const Image& im, const Inset& r, int zoom) {
 
 }  // namespace
 
-CompareResult compareTechniques(gl::Context& context, const Scene& scene, const RenderSettings& settings,
+CompareResult compareTechniques(gl::Context& context, const Scene& given, const RenderSettings& settings,
                                 const CompareOptions& o) {
   namespace fs = std::filesystem;
+  // Translated to the camera's frame once here, not by each technique's Renderer.
+  std::optional<Scene> local;
+  if (!given.isCameraRelative()) local.emplace(given).makeCameraRelative();
+  const Scene& scene = local ? *local : given;
   CompareResult result;
   result.presets = makePresets(settings, o);
   const bool converged =
