@@ -194,6 +194,34 @@ TEST(MultiView, VwssWithoutPointsIsAnError) {
   gl::Context::takeErrorCount();
 }
 
+// Never silent (issue 14, section 4): a depth-map pass that draws no fragment while occluders
+// cover its view is an error naming the technique (mvr's maps, the single view of pcss and
+// vssm, reproject's central map). Provoked with a depth shader that discards every fragment.
+TEST(MultiView, DepthPassWithoutFragmentsIsAnError) {
+  char dir[] = "/tmp/penumbra-shaders-XXXXXX";
+  ASSERT_NE(mkdtemp(dir), nullptr);
+  for (const auto& f : std::filesystem::directory_iterator(scenePath("shaders")))
+    std::filesystem::copy_file(f.path(), std::filesystem::path(dir) / f.path().filename());
+  std::ofstream(std::string(dir) + "/depth_only.frag", std::ios::trunc) << "void main() { discard; }\n";
+  Scene scene = loadScene(scenePath("scenes/hard/15-two-plates.json"));
+  Renderer renderer(context(), scene, settings(64, 4));
+  setenv("PENUMBRA_SHADER_DIR", dir, 1);
+  for (const char* name : {"mvr", "mvr-layered", "pcss", "vssm", "reproject"}) {
+    auto technique = makeTechnique(name, params({"map=128"}));
+    try {
+      renderer.render(*technique);
+      ADD_FAILURE() << name << ": no error for a depth pass without fragments";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(std::string(name) + ": the ", 0), 0u) << e.what();
+      EXPECT_NE(std::string(e.what()).find("pass drew no fragment although occluder triangles cover"), std::string::npos)
+          << e.what();
+    }
+  }
+  unsetenv("PENUMBRA_SHADER_DIR");
+  std::filesystem::remove_all(dir);
+  gl::Context::takeErrorCount();
+}
+
 // Unsynchronised reprojection: the last writer wins instead of the nearest, so a texel whose
 // points come from several depths may keep a farther one. On the default scene few decisions
 // change; the error against the reference is recorded next to the synchronised one's.

@@ -221,6 +221,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"draco_required.gltf", "KHR_draco_mesh_compression"},
         BadCase{"node_cycle.gltf", "cycle"}, BadCase{"node_two_parents.gltf", "two parents"},
         BadCase{"node_self_child.gltf", "its own child"}, BadCase{"not_gltf2.gltf", "version 1.0"},
+        BadCase{"duplicate_key.gltf", "nodes[0]: duplicate key 'mesh'"},
         BadCase{"glb_length_beyond_file.glb", "declares"},
         BadCase{"glb_json_chunk_huge.glb", "JSON chunk length"},
         BadCase{"glb_bin_chunk_huge.glb", "BIN chunk length"},

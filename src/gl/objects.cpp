@@ -43,7 +43,7 @@ void allocateOrThrow(const std::string& what, double bytes, const std::function<
 }  // namespace
 
 const char* toString(Kind k) {
-  static const char* const names[] = {"buffer", "texture", "framebuffer", "vertex array", "program", "sampler", "shader"};
+  static const char* const names[] = {"buffer", "texture", "framebuffer", "vertex array", "program", "sampler", "shader", "query"};
   return names[int(k)];
 }
 
@@ -65,6 +65,7 @@ void deleteObject(Kind k, GLuint id) {
     case Kind::Program: glDeleteProgram(id); break;
     case Kind::Sampler: glDeleteSamplers(1, &id); break;
     case Kind::Shader: glDeleteShader(id); break;
+    case Kind::Query: glDeleteQueries(1, &id); break;
     case Kind::Count: return;
   }
   --gLive[int(k)];
@@ -93,6 +94,21 @@ const Limits& limits() {
     generation = gLimitsGeneration.load();
   }
   return l;
+}
+
+// ---- Query ----------------------------------------------------------------------------------
+
+Query::Query(GLenum target) : target_(target) {
+  GLuint id = 0;
+  glCreateQueries(target, 1, &id);
+  static_cast<Object&>(*this) = Object(id);
+}
+void Query::begin() const { glBeginQuery(target_, id()); }
+void Query::end() const { glEndQuery(target_); }
+std::uint64_t Query::result() const {
+  GLuint64 v = 0;
+  glGetQueryObjectui64v(id(), GL_QUERY_RESULT, &v);
+  return std::uint64_t(v);
 }
 
 // ---- Buffer ----------------------------------------------------------------------------------

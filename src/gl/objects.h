@@ -16,7 +16,7 @@
 namespace penumbra::gl {
 
 // Kinds of GL object the wrappers own; every one is counted while alive (liveObjectCount).
-enum class Kind : int { Buffer, Texture, Framebuffer, VertexArray, Program, Sampler, Shader, Count };
+enum class Kind : int { Buffer, Texture, Framebuffer, VertexArray, Program, Sampler, Shader, Query, Count };
 const char* toString(Kind k);
 
 // GL objects created through these wrappers and not yet deleted, in this process (all
@@ -137,6 +137,8 @@ class Framebuffer : public Object<Kind::Framebuffer> {
   // effects (image and buffer stores); layers > 0: layered (geometry shaders set gl_Layer).
   static Framebuffer empty(int width, int height, int layers = 0);
   void bind() const;  // binds and sets the viewport to the attachment size
+  int width() const { return w_; }
+  int height() const { return h_; }
 
  private:
   int w_ = 0, h_ = 0;
@@ -164,6 +166,20 @@ class VertexArray : public Object<Kind::VertexArray> {
   VertexArray& vertexBuffer(const Buffer& b, std::size_t stride, GLuint binding = 0);
   VertexArray& elementBuffer(const Buffer& b);
   void bind() const;
+};
+
+// A query object of one target (GL_ANY_SAMPLES_PASSED, GL_PRIMITIVES_GENERATED, ...): begin()
+// and end() around draws; result() waits for the GL to finish them.
+class Query : public Object<Kind::Query> {
+ public:
+  Query() = default;
+  explicit Query(GLenum target);
+  void begin() const;
+  void end() const;
+  std::uint64_t result() const;
+
+ private:
+  GLenum target_ = 0;
 };
 
 // A program from shader files under shaders/ (embedded at build time; read from

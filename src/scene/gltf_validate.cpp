@@ -410,8 +410,7 @@ void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& j
   const std::string text =
       glb ? checkGlb(path, bytes, binBytes, warnings) : std::string(bytes.begin(), bytes.end());
 
-  json = Json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (json.is_discarded()) throw Error(path, "invalid JSON");
+  json = parseJsonDocument(text, path, "glTF");  // refuses repeated keys, which tinygltf would drop
   if (!json.is_object()) throw Error(path, "the glTF JSON is not an object");
   std::error_code ec;
   const fs::path parent = fs::path(path).parent_path();

@@ -90,11 +90,12 @@ Json framingCamera(glm::vec3 lo, glm::vec3 hi);
 
 // "key=value" overrides (see scene.h) applied to the document in place. Throws
 // penumbra::Error("--set", ...) on a malformed pair or an array index out of range.
-// Parses a scene file's JSON (// and /* */ comments allowed). JSON lets an object repeat a key
-// and nlohmann keeps the last silently; a repeated key here throws penumbra::Error(path,
-// "<item>: duplicate key '<key>'") naming where it is (`objects[1]`, `lights[0].spin`). Invalid
-// JSON throws Error(path, "invalid JSON: ...").
-Json parseSceneJson(const std::string& text, const std::string& path);
+// Parses a scene file's or a glTF file's JSON (`root` "scene" or "glTF"; // and /* */ comments
+// allowed in scene files only). JSON lets an object repeat a key and nlohmann (tinygltf too)
+// keeps the last silently; a repeated key here throws penumbra::Error(path, "<item>: duplicate
+// key '<key>'") naming where it is (`objects[1]`, `lights[0].spin`, `meshes[0]`). Invalid JSON
+// throws Error(path, "invalid JSON: ...").
+Json parseJsonDocument(const std::string& text, const std::string& path, const std::string& root = "scene");
 
 void applyOverrides(Json& doc, const std::vector<std::string>& overrides);
 

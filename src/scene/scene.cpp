@@ -445,7 +445,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   Json doc;
   if (ext == ".json") {
     const std::string text = readTextFile(path);
-    doc = detail::parseSceneJson(text, path);
+    doc = detail::parseJsonDocument(text, path);
     if (!doc.is_object()) throw Error(path, "a scene file must hold a JSON object");
     if (!doc.contains("name")) doc["name"] = stem;
   } else if (detail::isGeometryExtension(ext)) {

@@ -587,7 +587,7 @@ std::string lightExtentProblem(const Light& l) {
 
 // ---------------------------------------------------------------------------------------------
 
-Json parseSceneJson(const std::string& text, const std::string& path) {
+Json parseJsonDocument(const std::string& text, const std::string& path, const std::string& root) {
   // One frame per open object or array: the keys seen so far (objects) or the element index
   // (arrays), so that a duplicate is reported with its path, e.g. objects[1].spin.
   struct Frame {
@@ -623,7 +623,7 @@ Json parseSceneJson(const std::string& text, const std::string& path) {
         if (!f.keys.insert(f.key).second) {
           f.key.clear();
           const std::string where = pathOf(stack.size());
-          throw Error(path, (where.empty() ? "scene" : where) + ": duplicate key '" +
+          throw Error(path, (where.empty() ? root : where) + ": duplicate key '" +
                                 parsed.get<std::string>() +
                                 "' (JSON would keep only the last one; give it once)");
         }
@@ -640,7 +640,7 @@ Json parseSceneJson(const std::string& text, const std::string& path) {
     return true;
   };
   try {
-    return Json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/true);
+    return Json::parse(text, callback, /*allow_exceptions=*/true, /*ignore_comments=*/root == "scene");
   } catch (const Json::exception& e) {
     // parse_error, and out_of_range 406 for a number beyond double ("1e+315", found by
     // fuzzing: tests/fuzz/regressions/json/), which is not a parse_error.

@@ -26,22 +26,26 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
       glDisable(GL_BLEND);
       program_.use();
       shadow_map::setMapUniforms(program_, frame);
-      if (layered_) {
-        if (!layeredFbo_ || fboFor_ != maps.id()) layeredFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &maps);
-        layeredFbo_.bind();
-        pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::Opaque);
-      } else {
-        if (fboFor_ != maps.id()) {
-          layerFbos_.clear();
-          for (int l = 0; l < frame.layers; ++l)
-            layerFbos_.emplace_back(std::vector<gl::Framebuffer::Attachment>{}, &maps, l);
+      // No fragment in any map is checked against the first sample's view (map 0).
+      shadow_map::drawWithOccluderCheck(name(), "depth maps", pass.scene, frame, pass.samples.positions.at(0),
+                                        frame.size, [&] {
+        if (layered_) {
+          if (!layeredFbo_ || fboFor_ != maps.id()) layeredFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &maps);
+          layeredFbo_.bind();
+          pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::Opaque);
+        } else {
+          if (fboFor_ != maps.id()) {
+            layerFbos_.clear();
+            for (int l = 0; l < frame.layers; ++l)
+              layerFbos_.emplace_back(std::vector<gl::Framebuffer::Attachment>{}, &maps, l);
+          }
+          for (int l = 0; l < frame.layers; ++l) {
+            layerFbos_[std::size_t(l)].bind();
+            program_.set("layer", l);
+            pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
+          }
         }
-        for (int l = 0; l < frame.layers; ++l) {
-          layerFbos_[std::size_t(l)].bind();
-          program_.set("layer", l);
-          pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
-        }
-      }
+      });
       fboFor_ = maps.id();
       glDisable(GL_DEPTH_TEST);
     });

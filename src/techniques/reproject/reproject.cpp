@@ -24,7 +24,7 @@ class FragmentReprojection final : public shadow_map::MultiViewTechnique {
         centralFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &central_);
       }
       if (!depthProgram_) depthProgram_ = gl::Program({"mvr_depth.vert", "depth_only.frag"}, {"CENTRAL"});
-      shadow_map::renderDepthView(pass, frame, pass.light.position, centralFbo_, depthProgram_);
+      shadow_map::renderDepthView(name(), pass, frame, pass.light.position, centralFbo_, depthProgram_);
     });
     pass.timer.time(name() + " depth maps", [&] {
       if (!splatProgram_) {

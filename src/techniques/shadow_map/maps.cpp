@@ -34,8 +34,8 @@ void setBiasUniforms(const gl::Program& p, const MapOptions& o) {
   p.set("biasSlope", float(o.biasSlope));
 }
 
-void renderDepthView(LightPass& pass, const MapFrame& frame, const glm::vec3& eye, const gl::Framebuffer& fbo,
-                     const gl::Program& program, bool semiOpaque) {
+void renderDepthView(const std::string& technique, LightPass& pass, const MapFrame& frame, const glm::vec3& eye,
+                     const gl::Framebuffer& fbo, const gl::Program& program, bool semiOpaque) {
   fbo.bind();
   const float zero = 0.0f;  // reversed depth: infinitely far
   glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &zero);
@@ -47,9 +47,49 @@ void renderDepthView(LightPass& pass, const MapFrame& frame, const glm::vec3& ey
   program.use();
   setMapUniforms(program, frame);
   program.set("eye", eye);
-  pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
-  if (semiOpaque) pass.gpu.drawTriangles(1, GpuScene::Occluders::SemiOpaque);
+  drawWithOccluderCheck(technique, "shadow map", pass.scene, frame, eye, fbo.width(), [&] {
+    pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
+    if (semiOpaque) pass.gpu.drawTriangles(1, GpuScene::Occluders::SemiOpaque);
+  });
   glDisable(GL_DEPTH_TEST);
+}
+
+bool opaqueTriangleCoversAPixel(const Scene& scene, const MapFrame& frame, const glm::vec3& eye, float zNear, int size,
+                                bool cullBack) {
+  auto project = [&](const glm::vec3& p, glm::vec2& px) {  // shadow_map_common.glsl viewClip
+    const glm::vec3 r = p - eye;
+    const float w = glm::dot(r, frame.axis);
+    if (!(w > zNear)) return false;
+    const glm::vec2 ndc(glm::dot(r, frame.right) / (frame.tanHalf * w), glm::dot(r, frame.up) / (frame.tanHalf * w));
+    if (!(std::abs(ndc.x) < 1.0f && std::abs(ndc.y) < 1.0f)) return false;
+    px = (ndc * 0.5f + 0.5f) * float(size);
+    return true;
+  };
+  for (auto& m : scene.meshes) {
+    if (scene.materials[std::size_t(m.material)].opacity < 1.0f) continue;  // not drawn as Occluders::Opaque
+    for (auto& t : m.mesh.triangles) {
+      const glm::vec3 a = m.mesh.positions[t[0]], b = m.mesh.positions[t[1]], c = m.mesh.positions[t[2]];
+      if (cullBack && glm::dot(glm::cross(b - a, c - a), eye - a) <= 0.0f) continue;
+      glm::vec2 pa, pb, pc;
+      if (!project(a, pa) || !project(b, pb) || !project(c, pc)) continue;
+      const float area = 0.5f * std::abs((pb.x - pa.x) * (pc.y - pa.y) - (pc.x - pa.x) * (pb.y - pa.y));
+      const float perimeter = glm::length(pb - pa) + glm::length(pc - pb) + glm::length(pa - pc);
+      if (perimeter > 0.0f && 2.0f * area / perimeter >= 1.0f) return true;
+    }
+  }
+  return false;
+}
+
+void drawWithOccluderCheck(const std::string& technique, const std::string& what, const Scene& scene,
+                           const MapFrame& frame, const glm::vec3& eye, int size, const std::function<void()>& draw) {
+  gl::Query anySample(GL_ANY_SAMPLES_PASSED);
+  anySample.begin();
+  draw();
+  anySample.end();
+  if (anySample.result() == 0 && opaqueTriangleCoversAPixel(scene, frame, eye, frame.zNear, size, false))
+    throw Error(technique, fmt::format("the {} pass drew no fragment although occluder triangles cover its {}^2 view "
+                                       "(the GL ran no fragment or lost them)",
+                                       what, size));
 }
 
 float NearestOccluder::get(const Scene& scene, int lightIndex, const glm::vec3& centre, const MapFrame& f, bool surfaces) {

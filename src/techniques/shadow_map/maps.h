@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <array>
 #include <map>
 #include <string>
@@ -58,8 +59,25 @@ void setMapUniforms(const gl::Program& program, const MapFrame& frame);
 // (a DEPTH32F attachment of the frame's or another size): reproject's central map (opaque
 // occluders), pcss's shadow map (semiOpaque: semi-opaque ones too, as opaque).
 // `program`: mvr_depth.vert with CENTRAL, depth_only.frag.
-void renderDepthView(LightPass& pass, const MapFrame& frame, const glm::vec3& eye, const gl::Framebuffer& fbo,
-                     const gl::Program& program, bool semiOpaque = false);
+// A pass that draws nothing while an occluder covers its view is an error naming `technique`
+// (drawWithOccluderCheck).
+void renderDepthView(const std::string& technique, LightPass& pass, const MapFrame& frame, const glm::vec3& eye,
+                     const gl::Framebuffer& fbo, const gl::Program& program, bool semiOpaque = false);
+
+// Self-checks (issue 14 section 4, never silent). opaqueTriangleCoversAPixel: an opaque
+// triangle (front-facing towards `eye` only, when cullBack) lies wholly in the view from `eye`
+// along the frame's axis (near plane `zNear`, size^2 pixels) with an inscribed circle of at
+// least one pixel in radius, so the rasteriser must give it a fragment (a disc of diameter
+// sqrt 2 pixels holds a pixel centre). One pass over the triangles; run only when a pass came
+// out empty.
+bool opaqueTriangleCoversAPixel(const Scene& scene, const MapFrame& frame, const glm::vec3& eye, float zNear, int size,
+                                bool cullBack);
+// Runs `draw`, the depth pass `what` of `technique` for the view from `eye` (the frame's near
+// plane, size^2 pixels), inside an any-samples-passed query: no fragment at all while
+// opaqueTriangleCoversAPixel is an error (the GL ran no fragment or lost them), not an
+// unshadowed image.
+void drawWithOccluderCheck(const std::string& technique, const std::string& what, const Scene& scene,
+                           const MapFrame& frame, const glm::vec3& eye, int size, const std::function<void()>& draw);
 
 // Distance beyond the samples (along the axis) of the nearest scene vertex in front of them:
 // where the samples' near plane could sit without clipping an occluder (VWSS eq. 3's z_n, the

@@ -44,7 +44,7 @@ void SingleViewTechnique::renderVisibility(LightPass& pass) {
       depth_ = gl::Texture::make2D(GL_DEPTH_COMPONENT32F, frame_.size, frame_.size);
       depthFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &depth_);
     }
-    renderDepthView(pass, frame_, pass.light.position, depthFbo_,
+    renderDepthView(name_, pass, frame_, pass.light.position, depthFbo_,
                     program("depth", {"mvr_depth.vert", "depth_only.frag"}, {"CENTRAL"}), true);
   });
   glDisable(GL_DEPTH_TEST);

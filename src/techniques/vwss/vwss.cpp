@@ -231,36 +231,14 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
     return limit;
   }
 
-  // Self-check: no point at all is an error when an opaque front-facing triangle (any, with
-  // backfaces=1) lies inside the central view with an inscribed circle of at least one source
-  // pixel in radius, since the rasteriser must then give it a fragment (a disc of diameter
-  // sqrt(2) pixels holds a pixel centre). Such a pass lost its fragments or their stores.
+  // Self-check: no point at all is an error when an occluder triangle covers a pixel of the
+  // central view (shadow_map::opaqueTriangleCoversAPixel): the pass lost its fragments or stores.
   void checkNoOccluderInView(const Scene& scene, const shadow_map::MapFrame& frame, const glm::vec3& eye,
                              float centralNear) const {
-    auto project = [&](const glm::vec3& p, glm::vec2& px) {
-      const glm::vec3 r = p - eye;
-      const float w = glm::dot(r, frame.axis);
-      if (!(w > centralNear)) return false;
-      const glm::vec2 ndc(glm::dot(r, frame.right) / (frame.tanHalf * w), glm::dot(r, frame.up) / (frame.tanHalf * w));
-      if (!(std::abs(ndc.x) < 1.0f && std::abs(ndc.y) < 1.0f)) return false;
-      px = (ndc * 0.5f + 0.5f) * float(sourceSize_);
-      return true;
-    };
-    for (auto& m : scene.meshes) {
-      if (scene.materials[std::size_t(m.material)].opacity < 1.0f) continue;  // drawn as Occluders::Opaque only
-      for (auto& t : m.mesh.triangles) {
-        const glm::vec3 a = m.mesh.positions[t[0]], b = m.mesh.positions[t[1]], c = m.mesh.positions[t[2]];
-        if (!o_.backFaces && glm::dot(glm::cross(b - a, c - a), eye - a) <= 0.0f) continue;  // culled
-        glm::vec2 pa, pb, pc;
-        if (!project(a, pa) || !project(b, pb) || !project(c, pc)) continue;
-        const float area = 0.5f * std::abs((pb.x - pa.x) * (pc.y - pa.y) - (pc.x - pa.x) * (pb.y - pa.y));
-        const float perimeter = glm::length(pb - pa) + glm::length(pc - pb) + glm::length(pa - pc);
-        if (perimeter > 0.0f && 2.0f * area / perimeter >= 1.0f)
-          throw Error(name(), fmt::format("the point-generation pass produced no point although occluder triangles "
-                                          "cover its {}^2 view (the GL ran no fragment or lost its storage writes)",
-                                          sourceSize_));
-      }
-    }
+    if (shadow_map::opaqueTriangleCoversAPixel(scene, frame, eye, centralNear, sourceSize_, !o_.backFaces))
+      throw Error(name(), fmt::format("the point-generation pass produced no point although occluder triangles "
+                                      "cover its {}^2 view (the GL ran no fragment or lost its storage writes)",
+                                      sourceSize_));
   }
 
   std::size_t extraBytes() const override { return points_.size(); }

@@ -277,6 +277,11 @@ def main():
         nodes=[{"children": [2]}, {"children": [2]}, {"mesh": 0}], scenes=[{"nodes": [0, 1]}]))
     write("node_self_child.gltf", cube_doc(nodes=[{"mesh": 0, "children": [0]}]))
     write("not_gltf2.gltf", {"asset": {"version": "1.0"}})
+    # A repeated key (tinygltf, like nlohmann, would keep the last one silently): the cube's
+    # node given its mesh twice.
+    text = json.dumps(cube_doc(), indent=1).replace('"mesh": 0', '"mesh": 0, "mesh": 0', 1)
+    with open(os.path.join(HERE, "duplicate_key.gltf"), "w") as f:
+        f.write(text + "\n")
 
     doc_glb = {k: v for k, v in cube_doc().items()} | {"buffers": [{"byteLength": len(data)}]}
     write_bin("cube_nul_padded.glb", glb(doc_glb, data, nul_padding=True))
