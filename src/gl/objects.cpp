@@ -129,7 +129,7 @@ void Buffer::bindBase(GLenum target, GLuint index) const {
   if (target == GL_SHADER_STORAGE_BUFFER && limits().maxStorageBlockSize > 0 &&
       GLint64(size_) > limits().maxStorageBlockSize)
     throw Error("GPU memory", fmt::format("a storage buffer of {:.0f} MiB exceeds this GL's "
-                                          "GL_MAX_SHADER_STORAGE_BLOCK_SIZE ({:.0f} MiB); use a smaller image or --param map",
+                                          "GL_MAX_SHADER_STORAGE_BLOCK_SIZE ({:.0f} MiB)",
                                           mib(double(size_)), mib(double(limits().maxStorageBlockSize))));
   glBindBufferBase(target, index, id());
 }

@@ -160,6 +160,14 @@ class DepthComplexitySampling final : public Technique {
         edges.push_back(g);
       }
     }
+    // The edge and incidence lists are storage blocks read whole by the wedge passes (not split
+    // into bands as vwss's points are): past the GL's block limit, a one-line refusal.
+    const double limit = double(gl::limits().maxStorageBlockSize);
+    const double bytes = double(std::max(edges.size() * sizeof(GpuEdge), incidences.size() * sizeof(GpuIncidence)));
+    if (limit > 0 && bytes > limit)
+      throw Error("dcs", fmt::format("the scene's {} edges need a {:.0f} MiB storage block, more than this GL's {:.0f} MiB "
+                                     "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE)",
+                                     edges.size(), bytes / 1048576.0, limit / 1048576.0));
     edgeBuffer_ = gl::Buffer(edges);
     edges_ = std::move(edges);
     edgeRules_.clear();
