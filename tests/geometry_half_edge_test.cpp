@@ -11,22 +11,15 @@
 
 #include "geometry/half_edge_mesh.h"
 #include "geometry/mesh.h"
+#include "geometry_test_meshes.h"
 
 namespace penumbra::geo {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::book;
+using test::cube;
 
-// Unit cube centred at the origin, counter-clockwise seen from outside (as in
-// geometry_topology_test.cpp): 8 shared vertices, two triangles per face.
-TriangleMesh cube() {
-  TriangleMesh m;
-  m.positions = {{-0.5f, -0.5f, -0.5f}, {0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, -0.5f}, {-0.5f, 0.5f, -0.5f},
-                 {-0.5f, -0.5f, 0.5f},  {0.5f, -0.5f, 0.5f},  {0.5f, 0.5f, 0.5f},  {-0.5f, 0.5f, 0.5f}};
-  m.triangles = {{0, 3, 2}, {0, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                 {3, 7, 6}, {3, 6, 2}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
-  return m;
-}
+constexpr double kPi = 3.14159265358979323846;
 
 // The same cube with its own three vertices per triangle (split normals or UVs in a file).
 TriangleMesh splitCube() {
@@ -37,15 +30,6 @@ TriangleMesh splitCube() {
     for (int k = 0; k < 3; ++k) m.positions.push_back(c.positions[t[k]]);
     m.triangles.push_back({base, base + 1, base + 2});
   }
-  return m;
-}
-
-// Three quads sharing the spine (0,0,0)-(0,1,0) (hard case 6, as in geometry_topology_test.cpp).
-TriangleMesh book() {
-  TriangleMesh m;
-  m.positions = {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0},  {0, 1, 0},
-                 {0, 0, 1}, {0, 1, 1}, {0, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {-1, 1, 0}};
-  m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 6, 7}, {4, 7, 5}, {8, 9, 11}, {8, 11, 10}};
   return m;
 }
 
