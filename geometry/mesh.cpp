@@ -1,6 +1,6 @@
 // Mesh cleaning, vertex welding and edge topology. Linear time apart from sorts within one
-// vertex's edge fan, and keyed only on integers and bit patterns, so the results are identical
-// on every run and machine.
+// vertex's edge fan (and OpenMesh's add_face, linear in a vertex's valence), and keyed only on
+// integers and bit patterns, so the results are identical on every run and machine.
 #include "geometry/mesh.h"
 
 #include <algorithm>
@@ -13,6 +13,8 @@
 #include <utility>
 
 #include "core/error.h"
+#include "geometry/bucket_sort.h"
+#include "geometry/half_edge_mesh.h"
 
 namespace penumbra::geo {
 namespace {
@@ -62,21 +64,6 @@ Welding weldPositions(const std::vector<glm::vec3>& positions) {
   return w;
 }
 
-// Groups items by a small integer key (counting sort), then sorts each group by the full
-// item; groups are vertex fans, so the sorts are short and the whole order is deterministic.
-template <typename T, typename KeyOf>
-std::vector<T> bucketSort(const std::vector<T>& items, std::size_t keyCount, KeyOf keyOf) {
-  std::vector<std::uint32_t> start(keyCount + 1, 0);
-  for (const T& item : items) ++start[keyOf(item) + 1];
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-  std::vector<T> sorted(items.size());
-  for (const T& item : items) sorted[next[keyOf(item)]++] = item;
-  for (std::size_t k = 0; k < keyCount; ++k)
-    std::sort(sorted.begin() + start[k], sorted.begin() + start[k + 1]);
-  return sorted;
-}
-
 bool isFinite(const glm::vec3& p) {
   return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
@@ -99,59 +86,67 @@ void appendCount(std::string& out, std::size_t n, const char* what) {
   out += ", " + std::to_string(n) + " " + what;
 }
 
+// The welded triangles go into an OpenMesh TriMesh (half_edge_mesh.h); the edges are its
+// edges grouped by welded end points, so the copies made for refused faces sum with the edges
+// they copy, and the face normals are read from each face's halfedges.
 EdgeTopology buildTopology(const TriangleMesh& mesh, Welding w) {
   EdgeTopology topo;
   topo.weldedIndex = std::move(w.index);
   topo.weldedPositions.reserve(w.first.size());
   for (std::uint32_t v : w.first) topo.weldedPositions.push_back(mesh.positions[v]);
-
-  struct HalfEdge {
-    std::uint32_t v0, v1;  // v0 < v1
-    std::uint32_t triangle;
-    std::int32_t orientation;
-    bool operator<(const HalfEdge& o) const {
-      return std::tie(v1, triangle, orientation) < std::tie(o.v1, o.triangle, o.orientation);
-    }
-  };
-  std::vector<HalfEdge> halfEdges;
-  halfEdges.reserve(mesh.triangles.size() * 3);
   topo.weldedTriangles.reserve(mesh.triangles.size());
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const glm::uvec3& tri = mesh.triangles[t];
+  for (const glm::uvec3& tri : mesh.triangles) {
     const std::vector<std::uint32_t>& id = topo.weldedIndex;
     PENUMBRA_CHECK(tri.x < id.size() && tri.y < id.size() && tri.z < id.size(),
                    "buildEdgeTopology needs in-range indices (run cleanMesh first)");
-    const glm::uvec3 wt(id[tri.x], id[tri.y], id[tri.z]);
-    topo.weldedTriangles.push_back(wt);
-    // A triangle that collapses under welding has no area and no edges of its own.
-    if (wt.x == wt.y || wt.y == wt.z || wt.z == wt.x) continue;
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = wt[k], b = wt[(k + 1) % 3];
-      halfEdges.push_back(
-          {std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(t), a < b ? 1 : -1});
-    }
+    topo.weldedTriangles.emplace_back(id[tri.x], id[tri.y], id[tri.z]);
   }
-  halfEdges =
-      bucketSort(halfEdges, topo.weldedPositions.size(), [](const HalfEdge& h) { return h.v0; });
+  auto halfEdges = std::make_shared<HalfEdgeMesh>(buildHalfEdgeMesh(topo.weldedPositions, topo.weldedTriangles));
+  const HalfEdgeMesh& hem = *halfEdges;
+  const SilhouetteTriMesh& m = hem.mesh;
+  topo.duplicatedVertices = hem.duplicatedVertices();
 
-  topo.incidences.reserve(halfEdges.size());
-  bool closed = !halfEdges.empty();
-  for (std::size_t i = 0; i < halfEdges.size();) {
-    std::size_t j = i;
+  // cross(p1 - p0, p2 - p0) = cross(edge p0 -> p1, -(edge p2 -> p0)): the same doubles as from
+  // the positions directly (negation is exact).
+  topo.faceNormals.assign(topo.weldedTriangles.size(), glm::dvec3(0.0));
+  for (std::size_t t = 0; t < topo.weldedTriangles.size(); ++t) {
+    if (hem.faceOf[t] < 0) continue;
+    const OpenMesh::HalfedgeHandle h = hem.cornerHalfedge(OpenMesh::FaceHandle(hem.faceOf[t]), topo.weldedTriangles[t], 0);
+    const OpenMesh::Vec3d a = m.calc_edge_vector(h), b = -m.calc_edge_vector(m.prev_halfedge_handle(h));
+    topo.faceNormals[t] = glm::cross(glm::dvec3(a[0], a[1], a[2]), glm::dvec3(b[0], b[1], b[2]));
+  }
+
+  // Welded edge g is the OpenMesh edges of group g; its incidences are their halfedges' faces.
+  const std::size_t groups = hem.edgeGroups.empty() ? 0 : hem.edgeGroups.size() - 1;
+  topo.edges.reserve(groups);
+  topo.incidences.reserve(2 * m.n_edges());
+  bool closed = groups > 0;
+  for (std::size_t g = 0; g < groups; ++g) {
+    const auto first = static_cast<std::uint32_t>(topo.incidences.size());
     int orientationSum = 0;
-    while (j < halfEdges.size() && halfEdges[j].v0 == halfEdges[i].v0 &&
-           halfEdges[j].v1 == halfEdges[i].v1) {
-      topo.incidences.push_back(
-          {halfEdges[j].triangle, static_cast<std::int8_t>(halfEdges[j].orientation)});
-      orientationSum += halfEdges[j].orientation;
-      ++j;
+    for (std::uint32_t e = hem.edgeGroups[g]; e < hem.edgeGroups[g + 1]; ++e) {
+      for (int side = 0; side < 2; ++side) {
+        const OpenMesh::HalfedgeHandle h = m.halfedge_handle(OpenMesh::EdgeHandle(int(e)), side);
+        const OpenMesh::FaceHandle f = m.face_handle(h);
+        if (!f.is_valid()) continue;  // the boundary side
+        const std::int8_t orientation = hem.welded(m.from_vertex_handle(h)) < hem.welded(m.to_vertex_handle(h)) ? 1 : -1;
+        topo.incidences.push_back({hem.triangleOf[std::size_t(f.idx())], orientation});
+        orientationSum += orientation;
+      }
     }
-    const auto count = static_cast<std::uint32_t>(j - i);
-    topo.edges.push_back({halfEdges[i].v0, halfEdges[i].v1, static_cast<std::uint32_t>(i), count});
+    const auto count = static_cast<std::uint32_t>(topo.incidences.size() - first);
+    if (count > 1)
+      std::sort(topo.incidences.begin() + first, topo.incidences.end(),
+                [](const EdgeTopology::Incidence& a, const EdgeTopology::Incidence& b) {
+                  return std::tie(a.triangle, a.orientation) < std::tie(b.triangle, b.orientation);
+                });
+    const OpenMesh::HalfedgeHandle h = m.halfedge_handle(OpenMesh::EdgeHandle(int(hem.edgeGroups[g])), 0);
+    const std::uint32_t a = hem.welded(m.from_vertex_handle(h)), b = hem.welded(m.to_vertex_handle(h));
+    topo.edges.push_back({std::min(a, b), std::max(a, b), first, count});
     closed = closed && count == 2 && orientationSum == 0;
-    i = j;
   }
   topo.closed = closed;
+  topo.halfEdges = std::move(halfEdges);
   return topo;
 }
 
@@ -241,6 +236,7 @@ void cleanMesh(TriangleMesh& mesh, MeshReport& report) {
     if (findRoot(parent, t) == t) ++report.components;
   }
   report.closed = topo.closed;
+  report.duplicatedVertices = topo.duplicatedVertices;
 }
 
 std::string MeshReport::summary() const {
@@ -255,7 +251,7 @@ std::string MeshReport::summary() const {
     s += " (" + parts.substr(2) + ")";
   }
   appendCount(s, polygonsTriangulated, "polygons triangulated");
-  appendCount(s, duplicatedVertices, "vertices duplicated by the loader");
+  appendCount(s, duplicatedVertices, "vertices duplicated for refused faces");
   appendCount(s, hugeCoordinates, "vertices with |coordinate| > 1e6");
   appendCount(s, openEdges, "open edges");
   appendCount(s, nonManifoldEdges, "non-manifold edges");

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,7 @@ struct MeshReport {
   std::size_t droppedDegenerate = 0;     // repeated vertex index or zero area
   std::size_t droppedNonFinite = 0;      // a NaN/Inf vertex position
   std::size_t droppedDuplicate = 0;      // same vertex set as an earlier face
-  std::size_t duplicatedVertices = 0;    // vertices the loader (OpenMesh) duplicated for complex edges
+  std::size_t duplicatedVertices = 0;    // vertex copies for faces OpenMesh's add_face refused (silhouette.h)
   std::size_t hugeCoordinates = 0;       // |coordinate| > 1e6 (kept, warned)
   std::size_t openEdges = 0;             // edges with one incident triangle
   std::size_t nonManifoldEdges = 0;      // edges with > 2 incident triangles
@@ -46,8 +47,11 @@ struct MeshReport {
   std::string summary() const;
 };
 
+struct HalfEdgeMesh;  // geometry/half_edge_mesh.h: the OpenMesh TriMesh these arrays come from
+
 // Edge topology over vertices welded by exact position (so split-normal or split-UV vertices
-// share edges). Works for any topology: open, non-manifold, inconsistently wound.
+// share edges), read from an OpenMesh half-edge mesh (silhouette.h, "The silhouette mesh").
+// Works for any topology: open, non-manifold, inconsistently wound.
 struct EdgeTopology {
   struct Incidence {
     std::uint32_t triangle;
@@ -60,8 +64,14 @@ struct EdgeTopology {
   std::vector<glm::vec3> weldedPositions;        // one per welded vertex
   std::vector<std::uint32_t> weldedIndex;        // input vertex -> welded vertex
   std::vector<glm::uvec3> weldedTriangles;       // triangles over welded vertices
-  std::vector<Edge> edges;
-  std::vector<Incidence> incidences;
+  std::vector<Edge> edges;                       // sorted by (v0, v1)
+  std::vector<Incidence> incidences;             // per edge sorted by (triangle, orientation)
+  // Per triangle: cross(p1 - p0, p2 - p0) in double over the welded positions (p0 the first
+  // corner), unnormalised, read from the face's halfedges; zero for a triangle that collapses
+  // under welding. The facing of silhouette.h is the sign of its dot product with l - p0.
+  std::vector<glm::dvec3> faceNormals;
+  std::shared_ptr<const HalfEdgeMesh> halfEdges;  // the OpenMesh mesh (shared by copies)
+  std::size_t duplicatedVertices = 0;            // vertex copies made for refused faces
   bool closed = false;  // every edge: exactly 2 incidences with opposite orientation
 };
 
@@ -71,6 +81,16 @@ void cleanMesh(TriangleMesh& mesh, MeshReport& report);
 
 // Builds the welded edge topology of a cleaned mesh.
 EdgeTopology buildEdgeTopology(const TriangleMesh& mesh);
+
+// Shading normals, one per triangle corner (3 per triangle, in triangle order): at each corner
+// the angle-weighted sum (Thürmer and Wüthrich 1998) of the unit normals of the faces reached
+// around the corner's vertex on the half-edge mesh without crossing a crease, normalised. An
+// edge is a crease when the angle between its two faces' normals exceeds `creaseAngle`
+// (radians; 0: flat shading, pi or more: smooth everywhere), and so is every boundary and every
+// edge of a refused face, whose copied vertices join no other face (silhouette.h). Welding by
+// position makes split-normal and split-UV vertices one vertex, so seams do not crease. A
+// triangle that collapses under welding gets zero normals.
+std::vector<glm::vec3> cornerNormals(const EdgeTopology& topology, double creaseAngle);
 
 // Loads OBJ, PLY (ASCII and binary), OFF or STL (ASCII and binary) with penumbra's own parsers,
 // which keep every face or count why it was dropped, then cleans the mesh. We do not use

@@ -18,12 +18,11 @@ std::int8_t capSignFor(int facing, VolumeRule rule) {
   return static_cast<std::int8_t>(rule == VolumeRule::ClosedFrontFaces ? (facing > 0 ? 1 : 0) : facing);
 }
 
-// Unnormalised plane normal of welded triangle t (double precision, in its own winding).
+// Unnormalised plane normal of welded triangle t (double precision, in its own winding), as
+// the half-edge mesh gave it (EdgeTopology::faceNormals), and its first corner p0.
 glm::dvec3 triangleNormal(const EdgeTopology& topology, std::size_t t, glm::dvec3& p0) {
-  const std::vector<glm::vec3>& p = topology.weldedPositions;
-  const glm::uvec3& tri = topology.weldedTriangles[t];
-  p0 = glm::dvec3(p[tri.x]);
-  return glm::cross(glm::dvec3(p[tri.y]) - p0, glm::dvec3(p[tri.z]) - p0);
+  p0 = glm::dvec3(topology.weldedPositions[topology.weldedTriangles[t].x]);
+  return topology.faceNormals[t];
 }
 
 // m_e = sum over incident triangles of c_t * orientation.

@@ -16,6 +16,23 @@
 // facing_t = sign(dot(cross(p1-p0, p2-p0), l - p0)) in double precision, computed once per
 // triangle and used for both caps and sides, so no crack can open between them (hard case 9).
 // A triangle edge-on to the light has facing 0 and contributes nothing (its frustum is empty).
+//
+// The silhouette mesh (buildEdgeTopology, geometry/half_edge_mesh.h). Vertices are welded by
+// exact position (-0 = +0), so split-normal and split-UV copies share edges. The welded
+// triangles form an OpenMesh TriMesh with double-precision points; one that collapses under
+// welding (two corners at one position) has no face. In triangle order, a face is refused where
+// OpenMesh's add_face would refuse it: a complex edge (an earlier face already runs one of its
+// edges the same way: a third triangle on an edge, or a neighbour wound the other way) or a
+// complex vertex (a closed fan beside another fan at one vertex; the closed fan with the
+// earliest triangle stays). The refused faces are added after all others, each on three fresh
+// copies of its vertices, as OpenMesh's importer does; MeshReport::duplicatedVertices counts
+// the copies (3 per refused face). The edges of EdgeTopology are the OpenMesh edges grouped by
+// the welded ids of their end points, so a copy's edge joins the edge it copies and m_e sums
+// over every triangle on the welded edge, exactly as over a triangle soup: a non-manifold edge
+// keeps all its incidences (the book's spine: 3), and the closed test (2 opposite incidences on
+// every welded edge) does not depend on the refusals (two closed boxes touching at a corner stay
+// closed). The face normals are read from the faces' halfedges (cross of the edges leaving the
+// first corner), the same doubles as from the positions, so the facings below are unchanged.
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,322 @@
+// The OpenMesh TriMesh behind EdgeTopology, and the shading normals computed on its half-edge
+// structure. The mesh is built in bulk through the kernel's connectivity setters rather than
+// face by face with add_face: add_face costs ~2 us a face here (it searches each vertex's ring
+// and checks every handle), which tripled the prepare time of a 235k-triangle scene; the bulk
+// build refuses the faces add_face would refuse and links what it keeps as add_face would.
+#include "geometry/half_edge_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <tuple>
+
+#include "core/error.h"
+#include "geometry/bucket_sort.h"
+#include "geometry/mesh.h"
+
+namespace penumbra::geo {
+namespace {
+
+OpenMesh::Vec3d toOpenMesh(const glm::vec3& p) { return {double(p.x), double(p.y), double(p.z)}; }
+glm::dvec3 toGlm(const OpenMesh::Vec3d& p) { return {p[0], p[1], p[2]}; }
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+
+bool collapsed(const glm::uvec3& t) { return t.x == t.y || t.y == t.z || t.z == t.x; }
+
+}  // namespace
+
+OpenMesh::HalfedgeHandle HalfEdgeMesh::cornerHalfedge(OpenMesh::FaceHandle f, const glm::uvec3& tri, int corner) const {
+  OpenMesh::HalfedgeHandle h = mesh.halfedge_handle(f);
+  for (int i = 0; i < 3 && welded(mesh.from_vertex_handle(h)) != tri[corner]; ++i) h = mesh.next_halfedge_handle(h);
+  return h;
+}
+
+HalfEdgeMesh buildHalfEdgeMesh(const std::vector<glm::vec3>& weldedPositions,
+                               const std::vector<glm::uvec3>& tris) {
+  const std::size_t vertexCount = weldedPositions.size(), triangleCount = tris.size();
+  // Directed edge (t, k) runs from corner k to corner k + 1 of triangle t; grouped by welded
+  // end points, sorted by (lo, hi, triangle, corner).
+  struct Half {
+    std::uint32_t lo, hi, triangle, corner;
+    bool operator<(const Half& o) const { return std::tie(hi, triangle, corner) < std::tie(o.hi, o.triangle, o.corner); }
+  };
+  std::vector<Half> halves;
+  halves.reserve(3 * triangleCount);
+  for (std::size_t t = 0; t < triangleCount; ++t) {
+    if (collapsed(tris[t])) continue;
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t a = tris[t][k], b = tris[t][(k + 1) % 3];
+      halves.push_back({std::min(a, b), std::max(a, b), std::uint32_t(t), k});
+    }
+  }
+  halves = bucketSort(halves, vertexCount, [](const Half& h) { return h.lo; });
+  std::vector<std::uint32_t> groupOf(3 * triangleCount, kNone);  // directed edge 3t + k -> its group
+  std::vector<std::uint32_t> groupStart;                          // group -> first sorted half
+  for (std::size_t i = 0; i < halves.size(); ++i) {
+    if (i == 0 || halves[i].lo != halves[i - 1].lo || halves[i].hi != halves[i - 1].hi) groupStart.push_back(std::uint32_t(i));
+    groupOf[3 * halves[i].triangle + halves[i].corner] = std::uint32_t(groupStart.size() - 1);
+  }
+  const std::size_t groupCount = groupStart.size();
+  groupStart.push_back(std::uint32_t(halves.size()));
+  const auto direction = [&](std::size_t t, std::uint32_t k) { return tris[t][k] < tris[t][(k + 1) % 3] ? 0u : 1u; };
+
+  // Complex edges, in triangle order: a triangle is refused when an earlier kept one already
+  // runs one of its edges the same way (add_face: "complex edge"). What is kept is
+  // edge-manifold: each welded edge has at most one face per direction.
+  std::vector<std::uint32_t> owner(2 * groupCount, kNone);  // (group, direction) -> directed edge 3t + k
+  std::vector<std::uint8_t> kept(triangleCount, 0);
+  for (std::size_t t = 0; t < triangleCount; ++t) {
+    if (collapsed(tris[t])) continue;
+    bool free = true;
+    for (std::uint32_t k = 0; k < 3 && free; ++k) free = owner[2 * groupOf[3 * t + k] + direction(t, k)] == kNone;
+    if (!free) continue;
+    kept[t] = 1;
+    for (std::uint32_t k = 0; k < 3; ++k) owner[2 * groupOf[3 * t + k] + direction(t, k)] = std::uint32_t(3 * t + k);
+  }
+
+  // Complex vertices: the kept corners at a vertex, joined across shared edges, form its fans
+  // (paths or cycles). A half-edge mesh has no room for a closed fan beside another fan at the
+  // same vertex (add_face: "complex vertex"): there the closed fan with the earliest triangle
+  // stays, and the triangles of the other fans at that vertex are refused. A walk round each
+  // vertex from its first corner finds the vertices with more than one fan; only those are
+  // sorted into fans.
+  // The corner of v next round the vertex: across the edge leaving v (forward) or arriving at it.
+  const auto step = [&](std::uint32_t corner, bool forward) -> std::uint32_t {
+    const std::uint32_t t = corner / 3, k = corner % 3, e = forward ? k : (k + 2) % 3;
+    const std::uint32_t other = owner[2 * groupOf[3 * t + e] + (1 - direction(t, e))];
+    if (other == kNone) return kNone;
+    return forward ? 3 * (other / 3) + (other % 3 + 1) % 3 : other;
+  };
+  // Walks the fan of `corner` and calls visit on each of its corners; returns whether it is closed.
+  const auto walkFan = [&](std::uint32_t corner, auto&& visit) {
+    visit(corner);
+    for (std::uint32_t c = step(corner, true); c != kNone; c = step(c, true)) {
+      if (c == corner) return true;
+      visit(c);
+    }
+    for (std::uint32_t c = step(corner, false); c != kNone; c = step(c, false)) visit(c);
+    return false;
+  };
+  std::vector<std::uint32_t> firstCorner(vertexCount, kNone), cornerCount(vertexCount, 0);
+  for (std::size_t t = 0; t < triangleCount; ++t) {
+    if (!kept[t]) continue;
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      if (firstCorner[tris[t][k]] == kNone) firstCorner[tris[t][k]] = std::uint32_t(3 * t + k);
+      ++cornerCount[tris[t][k]];
+    }
+  }
+  std::vector<std::uint8_t> severalFans(vertexCount, 0);
+  bool anySeveral = false;
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    if (firstCorner[v] == kNone) continue;
+    std::uint32_t reached = 0;
+    walkFan(firstCorner[v], [&](std::uint32_t) { ++reached; });
+    severalFans[v] = reached != cornerCount[v];
+    anySeveral = anySeveral || severalFans[v];
+  }
+  if (anySeveral) {
+    std::vector<std::uint32_t> corners;  // the corners at vertices with several fans, by vertex
+    for (std::size_t t = 0; t < triangleCount; ++t) {
+      if (!kept[t]) continue;
+      for (std::uint32_t k = 0; k < 3; ++k)
+        if (severalFans[tris[t][k]]) corners.push_back(std::uint32_t(3 * t + k));
+    }
+    corners = bucketSort(corners, vertexCount, [&](std::uint32_t c) { return tris[c / 3][c % 3]; });
+    std::vector<std::uint8_t> refuse(triangleCount, 0);
+    for (std::size_t i = 0, j = 0; i < corners.size(); i = j) {
+      const std::uint32_t v = tris[corners[i] / 3][corners[i] % 3];
+      for (j = i; j < corners.size() && tris[corners[j] / 3][corners[j] % 3] == v;) ++j;
+      // Label the fans (corners are sorted, so fans come in order of their earliest triangle).
+      std::vector<std::uint32_t> label(j - i, kNone);
+      const auto slot = [&](std::uint32_t c) {
+        return std::size_t(std::lower_bound(corners.begin() + std::ptrdiff_t(i), corners.begin() + std::ptrdiff_t(j), c) -
+                           (corners.begin() + std::ptrdiff_t(i)));
+      };
+      std::uint32_t keep = kNone, fans = 0;
+      for (std::size_t c = i; c < j; ++c) {
+        if (label[c - i] != kNone) continue;
+        const bool closed = walkFan(corners[c], [&](std::uint32_t x) { label[slot(x)] = fans; });
+        if (closed && keep == kNone) keep = fans;
+        ++fans;
+      }
+      if (keep == kNone) continue;  // only open fans: a non-manifold vertex the mesh can hold
+      for (std::size_t c = i; c < j; ++c)
+        if (label[c - i] != keep) refuse[corners[c] / 3] = 1;
+    }
+    for (std::size_t t = 0; t < triangleCount; ++t) kept[t] = kept[t] && !refuse[t];
+  }
+
+  HalfEdgeMesh out;
+  out.weldedCount = vertexCount;
+  out.faceOf.assign(triangleCount, -1);
+  for (std::size_t t = 0; t < triangleCount; ++t)
+    if (!collapsed(tris[t]) && !kept[t]) out.refused.push_back(std::uint32_t(t));
+  std::vector<std::uint32_t> copyOf(triangleCount, kNone);  // refused triangle -> its first copied vertex
+  out.weldedOf.resize(vertexCount);
+  std::iota(out.weldedOf.begin(), out.weldedOf.end(), 0u);
+  for (std::uint32_t t : out.refused) {
+    copyOf[t] = std::uint32_t(out.weldedOf.size());
+    for (int k = 0; k < 3; ++k) out.weldedOf.push_back(tris[t][k]);
+  }
+  // One OpenMesh edge per group with kept faces, one per refused directed edge (on copies).
+  std::size_t edgeCount = 0;
+  for (std::size_t g = 0; g < groupCount; ++g) {
+    bool shared = false;
+    for (std::uint32_t i = groupStart[g]; i < groupStart[g + 1]; ++i) {
+      const bool k = kept[halves[i].triangle];
+      shared = shared || k;
+      edgeCount += !k;
+    }
+    edgeCount += shared;
+  }
+  const std::size_t faceCount = triangleCount - std::size_t(std::count_if(tris.begin(), tris.end(), collapsed));
+
+  SilhouetteTriMesh& m = out.mesh;
+  m.resize(out.weldedOf.size(), edgeCount, faceCount);
+  std::vector<OpenMesh::Vec3d>& points = m.property(m.points_pph()).data_vector();
+  for (std::size_t v = 0; v < out.weldedOf.size(); ++v) points[v] = toOpenMesh(weldedPositions[out.weldedOf[v]]);
+  std::vector<OpenMesh::HalfedgeHandle> halfedgeOf(3 * triangleCount);  // directed edge -> OpenMesh halfedge
+  out.edgeGroups.reserve(groupCount + 1);
+  int edge = 0;
+  for (std::size_t g = 0; g < groupCount; ++g) {
+    out.edgeGroups.push_back(std::uint32_t(edge));
+    OpenMesh::EdgeHandle sharedEdge;
+    for (std::uint32_t i = groupStart[g]; i < groupStart[g + 1]; ++i) {
+      const Half& h = halves[i];
+      const std::size_t d = 3 * h.triangle + h.corner;
+      if (kept[h.triangle]) {
+        if (!sharedEdge.is_valid()) {  // halfedge 0 runs lo -> hi
+          sharedEdge = OpenMesh::EdgeHandle(edge++);
+          m.set_vertex_handle(m.halfedge_handle(sharedEdge, 0), OpenMesh::VertexHandle(int(h.hi)));
+          m.set_vertex_handle(m.halfedge_handle(sharedEdge, 1), OpenMesh::VertexHandle(int(h.lo)));
+        }
+        halfedgeOf[d] = m.halfedge_handle(sharedEdge, int(direction(h.triangle, h.corner)));
+      } else {  // halfedge 0 runs the refused triangle's way between its copies
+        const OpenMesh::EdgeHandle e(edge++);
+        m.set_vertex_handle(m.halfedge_handle(e, 0), OpenMesh::VertexHandle(int(copyOf[h.triangle] + (h.corner + 1) % 3)));
+        m.set_vertex_handle(m.halfedge_handle(e, 1), OpenMesh::VertexHandle(int(copyOf[h.triangle] + h.corner)));
+        halfedgeOf[d] = m.halfedge_handle(e, 0);
+      }
+    }
+  }
+  out.edgeGroups.push_back(std::uint32_t(edge));
+  // Faces: the kept triangles in order, then the refused ones (as OpenMesh's importer adds them).
+  out.triangleOf.reserve(faceCount);
+  const auto addFace = [&](std::uint32_t t) {
+    const OpenMesh::FaceHandle f(int(out.triangleOf.size()));
+    out.faceOf[t] = f.idx();
+    out.triangleOf.push_back(t);
+    m.set_halfedge_handle(f, halfedgeOf[3 * t]);
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const OpenMesh::HalfedgeHandle h = halfedgeOf[3 * t + k];
+      m.set_face_handle(h, f);
+      m.set_next_halfedge_handle(h, halfedgeOf[3 * t + (k + 1) % 3]);
+      m.set_halfedge_handle(m.from_vertex_handle(h), h);
+    }
+  };
+  for (std::uint32_t t = 0; t < triangleCount; ++t)
+    if (kept[t]) addFace(t);
+  for (std::uint32_t t : out.refused) addFace(t);
+  // Boundary halfedges: each open fan at a vertex has one arriving (x -> v) and one leaving
+  // (v -> y); the arriving one of fan i continues with the leaving one of fan i + 1, so that
+  // circulating the vertex visits every fan, and the vertex keeps a leaving boundary halfedge
+  // (OpenMesh's conventions for boundary and non-manifold vertices).
+  struct Boundary {
+    std::uint32_t vertex;
+    int arriving, leaving;
+    bool operator<(const Boundary& o) const { return arriving < o.arriving; }
+  };
+  std::vector<Boundary> boundary;
+  const int halfedgeCount = int(m.n_halfedges());
+  for (int i = 0; i < halfedgeCount; ++i) {
+    const OpenMesh::HalfedgeHandle in(i);
+    if (m.face_handle(in).is_valid()) continue;
+    OpenMesh::HalfedgeHandle h = m.opposite_halfedge_handle(in);
+    for (int steps = 0;; ++steps) {
+      PENUMBRA_CHECK(steps < halfedgeCount, "buildHalfEdgeMesh: a fan without an end");
+      const OpenMesh::HalfedgeHandle o = m.opposite_halfedge_handle(m.prev_halfedge_handle(h));
+      if (!m.face_handle(o).is_valid()) {
+        h = o;
+        break;
+      }
+      h = o;
+    }
+    boundary.push_back({std::uint32_t(m.to_vertex_handle(in).idx()), i, h.idx()});
+  }
+  boundary = bucketSort(boundary, out.weldedOf.size(), [](const Boundary& b) { return b.vertex; });
+  for (std::size_t i = 0, j = 0; i < boundary.size(); i = j) {
+    for (j = i; j < boundary.size() && boundary[j].vertex == boundary[i].vertex;) ++j;
+    for (std::size_t k = i; k < j; ++k)
+      m.set_next_halfedge_handle(OpenMesh::HalfedgeHandle(boundary[k].arriving),
+                                 OpenMesh::HalfedgeHandle(boundary[k + 1 < j ? k + 1 : i].leaving));
+    m.set_halfedge_handle(OpenMesh::VertexHandle(int(boundary[i].vertex)), OpenMesh::HalfedgeHandle(boundary[i].leaving));
+  }
+  return out;
+}
+
+std::vector<glm::vec3> cornerNormals(const EdgeTopology& topology, double creaseAngle) {
+  PENUMBRA_CHECK(topology.halfEdges != nullptr, "cornerNormals needs a topology from buildEdgeTopology");
+  const HalfEdgeMesh& hem = *topology.halfEdges;
+  const SilhouetteTriMesh& m = hem.mesh;
+  const std::size_t triangles = topology.weldedTriangles.size();
+  std::vector<glm::dvec3> unit(triangles, glm::dvec3(0.0));
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const double len = glm::length(topology.faceNormals[t]);
+    if (len > 0.0) unit[t] = topology.faceNormals[t] / len;
+  }
+  const bool smoothAll = creaseAngle >= 3.14159265358979323846;
+  const double cosCrease = std::cos(std::max(creaseAngle, 0.0));
+  const auto triangleOf = [&](OpenMesh::FaceHandle f) { return hem.triangleOf[std::size_t(f.idx())]; };
+  // Across an edge between faces a and b: smooth when both have an area and their normals are
+  // within the crease angle.
+  const auto smooth = [&](OpenMesh::FaceHandle a, OpenMesh::FaceHandle b) {
+    const glm::dvec3 &na = unit[triangleOf(a)], &nb = unit[triangleOf(b)];
+    if (glm::dot(na, na) == 0.0 || glm::dot(nb, nb) == 0.0) return false;
+    return smoothAll || glm::dot(na, nb) >= cosCrease;
+  };
+  // The face's unit normal weighted by its angle at the vertex `in` points to (Thürmer and
+  // Wüthrich 1998, "Computing vertex normals from polygonal facets").
+  const auto weighted = [&](OpenMesh::HalfedgeHandle in) {
+    const glm::dvec3 v = toGlm(m.point(m.to_vertex_handle(in)));
+    const glm::dvec3 a = toGlm(m.point(m.from_vertex_handle(in))) - v;
+    const glm::dvec3 b = toGlm(m.point(m.to_vertex_handle(m.next_halfedge_handle(in)))) - v;
+    return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)) * unit[triangleOf(m.face_handle(in))];
+  };
+
+  std::vector<glm::vec3> out(3 * triangles, glm::vec3(0.0f));
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const OpenMesh::FaceHandle f(hem.faceOf[t]);
+    if (!f.is_valid()) continue;  // collapsed under welding: no area, no normal
+    for (int c = 0; c < 3; ++c) {
+      const OpenMesh::HalfedgeHandle in = m.prev_halfedge_handle(hem.cornerHalfedge(f, topology.weldedTriangles[t], c));
+      glm::dvec3 sum = weighted(in);
+      // One way round the vertex: the face across the edge leaving it (next of `in`) ...
+      bool fullCircle = false;
+      for (OpenMesh::HalfedgeHandle g = in;;) {
+        const OpenMesh::HalfedgeHandle o = m.opposite_halfedge_handle(m.next_halfedge_handle(g));
+        const OpenMesh::FaceHandle nf = m.face_handle(o);
+        if (!nf.is_valid() || !smooth(m.face_handle(g), nf)) break;
+        if (nf == f) {
+          fullCircle = true;
+          break;
+        }
+        sum += weighted(o);
+        g = o;
+      }
+      // ... and the other way, across the edge arriving at it, up to a crease or a boundary.
+      for (OpenMesh::HalfedgeHandle g = in; !fullCircle;) {
+        const OpenMesh::HalfedgeHandle o = m.opposite_halfedge_handle(g);
+        const OpenMesh::FaceHandle nf = m.face_handle(o);
+        if (!nf.is_valid() || nf == f || !smooth(m.face_handle(g), nf)) break;
+        g = m.prev_halfedge_handle(o);
+        sum += weighted(g);
+      }
+      const double len = glm::length(sum);
+      out[3 * t + std::size_t(c)] = glm::vec3(len > 0.0 ? sum / len : unit[t]);
+    }
+  }
+  return out;
+}
+
+}  // namespace penumbra::geo
