@@ -4,6 +4,7 @@
 #pragma once
 
 #include "pipeline/timing.h"
+#include "techniques/registry.h"
 
 namespace penumbra::bench {
 using penumbra::Spread;

@@ -6,8 +6,6 @@
 //
 //   penumbra_bench_dcs [SCENE] [--semi SCENE] [-W 512] [-H 512] [--frames 5] [--warmup 1]
 //                      [--backend egl] [--json FILE]
-#include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <fstream>
 
@@ -33,22 +31,12 @@ double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 
 namespace penumbra::bench {
 
-int dcsStudies(int argc, char** argv, std::FILE* out) {
+int dcsStudies(const DcsStudyOptions& o, std::FILE* out) {
   setLogLevel("warn");
-  CLI::App app{"the DCS studies of issue 4 in one run"};
-  std::string scenePath = "scenes/stained-glass.json", semiPath = "scenes/semi-opaque.json", backend = "egl", jsonOut;
-  int width = 512, height = 512, frames = 5, warmup = 1;
-  app.add_option("scene", scenePath, "scene for the mode, sample-count, shading and interleaving studies");
-  app.add_option("--semi", semiPath, "scene with semi-opaque occluders (its opaque twin is made in memory)");
-  app.add_option("-W", width);
-  app.add_option("-H", height);
-  app.add_option("--frames", frames);
-  app.add_option("--warmup", warmup);
-  app.add_option("--backend", backend);
-  app.add_option("--json", jsonOut);
-  CLI11_PARSE(app, argc, argv);
+  const std::string &scenePath = o.scene, &semiPath = o.semi, &jsonOut = o.json;
+  const int width = o.width, height = o.height, frames = o.frames, warmup = o.warmup;
   try {
-    auto ctx = gl::Context::create(gl::parseBackend(backend));
+    auto ctx = gl::Context::create(o.backend);
     Scene scene = loadScene(scenePath);
     nlohmann::json results;
     results["renderer"] = ctx->renderer();

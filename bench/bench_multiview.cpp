@@ -14,8 +14,6 @@
 //
 //   penumbra_bench_multiview [SCENE] [-W 256] [-H 256] [--map 1024] [--frames 3] [--warmup 1]
 //                            [--copies 1,2,5,6] [--maps 24,128] [--study 1,2,3,4,5] [--backend egl]
-#include <CLI/CLI.hpp>
-
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -25,7 +23,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/context.h"
-#include "pipeline/compare.h"
+#include "compare/compare.h"
 #include "pipeline/renderer.h"
 #include "sampling/light_samples.h"
 #include "scene/scene.h"
@@ -92,48 +90,22 @@ double slope(const std::vector<double>& x, const std::vector<double>& y) {
   return den > 0 ? num / den : 0.0;
 }
 
-std::vector<int> parseList(const std::string& s) {
-  std::vector<int> v;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    std::size_t j = s.find(',', i);
-    v.push_back(std::stoi(s.substr(i, j - i)));
-    if (j == std::string::npos) break;
-    i = j + 1;
-  }
-  return v;
-}
-
 }  // namespace
 
 namespace penumbra::bench {
 
-int multiviewStudies(int argc, char** argv, std::FILE* out) {
+int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
   setLogLevel("error");
-  CLI::App app{"the multi-view shadow-map studies of issue 5 in one run"};
-  std::string scenePath = "scenes/engine.json", backend = "egl", copiesArg = "1,2,5,6", mapsArg = "24,128",
-              studyArg = "1,2,3,4,5";
-  int width = 256, height = 256, map = 1024, frames = 3, warmup = 1;
-  float spacing = 1.6f;
-  app.add_option("scene", scenePath, "base scene: the floor then the occluders to instance");
-  app.add_option("-W", width);
-  app.add_option("-H", height);
-  app.add_option("--map", map, "depth-map resolution of studies 1-4");
-  app.add_option("--frames", frames);
-  app.add_option("--warmup", warmup);
-  app.add_option("--copies", copiesArg, "instances of the occluders per scene of study 1");
-  app.add_option("--spacing", spacing, "distance between instances");
-  app.add_option("--maps", mapsArg, "light samples (maps) of study 1");
-  app.add_option("--study", studyArg, "studies to run");
-  app.add_option("--backend", backend);
-  CLI11_PARSE(app, argc, argv);
+  const std::string& scenePath = o.scene;
+  const int width = o.width, height = o.height, map = o.map, frames = o.frames, warmup = o.warmup;
+  const float spacing = o.spacing;
   try {
-    auto ctx = gl::Context::create(gl::parseBackend(backend));
+    auto ctx = gl::Context::create(o.backend);
     Scene base = loadScene(scenePath);
     Bench b{*ctx, width, height, frames, warmup};
     const std::string mapParam = "map=" + std::to_string(map);
     std::set<int> studies;
-    for (int s : parseList(studyArg)) studies.insert(s);
+    for (int s : o.studies) studies.insert(s);
     std::fprintf(out, "Multi-view shadow-map studies (issue 5): %s, %dx%d image, %d^2 maps, median of %d frames after %d "
                 "warm-up, times in ms (glFinish + steady clock), renderer %s\n\n",
                 scenePath.c_str(), width, height, map, frames, warmup, ctx->renderer().c_str());
@@ -143,14 +115,14 @@ int multiviewStudies(int argc, char** argv, std::FILE* out) {
                   "reproject, and the single-map pcss-ultra (64-sample blocker search, 96-sample PCF, as the paper's "
                   "PCSS rows; its 'maps' column is its one map, 'points' its shadow pass); RMSE of the visibility "
                   "buffer against raytrace with the same samples\n");
-      for (int n : parseList(mapsArg)) {
+      for (int n : o.maps) {
         std::fprintf(out, "\n%d maps of %d^2 (%d PCF taps per map: %d depth samples per pixel)\n", n, map, 5, 5 * n);
         std::fprintf(out, "%-9s %8s %-12s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s %9s\n", "triangles", "points", "technique",
                     "G-buffer", "points", "maps", "lighting", "total", "range", "x maps", "x total", "RMSE", "map MiB",
                     "point MiB");
         std::vector<double> tris;
         std::map<std::string, std::vector<double>> depthTimes;
-        for (int copies : parseList(copiesArg)) {
+        for (int copies : o.copies) {
           Scene scene = instanced(base, copies, spacing);
           RenderSettings s = b.settings(n);
           FrameResult ref = b.reference(scene, s);

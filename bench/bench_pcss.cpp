@@ -13,8 +13,6 @@
 //
 //   penumbra_bench_pcss [SCENE] [-W 512] [-H 512] [--map 2048] [--samples 16] [--frames 5]
 //                       [--warmup 1] [--backend egl]
-#include <CLI/CLI.hpp>
-
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -24,7 +22,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/context.h"
-#include "pipeline/compare.h"
+#include "compare/compare.h"
 #include "pipeline/renderer.h"
 #include "scene/scene.h"
 #include "techniques/pcss/pcss.h"
@@ -33,23 +31,13 @@ using namespace penumbra;
 
 namespace penumbra::bench {
 
-int singleMapStudies(int argc, char** argv, std::FILE* out) {
+int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
   setLogLevel("error");
-  CLI::App app{"the pcss studies of issue 6 in one run"};
-  std::string scenePath = "scenes/stained-glass.json", backend = "egl";
-  int width = 512, height = 512, map = 2048, samples = 16, frames = 5, warmup = 1, errorSize = 256;
-  app.add_option("scene", scenePath);
-  app.add_option("-W", width);
-  app.add_option("-H", height);
-  app.add_option("--map", map);
-  app.add_option("--samples", samples, "light samples of the reference (pcss's horizon weights)");
-  app.add_option("--frames", frames);
-  app.add_option("--warmup", warmup);
-  app.add_option("--backend", backend);
-  app.add_option("--error-size", errorSize, "image size of study 4");
-  CLI11_PARSE(app, argc, argv);
+  const std::string& scenePath = o.scene;
+  const int width = o.width, height = o.height, map = o.map, samples = o.samples, frames = o.frames,
+            warmup = o.warmup, errorSize = o.errorSize;
   try {
-    auto ctx = gl::Context::create(gl::parseBackend(backend));
+    auto ctx = gl::Context::create(o.backend);
     Scene scene = loadScene(scenePath);
     RenderSettings s;
     s.width = width, s.height = height;

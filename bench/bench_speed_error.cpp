@@ -9,8 +9,6 @@
 //
 //   penumbra_bench_speed_error -o DIR [--scenes default,scenes/engine.json,...] [-W 128]
 //       [--samples 8,16,32] [--techniques hard-sv,dcs,...] [--frames 3] [--warmup 1] [--backend egl]
-#include <CLI/CLI.hpp>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -23,43 +21,26 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/context.h"
-#include "pipeline/compare.h"
-#include "pipeline/report.h"
+#include "compare/compare.h"
+#include "compare/report.h"
 #include "scene/scene.h"
 #include "studies.h"
+#include "techniques/registry.h"
 
 namespace fs = std::filesystem;
 
 namespace penumbra::bench {
 
-int speedErrorStudy(int argc, char** argv, std::FILE* out) {
-  CLI::App app{"speed against error on the shipped scenes"};
-  std::vector<std::string> scenes = {"default",
-                                     "scenes/stained-glass.json",
-                                     "scenes/animated-window.json",
-                                     "scenes/dcs-silhouettes.json",
-                                     "scenes/semi-opaque.json",
-                                     "scenes/glass-layers.json",
-                                     "scenes/spinning-fan.json",
-                                     "scenes/example.json",
-                                     "scenes/engine.json"};
-  std::vector<std::string> techniques = {"hard-sv", "dcs", "dcs-lut", "mvr", "vwss", "reproject",
-                                         "pcss", "pcss-ultra", "pcss-mask", "vssm"};
-  std::string samples = "8,16,32", outDir, backend = "egl";
-  int width = 128, frames = 3, warmup = 1;
-  bool images = true;
-  app.add_option("--scenes", scenes, "scene files ('default': the built-in scene)")->delimiter(',');
-  app.add_option("--techniques", techniques)->delimiter(',');
-  app.add_option("--samples", samples, "the samples sweep (comma-separated)");
-  app.add_option("-W", width, "image width (height: the scene's aspect)");
-  app.add_option("--frames", frames, "timed frames per technique and preset");
-  app.add_option("--warmup", warmup);
-  app.add_option("--images", images, "write each scene's PNG images and insets (0: reports only)");
-  app.add_option("--backend", backend);
-  app.add_option("-o", outDir, "output folder")->required();
-  CLI11_PARSE(app, argc, argv);
+int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
+  const auto& scenes = o.scenes;
+  const auto& techniques = o.techniques;
+  const std::string& outDir = o.outDir;
+  const int width = o.width, frames = o.frames, warmup = o.warmup;
+  const bool images = o.images;
+  std::string samples;
+  for (int n : o.samples) samples += (samples.empty() ? "" : ",") + std::to_string(n);
   try {
-    auto ctx = gl::Context::create(gl::parseBackend(backend));
+    auto ctx = gl::Context::create(o.backend);
     fs::create_directories(outDir);
     std::fprintf(out, "Speed against error (issue 7): %zu scenes, %d px wide, samples %s, median of %d frames after %d warm-up "
                  "(glFinish + steady clock), visibility RMSE against raytrace-converged (1024 spp); renderer %s\n\n",
@@ -77,19 +58,21 @@ int speedErrorStudy(int argc, char** argv, std::FILE* out) {
       RenderSettings s;
       s.width = width;
       s.height = std::max(1, int(std::lround(double(width) * scene.height / scene.width)));
-      CompareOptions o;
-      o.techniques = techniques;
-      o.sweeps = {parseSweep("samples=" + samples)};
-      o.converged = true;
-      o.timingFrames = frames, o.warmup = warmup;
-      o.outDir = (fs::path(outDir) / scene.name).string();
-      o.writeImages = images, o.writeExr = false;
-      o.progress = 0;
-      fs::create_directories(o.outDir);
+      CompareOptions c;
+      c.techniques = findTechniques(techniques);
+      c.reference = findTechnique("raytrace");
+      c.convergedReference = findTechnique("raytrace-converged");
+      c.sweeps = {SweepAxis::of("samples", o.samples)};
+      c.converged = true;
+      c.timingFrames = frames, c.warmup = warmup;
+      c.outDir = (fs::path(outDir) / scene.name).string();
+      c.writeImages = images, c.writeExr = false;
+      c.progress = 0;
+      fs::create_directories(c.outDir);
       PLOG_WARN("speed-error: {} ({} triangles)", scene.name, scene.triangleCount());
-      CompareResult r = compareTechniques(*ctx, scene, s, o);
-      r.info["backend"] = backend;
-      writeReport(r, o.outDir);
+      CompareResult r = compareTechniques(*ctx, scene, s, c);
+      r.info["backend"] = gl::toString(o.backend);
+      writeReport(r, c.outDir);
       std::fprintf(out, "== %s (%s, %zu triangles, %dx%d)\n%s", scene.name.c_str(), path.c_str(), scene.triangleCount(),
                    s.width, s.height, reportTable(r).c_str());
       // A failed run (its row says why) would silently drop out of the headline's means.

@@ -7,8 +7,6 @@
 //
 //   penumbra_bench [SCENE] [-W 512] [-H 512] [--samples 1,16,64] [--techniques hard-sv,dcs]
 //                  [--frames 5] [--warmup 1] [--backend egl] [--json FILE]
-#include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -30,28 +28,16 @@ using bench::Spread;
 
 namespace penumbra::bench {
 
-int techniqueTimings(int argc, char** argv, std::FILE* out) {
+int techniqueTimings(const TimingOptions& o, std::FILE* out) {
   setLogLevel("warn");
-  CLI::App app{"per-stage timing of techniques against raytrace"};
-  std::string scenePath = "scenes/engine.json", backend = "egl", jsonOut, pattern = "correlated", shading = "modulate";
-  int width = 512, height = 512, frames = 5, warmup = 1;
-  std::vector<int> sampleCounts = {1};
-  std::vector<std::string> techniques = {"hard-sv"};
-  app.add_option("scene", scenePath);
-  app.add_option("-W", width);
-  app.add_option("-H", height);
-  app.add_option("--samples", sampleCounts)->delimiter(',');
-  app.add_option("--techniques", techniques)->delimiter(',');
-  app.add_option("--frames", frames);
-  app.add_option("--warmup", warmup);
-  app.add_option("--backend", backend);
-  app.add_option("--json", jsonOut);
-  app.add_option("--pattern", pattern, "correlated | decorrelated | interleaved");
-  app.add_option("--shading", shading, "modulate (eq. 3) | per-sample (eq. 6)");
-  CLI11_PARSE(app, argc, argv);
+  const std::string &scenePath = o.scene, &jsonOut = o.json;
+  const std::string pattern = toString(o.pattern), shading = toString(o.shading);
+  const int width = o.width, height = o.height, frames = o.frames, warmup = o.warmup;
+  const auto& sampleCounts = o.samples;
+  const auto& techniques = o.techniques;
   try {
     Scene scene = loadScene(scenePath);
-    auto ctx = gl::Context::create(gl::parseBackend(backend));
+    auto ctx = gl::Context::create(o.backend);
     std::fprintf(out, "scene %s: %zu triangles, %dx%d, pattern %s, shading %s, renderer %s\n", scenePath.c_str(),
                 scene.triangleCount(), width, height, pattern.c_str(), shading.c_str(), ctx->renderer().c_str());
     nlohmann::json results;
@@ -65,8 +51,8 @@ int techniqueTimings(int argc, char** argv, std::FILE* out) {
     for (int samples : sampleCounts) {
       RenderSettings s;
       s.width = width, s.height = height, s.sampling.count = samples;
-      s.sampling.pattern = parsePixelPattern(pattern);
-      s.shading = parseShadingMode(shading);
+      s.sampling.pattern = o.pattern;
+      s.shading = o.shading;
       s.perSampleResults = false;  // no comparison here: time what a frame needs
       std::vector<std::string> names = techniques;
       names.push_back("raytrace");

@@ -1,22 +1,67 @@
 #include "studies.h"
 
+#include <filesystem>
+
 namespace penumbra::bench {
 
+namespace {
+
+// Full runs use each study's defaults (the sizes of its README section); quick ones shrink
+// images, maps and frame counts so that the whole suite is a smoke run of a few minutes.
+int speedError(const StudyRun& r, std::FILE* out) {
+  SpeedErrorOptions o;
+  o.backend = r.backend;
+  o.outDir = (std::filesystem::path(r.outDir) / "speed-error").string();
+  if (r.quick) o.width = 96, o.samples = {8, 16}, o.frames = 1;
+  return speedErrorStudy(o, out);
+}
+
+int dcs(const StudyRun& r, std::FILE* out) {
+  DcsStudyOptions o;
+  o.backend = r.backend;
+  if (r.quick) o.width = 256, o.height = 256, o.frames = 2;
+  return dcsStudies(o, out);
+}
+
+int multiview(const StudyRun& r, std::FILE* out) {
+  MultiviewOptions o;
+  o.backend = r.backend;
+  if (r.quick) {
+    o.width = 128, o.height = 128, o.map = 512, o.frames = 1;
+    o.copies = {1, 2}, o.maps = {8, 24}, o.studies = {1, 2, 5};
+  }
+  return multiviewStudies(o, out);
+}
+
+int singleMap(const StudyRun& r, std::FILE* out) {
+  SingleMapOptions o;
+  o.backend = r.backend;
+  if (r.quick) o.width = 256, o.height = 256, o.map = 1024, o.frames = 2, o.errorSize = 128;
+  return singleMapStudies(o, out);
+}
+
+int timings(const StudyRun& r, std::FILE* out) {
+  TimingOptions o;
+  o.backend = r.backend;
+  if (r.quick) {
+    o.width = 128, o.height = 128, o.samples = {16}, o.frames = 2;
+    o.techniques = {"hard-sv", "dcs", "mvr", "vwss", "pcss", "vssm"};
+  } else {
+    o.width = 256, o.height = 256, o.samples = {16, 64};
+    o.techniques = {"hard-sv", "dcs", "mvr", "vwss", "reproject", "pcss", "vssm"};
+  }
+  return techniqueTimings(o, out);
+}
+
+}  // namespace
+
 const std::vector<Study>& studyTable() {
-  // Full runs use each study's defaults (the sizes of its README section); --quick shrinks
-  // images, maps and frame counts so that the whole suite is a smoke run of a few minutes.
   static const std::vector<Study> table = {
-      {"speed-error", "speed against error on every shipped scene, the headline table and plot", speedErrorStudy, {},
-       {"-W", "96", "--samples", "8,16", "--frames", "1"}},
-      {"dcs", "DCS paper: covered-sample modes, sample counts, shading modes, interleaving, semi-opaque", dcsStudies, {},
-       {"-W", "256", "-H", "256", "--frames", "2"}},
-      {"multiview", "VWSS paper tables 1-2, figures 8 and 13, map-resolution convergence", multiviewStudies, {},
-       {"-W", "128", "-H", "128", "--map", "512", "--copies", "1,2", "--maps", "8,24", "--frames", "1", "--study", "1,2,5"}},
-      {"single-map", "Sterna table 1, VSSM against PCSS as the light grows, VSSM stages, single-map errors",
-       singleMapStudies, {}, {"-W", "256", "-H", "256", "--map", "1024", "--frames", "2", "--error-size", "128"}},
-      {"techniques", "per-stage timings of the main techniques on the engine", techniqueTimings,
-       {"-W", "256", "-H", "256", "--samples", "16,64", "--techniques", "hard-sv,dcs,mvr,vwss,reproject,pcss,vssm"},
-       {"-W", "128", "-H", "128", "--samples", "16", "--frames", "2", "--techniques", "hard-sv,dcs,mvr,vwss,pcss,vssm"}},
+      {"speed-error", "speed against error on every shipped scene, the headline table and plot", speedError},
+      {"dcs", "DCS paper: covered-sample modes, sample counts, shading modes, interleaving, semi-opaque", dcs},
+      {"multiview", "VWSS paper tables 1-2, figures 8 and 13, map-resolution convergence", multiview},
+      {"single-map", "Sterna table 1, VSSM against PCSS as the light grows, VSSM stages, single-map errors", singleMap},
+      {"techniques", "per-stage timings of the main techniques on the engine", timings},
   };
   return table;
 }

@@ -1,33 +1,104 @@
-// The benchmark studies, each a function taking its command line and writing its tables to
-// `out`: run standalone (penumbra_bench_<study>, bench/bench_main.cpp) or all together by
-// `penumbra bench` (src/cli/bench.cpp), which writes bench/results/<machine>/.
+// The benchmark studies, each a function taking its typed options and writing its tables to
+// `out`. One table (studyTable) lists them with the settings of `penumbra bench` (full: each
+// study's defaults, the sizes of its README section; quick: smaller sizes, fewer frames); the
+// standalone binaries (penumbra_bench_<study>, src/cli/bench_main.cpp) parse their flags into
+// the same options and call the same functions. `penumbra bench` (src/cli/commands.cpp) writes
+// bench/results/<machine>/.
 #pragma once
 
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "gl/context.h"
+#include "pipeline/renderer.h"
+
 namespace penumbra::bench {
 
 // Speed against error on every shipped scene (bench_speed_error.cpp): compare reports with a
 // samples sweep against the converged reference, and the cross-scene headline table.
-int speedErrorStudy(int argc, char** argv, std::FILE* out);
+struct SpeedErrorOptions {
+  std::vector<std::string> scenes = {"default",
+                                     "scenes/stained-glass.json",
+                                     "scenes/animated-window.json",
+                                     "scenes/dcs-silhouettes.json",
+                                     "scenes/semi-opaque.json",
+                                     "scenes/glass-layers.json",
+                                     "scenes/spinning-fan.json",
+                                     "scenes/example.json",
+                                     "scenes/engine.json"};  // "default": the built-in scene
+  std::vector<std::string> techniques = {"hard-sv", "dcs",  "dcs-lut",    "mvr",       "vwss",
+                                         "reproject", "pcss", "pcss-ultra", "pcss-mask", "vssm"};
+  std::vector<int> samples = {8, 16, 32};  // the samples sweep
+  int width = 128;                         // image width (height: the scene's aspect)
+  int frames = 3, warmup = 1;              // timed frames per technique and preset
+  bool images = true;                      // each scene's PNG images and insets (false: reports only)
+  std::string outDir;                      // required
+  gl::Backend backend = gl::Backend::Egl;
+};
+int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out);
+
 // DCS paper studies (bench_dcs.cpp): covered-sample modes, sample counts, shading, interleaving,
 // semi-opaque occluders.
-int dcsStudies(int argc, char** argv, std::FILE* out);
+struct DcsStudyOptions {
+  std::string scene = "scenes/stained-glass.json";  // modes, sample counts, shading, interleaving
+  std::string semi = "scenes/semi-opaque.json";     // semi-opaque occluders (its opaque twin made in memory)
+  int width = 512, height = 512, frames = 5, warmup = 1;
+  std::string json;  // results as JSON here, if given
+  gl::Backend backend = gl::Backend::Egl;
+};
+int dcsStudies(const DcsStudyOptions& o, std::FILE* out);
+
 // VWSS paper tables 1-2, figures 8 and 13, map-resolution convergence (bench_multiview.cpp).
-int multiviewStudies(int argc, char** argv, std::FILE* out);
+struct MultiviewOptions {
+  std::string scene = "scenes/engine.json";  // base scene: the floor then the occluders to instance
+  int width = 256, height = 256;
+  int map = 1024;  // depth-map resolution of studies 1-4
+  int frames = 3, warmup = 1;
+  std::vector<int> copies = {1, 2, 5, 6};  // instances of the occluders per scene of study 1
+  float spacing = 1.6f;                    // distance between instances
+  std::vector<int> maps = {24, 128};       // light samples (maps) of study 1
+  std::vector<int> studies = {1, 2, 3, 4, 5};
+  gl::Backend backend = gl::Backend::Egl;
+};
+int multiviewStudies(const MultiviewOptions& o, std::FILE* out);
+
 // Sterna's table 1, VSSM against PCSS, VSSM stages, single-map errors (bench_pcss.cpp).
-int singleMapStudies(int argc, char** argv, std::FILE* out);
+struct SingleMapOptions {
+  std::string scene = "scenes/stained-glass.json";
+  int width = 512, height = 512, map = 2048;
+  int samples = 16;  // light samples of the reference (pcss's horizon weights)
+  int frames = 5, warmup = 1;
+  int errorSize = 256;  // image size of study 4
+  gl::Backend backend = gl::Backend::Egl;
+};
+int singleMapStudies(const SingleMapOptions& o, std::FILE* out);
+
 // Per-stage timings of chosen techniques and sample counts (bench_techniques.cpp).
-int techniqueTimings(int argc, char** argv, std::FILE* out);
+struct TimingOptions {
+  std::string scene = "scenes/engine.json";
+  int width = 512, height = 512, frames = 5, warmup = 1;
+  std::vector<int> samples = {1};
+  std::vector<std::string> techniques = {"hard-sv"};
+  PixelPattern pattern = PixelPattern::Correlated;
+  ShadingMode shading = ShadingMode::Modulate;
+  std::string json;  // results as JSON here, if given
+  gl::Backend backend = gl::Backend::Egl;
+};
+int techniqueTimings(const TimingOptions& o, std::FILE* out);
+
+// What `penumbra bench` gives every study.
+struct StudyRun {
+  gl::Backend backend = gl::Backend::Egl;
+  bool quick = false;
+  std::string outDir;  // the machine's results folder (the speed-error study writes under it)
+};
 
 struct Study {
   std::string name;         // "speed-error", "dcs", ...
   std::string description;  // one line
-  int (*run)(int, char**, std::FILE*);
-  std::vector<std::string> fullArgs;   // `penumbra bench`: added to the study's defaults
-  std::vector<std::string> quickArgs;  // `penumbra bench --quick`: smaller sizes, fewer frames
+  // Runs the study with the settings of `penumbra bench` (or `--quick`).
+  int (*run)(const StudyRun& run, std::FILE* out);
 };
 // The explicit table of studies, in the order `penumbra bench` runs them.
 const std::vector<Study>& studyTable();

@@ -14,13 +14,13 @@ add_test(NAME cli_exit_codes COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/cli_test.sh 
 set_tests_properties(cli_exit_codes PROPERTIES SKIP_RETURN_CODE 77)
 
 # DCS counter packing: no GL needed.
-penumbra_add_test(test_dcs_packing ${CMAKE_CURRENT_SOURCE_DIR}/dcs_packing_test.cpp LIBS penumbra_render)
+penumbra_add_test(test_dcs_packing ${CMAKE_CURRENT_SOURCE_DIR}/dcs_packing_test.cpp LIBS penumbra_techniques)
 
 # DCS semi-opaque unit coding: no GL needed.
-penumbra_add_test(test_dcs_opacity ${CMAKE_CURRENT_SOURCE_DIR}/dcs_opacity_test.cpp LIBS penumbra_render)
+penumbra_add_test(test_dcs_opacity ${CMAKE_CURRENT_SOURCE_DIR}/dcs_opacity_test.cpp LIBS penumbra_techniques)
 
 # DCS edge LUT files: no GL needed.
-penumbra_add_test(test_dcs_edge_lut ${CMAKE_CURRENT_SOURCE_DIR}/dcs_edge_lut_test.cpp LIBS penumbra_render)
+penumbra_add_test(test_dcs_edge_lut ${CMAKE_CURRENT_SOURCE_DIR}/dcs_edge_lut_test.cpp LIBS penumbra_techniques)
 
 # Resource hygiene: repeated renders leak no GL objects or memory; GL limits and out-of-memory
 # are one-line errors (issue 7).

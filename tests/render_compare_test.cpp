@@ -7,8 +7,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "pipeline/report.h"
+#include "compare/report.h"
 #include "render_test_util.h"
+#include "cli/options.h"
+
+using penumbra::cli::parseSweep;
 
 namespace penumbra::test {
 namespace {
@@ -19,8 +22,7 @@ std::size_t runsOf(const CompareResult& r, const std::string& technique) {
 
 TEST(Compare, SweepPresetsAndDeduplication) {
   Scene scene = loadScene(scenePath("scenes/hard/01-cube-on-plane.json"));
-  CompareOptions o;
-  o.techniques = {"hard-sv", "mvr"};
+  CompareOptions o = compareOptions({"hard-sv", "mvr"});
   o.sweeps = {parseSweep("samples=4,8"), parseSweep("map=64,128")};
   o.timingFrames = 1, o.warmup = 0, o.progress = 0;
   CompareResult r = compareTechniques(context(), scene, settings(48, 4), o);
@@ -56,8 +58,7 @@ class CompareFailure : public TempDirTest {};
 
 TEST_F(CompareFailure, AFailedTechniqueIsItsRowAndTheOthersGoOn) {
   Scene scene = loadScene(scenePath("scenes/hard/01-cube-on-plane.json"));
-  CompareOptions o;
-  o.techniques = {"dcs", "vssm", "hard-sv"};
+  CompareOptions o = compareOptions({"dcs", "vssm", "hard-sv"});
   o.params = {"map=1000"};
   o.timingFrames = 1, o.warmup = 0, o.progress = 0;
   o.outDir = dir_.string();
@@ -125,8 +126,7 @@ TEST_F(CompareFailure, AFailedTechniqueIsItsRowAndTheOthersGoOn) {
 TEST(Compare, AFailedReferenceEndsTheRun) {
   Scene scene = loadScene(scenePath("scenes/hard/01-cube-on-plane.json"));
   scene.lights[0].intensity = NAN;  // every technique's shaded image is NaN, the reference's first
-  CompareOptions o;
-  o.techniques = {"hard-sv"};
+  CompareOptions o = compareOptions({"hard-sv"});
   o.timingFrames = 1, o.warmup = 0, o.progress = 0;
   try {
     compareTechniques(context(), scene, settings(32, 4), o);
@@ -144,8 +144,7 @@ TEST(Compare, AFailedReferenceEndsTheRun) {
 // without at 128 px); dcs leaves none.
 TEST(Compare, PixelsOutsideTheShadowMapsAreCountedAndMasked) {
   Scene scene = loadScene(scenePath("scenes/hard/27-point-inside.json"));
-  CompareOptions o;
-  o.techniques = {"mvr", "dcs"};
+  CompareOptions o = compareOptions({"mvr", "dcs"});
   o.timingFrames = 1, o.warmup = 0, o.progress = 0;
   const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "penumbra_unshadowed";
   std::filesystem::remove_all(dir);
@@ -181,19 +180,17 @@ TEST(Compare, PixelsOutsideTheShadowMapsAreCountedAndMasked) {
 
 TEST(Compare, ParametersNoTechniqueReadsAreRefusedBeforeRendering) {
   Scene scene = loadScene(scenePath("scenes/hard/01-cube-on-plane.json"));
-  CompareOptions o;
-  o.techniques = {"hard-sv"};
+  CompareOptions o = compareOptions({"hard-sv"});
   o.sweeps = {parseSweep("map=64,128")};
   o.progress = 0;
   EXPECT_THROW(compareTechniques(context(), scene, settings(32, 4), o), Error);
-  o.techniques = {"mvr"};
+  o.techniques = findTechniques({"mvr"});
   o.params = {"map=64"};
   EXPECT_THROW(compareTechniques(context(), scene, settings(32, 4), o), Error) << "swept and given";
 }
 
 TEST(Compare, FlickerIsZeroOnAStillAndExactForDcs) {
-  CompareOptions o;
-  o.techniques = {"hard-sv", "dcs", "mvr"};
+  CompareOptions o = compareOptions({"hard-sv", "dcs", "mvr"});
   o.frames = 3, o.warmup = 0, o.progress = 0;
   Scene still = loadScene(scenePath("scenes/hard/01-cube-on-plane.json"));
   ASSERT_FALSE(still.isAnimated());

@@ -8,9 +8,10 @@
 
 #include "core/error.h"
 #include "gl/context.h"
-#include "pipeline/compare.h"
+#include "compare/compare.h"
 #include "pipeline/renderer.h"
 #include "scene/scene.h"
+#include "techniques/registry.h"
 #include "test_util.h"
 
 namespace penumbra::test {
@@ -28,6 +29,15 @@ inline RenderSettings settings(int size, int samples) {
   s.width = s.height = size;
   s.sampling.count = samples;
   return s;
+}
+
+// Compare options for `techniques` against the raytrace references of the table.
+inline CompareOptions compareOptions(const std::vector<std::string>& techniques) {
+  CompareOptions o;
+  o.techniques = findTechniques(techniques);
+  o.reference = findTechnique("raytrace");
+  o.convergedReference = findTechnique("raytrace-converged");
+  return o;
 }
 
 struct Comparison {

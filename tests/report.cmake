@@ -1,6 +1,6 @@
 # The comparison report (issue 7): writers without GL; compareTechniques (sweeps, flicker) with
 # GL; the HTML page opened in headless Chromium.
-penumbra_add_test(test_report ${CMAKE_CURRENT_SOURCE_DIR}/report_test.cpp LIBS penumbra_render)
+penumbra_add_test(test_report ${CMAKE_CURRENT_SOURCE_DIR}/report_test.cpp LIBS penumbra_compare penumbra_cli_options)
 
 penumbra_add_gl_test(test_render_compare ${CMAKE_CURRENT_SOURCE_DIR}/render_compare_test.cpp)
 

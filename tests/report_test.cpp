@@ -6,7 +6,11 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "pipeline/report.h"
+#include "compare/report.h"
+#include "cli/options.h"
+
+using penumbra::cli::parseSweep;
+using penumbra::cli::parseInset;
 
 namespace penumbra {
 namespace {

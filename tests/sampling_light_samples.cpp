@@ -9,6 +9,7 @@
 #include <random>
 #include <set>
 
+#include "cli/options.h"
 #include "core/error.h"
 #include "sampling/light_samples.h"
 
@@ -20,6 +21,8 @@ namespace shader {
 }
 
 using namespace penumbra;
+using penumbra::cli::parsePixelPattern;
+using penumbra::cli::parseSampleStrategy;
 
 namespace {
 

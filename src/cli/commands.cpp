@@ -22,11 +22,13 @@
 #include "core/metrics.h"
 #include "core/progress.h"
 #include "studies.h"
-#include "pipeline/compare.h"
-#include "pipeline/report.h"
+#include "cli/options.h"
+#include "compare/compare.h"
+#include "compare/report.h"
 #include "sampling/shared.hpp"
 #include "scene/scene.h"
 #include "techniques/dcs/edge_lut.h"
+#include "techniques/registry.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -82,6 +84,15 @@ void checkWritableFolder(const fs::path& dir, const std::string& what, bool crea
     throw Error(what, "'" + d.string() + "' is " + kind + ", not a folder");
   }
   if (::access(d.c_str(), W_OK) != 0) throw Error(what, "folder '" + d.string() + "' is not writable");
+}
+
+// The GL's largest texture bounds the image (the Renderer refuses a larger one too, without
+// naming the flag).
+void checkImageSize(const gl::Context& context, const RenderSettings& s) {
+  const int maxSize = context.maxTextureSize();
+  if (s.width > maxSize || s.height > maxSize)
+    throw Error("-W/-H", "image size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " outside 1.." +
+                             std::to_string(maxSize), ExitCode::Usage);
 }
 
 void checkOutputPath(const std::string& path) {
@@ -143,12 +154,16 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   if (scene.isAnimated()) scene = scene.posedAt(o.time);  // "spin": the pose at --time
   scene.makeCameraRelative();  // in place: the Renderer would otherwise translate a copy
   RenderSettings settings = settingsFor(o, scene);
-  auto context = gl::Context::create(gl::parseBackend(o.backend));
+  auto context = gl::Context::create(parseBackend(o.backend));
   PLOG_INFO("renderer: {} ({})", context->renderer(), context->version());
+  checkImageSize(*context, settings);
   Renderer renderer(*context, scene, settings);
   TechniqueParams params(o.params);
   auto tech = info.create(params);
   params.checkConsumed();
+  if (settings.shading == ShadingMode::PerSample && !tech->providesPerSample())
+    throw Error("--shading", "per-sample shading (eq. 6) needs a technique with per-sample visibility",
+                ExitCode::Usage);
   FrameResult frame = renderer.render(*tech, technique);
   writeFrame(output, frame);
   json j = frameSummary(frame);
@@ -162,11 +177,13 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
 
 int compare(const CommonOptions& o, const CompareCliOptions& c) {
   CompareOptions options;
+  options.reference = findTechnique("raytrace");
+  options.convergedReference = findTechnique("raytrace-converged");
   if (c.techniques.size() == 1 && c.techniques[0] == "all") {
     for (auto& t : techniqueTable())
-      if (t.name != "raytrace") options.techniques.push_back(t.name);
+      if (t.name != options.reference.name) options.techniques.push_back(t);
   } else {
-    for (auto& n : c.techniques) options.techniques.push_back(findTechnique(n).name);
+    options.techniques = findTechniques(c.techniques);
   }
   if (options.techniques.empty()) throw Error("--techniques", "no technique given", ExitCode::Usage);
   for (auto& s : c.sweeps) options.sweeps.push_back(parseSweep(s));
@@ -188,8 +205,9 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
   options.outDir = c.outDir.empty() ? (fs::path("out") / scene.name).string() : c.outDir;
   checkWritableFolder(options.outDir, options.outDir, /*create=*/true);
   RenderSettings settings = settingsFor(o, scene);
-  auto context = gl::Context::create(gl::parseBackend(o.backend));
+  auto context = gl::Context::create(parseBackend(o.backend));
   PLOG_INFO("renderer: {} ({})", context->renderer(), context->version());
+  checkImageSize(*context, settings);
 
   CompareResult result = compareTechniques(*context, scene, settings, options);
   result.info["backend"] = o.backend;
@@ -281,9 +299,10 @@ int bench(const BenchOptions& b) {
       run.push_back(&*it);
     }
   }
+  const gl::Backend backend = parseBackend(b.backend);
   std::string renderer, version;
   {
-    auto context = gl::Context::create(gl::parseBackend(b.backend));
+    auto context = gl::Context::create(backend);
     renderer = context->renderer(), version = context->version();
   }
   const std::string dir = b.outDir.empty() ? (fs::path("bench/results") / machineName(renderer)).string() : b.outDir;
@@ -300,21 +319,13 @@ int bench(const BenchOptions& b) {
   Progress progress(int(run.size()));
   for (const bench::Study* study : run) {
     progress.step(study->name + ": " + study->description);
-    std::vector<std::string> args = {"penumbra-bench-" + study->name};
-    for (auto& a : b.quick ? study->quickArgs : study->fullArgs) args.push_back(a);
-    args.insert(args.end(), {"--backend", b.backend});
-    if (study->name == "speed-error") args.insert(args.end(), {"-o", (fs::path(dir) / "speed-error").string()});
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    std::string command;
-    for (auto& a : args) command += (command.empty() ? "" : " ") + a;
     fs::path file = fs::path(dir) / (study->name + ".txt");
     std::FILE* out = std::fopen(file.c_str(), "w");
     if (!out) throw Error(file.string(), "cannot write");
-    std::fprintf(out, "%s -- %s\nstudy: %s (`penumbra bench%s`: %s)\n\n", utcNow().c_str(), renderer.c_str(),
-                 study->name.c_str(), b.quick ? " --quick" : "", command.c_str());
+    std::fprintf(out, "%s -- %s\nstudy: %s (`penumbra bench%s`, backend %s)\n\n", utcNow().c_str(), renderer.c_str(),
+                 study->name.c_str(), b.quick ? " --quick" : "", b.backend.c_str());
     auto t0 = std::chrono::steady_clock::now();
-    int rc = study->run(int(argv.size()), argv.data(), out);
+    int rc = study->run({backend, b.quick, dir}, out);
     double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(out, "\n(study took %.0f s, exit %d)\n", s, rc);
     std::fclose(out);

@@ -38,7 +38,7 @@ struct CompareCliOptions {
   float fps = 30.0f;
 };
 // Renders the references and the techniques (CompareOptions) and writes the report
-// (pipeline/report.h) into the output folder.
+// (compare/report.h) into the output folder.
 int compare(const CommonOptions& o, const CompareCliOptions& c);
 
 struct BenchOptions {

@@ -138,12 +138,6 @@ class OSMesaBackend final : public Context {
 
 }  // namespace
 
-Backend parseBackend(const std::string& name) {
-  if (name == "egl") return Backend::Egl;
-  if (name == "osmesa") return Backend::OSMesa;
-  throw Error("--backend", "unknown backend '" + name + "' (egl, osmesa)", ExitCode::Usage);
-}
-
 const char* toString(Backend b) { return b == Backend::Egl ? "egl" : "osmesa"; }
 
 std::unique_ptr<Context> Context::create(Backend backend) {
@@ -155,9 +149,10 @@ std::unique_ptr<Context> Context::create(Backend backend) {
 
 Context::~Context() = default;
 
-bool Context::isSoftware() const {
-  return renderer_.find("llvmpipe") != std::string::npos ||
-         renderer_.find("softpipe") != std::string::npos;
+int Context::maxTextureSize() const {
+  GLint size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &size);
+  return int(size);
 }
 
 void Context::loadEntryPoints(void* (*getProc)(const char*)) {

@@ -9,7 +9,6 @@
 namespace penumbra::gl {
 
 enum class Backend { Egl, OSMesa };
-Backend parseBackend(const std::string& name);  // "egl" | "osmesa", else Error("--backend")
 const char* toString(Backend b);
 
 class Context {
@@ -27,7 +26,7 @@ class Context {
   const std::string& renderer() const { return renderer_; }  // GL_RENDERER
   const std::string& version() const { return version_; }    // GL_VERSION
   const std::string& vendor() const { return vendor_; }
-  bool isSoftware() const;  // llvmpipe/softpipe: GL timer queries are not meaningful
+  int maxTextureSize() const;  // GL_MAX_TEXTURE_SIZE: the largest image a Renderer makes
 
   // GL errors and high-severity debug messages seen since the last call (tests fail on any).
   static int takeErrorCount();

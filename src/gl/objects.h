@@ -1,5 +1,6 @@
-// RAII wrappers for GL objects and the shader-program loader. Raw GL names stay inside these
-// types; techniques hold wrappers and call GL (from gl/gl.h) only for draw state.
+// RAII wrappers for GL objects (the shader-program builder is gl/program.h, included at the end
+// for the code that uses both). Raw GL names stay inside these types; techniques hold wrappers
+// and call GL (from gl/gl.h) only for draw state.
 #pragma once
 
 #include <cstddef>
@@ -182,27 +183,6 @@ class Query : public Object<Kind::Query> {
   GLenum target_ = 0;
 };
 
-// A program from shader files under shaders/ (embedded at build time; read from
-// $PENUMBRA_SHADER_DIR instead when set, for iterating). Each source gets "#version 450 core",
-// the given defines ("NAME" or "NAME VALUE"), shaders/shared.h and its #include "file" lines
-// resolved. Compile/link errors throw penumbra::Error naming the shader file.
-class Program : public Object<Kind::Program> {
- public:
-  Program() = default;
-  Program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});
-  void use() const;
-  GLint location(const char* name) const;
-  void set(const char* name, int v) const;
-  void set(const char* name, unsigned v) const;
-  void set(const char* name, float v) const;
-  void set(const char* name, const glm::vec2& v) const;
-  void set(const char* name, const glm::ivec2& v) const;
-  void set(const char* name, const glm::vec3& v) const;
-  void set(const char* name, const glm::vec4& v) const;
-  void set(const char* name, const glm::mat4& v) const;
-};
-
-// Source text of a shader file (embedded or from $PENUMBRA_SHADER_DIR).
-std::string shaderSource(const std::string& file);
-
 }  // namespace penumbra::gl
+
+#include "gl/program.h"  // IWYU pragma: export

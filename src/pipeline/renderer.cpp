@@ -13,12 +13,6 @@
 
 namespace penumbra {
 
-ShadingMode parseShadingMode(const std::string& s) {
-  if (s == "modulate") return ShadingMode::Modulate;
-  if (s == "per-sample") return ShadingMode::PerSample;
-  throw Error("--shading", "unknown shading mode '" + s + "' (modulate, per-sample)", ExitCode::Usage);
-}
-
 const char* toString(ShadingMode m) { return m == ShadingMode::Modulate ? "modulate" : "per-sample"; }
 
 glm::mat4 viewFromWorld(const Camera& camera) {
@@ -261,12 +255,11 @@ std::unique_ptr<Scene> cameraRelativeCopy(const Scene& scene) {
 }  // namespace
 
 Renderer::Renderer(gl::Context& context, const Scene& given, const RenderSettings& settings)
-    : context_(context), local_(cameraRelativeCopy(given)), scene_(local_ ? *local_ : given), settings_(settings) {
+    : local_(cameraRelativeCopy(given)), scene_(local_ ? *local_ : given), settings_(settings) {
   const Scene& scene = scene_;
-  GLint maxSize = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  const int maxSize = context.maxTextureSize();
   if (settings.width <= 0 || settings.height <= 0 || settings.width > maxSize || settings.height > maxSize)
-    throw Error("-W/-H", "image size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+    throw Error("renderer", "image size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                              " outside 1.." + std::to_string(maxSize), ExitCode::Usage);
   if (scene.lights.empty()) throw Error(scene.sourcePath.empty() ? scene.name : scene.sourcePath, "scene has no light");
   gpu_ = std::make_unique<GpuScene>(scene, settings.width, settings.height, settings.maxVertexBufferBytes);
@@ -320,8 +313,8 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   StageTimer& timer = result.timer;
   bool perSample = settings_.shading == ShadingMode::PerSample;
   if (perSample && !technique.providesPerSample())
-    throw Error("--shading", "per-sample shading (eq. 6) needs a technique with per-sample visibility",
-                ExitCode::Usage);
+    throw Error(name.empty() ? "renderer" : name,
+                "per-sample shading (eq. 6) needs a technique with per-sample visibility", ExitCode::Usage);
 
   if (prepared_ != technique.serial()) {
     timer.time("prepare", [&] { technique.prepare(scene_, *gpu_); });

@@ -26,7 +26,6 @@
 namespace penumbra {
 
 enum class ShadingMode { Modulate, PerSample };
-ShadingMode parseShadingMode(const std::string& s);  // "modulate" | "per-sample"
 const char* toString(ShadingMode m);
 
 struct RenderSettings {
@@ -121,7 +120,7 @@ class GpuScene {
   gl::Program program_;
 };
 
-// Renders frames of one scene with one technique. Holds the GL context. Techniques and the
+// Renders frames of one scene with one technique, in `context` (current). Techniques and the
 // reference see the scene in camera-relative coordinates (Scene::makeCameraRelative): a scene
 // not yet in them is copied and translated once here.
 class Renderer {
@@ -135,11 +134,8 @@ class Renderer {
   // that is silently wrong).
   FrameResult render(Technique& technique, const std::string& name = "technique");
 
-  gl::Context& context() { return context_; }
-
  private:
   FrameResult renderFrame(Technique& technique, const std::string& name);
-  gl::Context& context_;
   std::unique_ptr<Scene> local_;  // a camera-relative copy, when the scene given was not
   const Scene& scene_;            // the scene every technique renders: camera at the origin
   RenderSettings settings_;

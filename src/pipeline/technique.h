@@ -15,8 +15,8 @@
 
 #include "core/timer.h"
 #include "sampling/light_samples.h"
+#include "scene/gbuffer.h"
 #include "scene/scene.h"
-#include "techniques/raytrace/embree_reference.h"
 
 namespace penumbra {
 
@@ -91,8 +91,6 @@ class TechniqueParams {
   bool empty() const { return values_.empty(); }
   // Throws Error("--param") if a given key was read by no technique created with these params.
   void checkConsumed() const;
-  // "key=value" of every given key, for reports.
-  std::vector<std::string> given() const;
   // "key=value" of the given keys some technique created with these params read.
   std::vector<std::string> read() const;
   // Counts `other`'s reads as reads of these params (one check over techniques created with
@@ -105,17 +103,13 @@ class TechniqueParams {
   mutable std::vector<std::string> known_, consumed_;
 };
 
+// A technique by name: what the table (techniques/registry.h) holds and what compare is handed.
 struct TechniqueInfo {
   std::string name;
   std::string description;  // one line for `penumbra list`
   std::function<std::unique_ptr<Technique>(const TechniqueParams&)> create;
 };
 
-// The explicit name -> factory table (src/techniques/registry.cpp). No static registration.
-const std::vector<TechniqueInfo>& techniqueTable();
-// Throws penumbra::Error("--technique", ...) listing the known names.
-const TechniqueInfo& findTechnique(const std::string& name);
-// findTechnique(name).create(params).
-std::unique_ptr<Technique> makeTechnique(const std::string& name, const TechniqueParams& params = {});
+// The table of techniques is a layer above: techniques/registry.h.
 
 }  // namespace penumbra

@@ -325,23 +325,6 @@ void checkCount(int count, int max, const char* where) {
 
 }  // namespace
 
-SampleStrategy parseSampleStrategy(const std::string& s) {
-  if (s == "stratified") return SampleStrategy::Stratified;
-  if (s == "poisson") return SampleStrategy::Poisson;
-  if (s == "vogel") return SampleStrategy::Vogel;
-  throw Error("--strategy", "unknown sampling strategy '" + s + "' (stratified|poisson|vogel)",
-              ExitCode::Usage);
-}
-
-PixelPattern parsePixelPattern(const std::string& s) {
-  if (s == "correlated") return PixelPattern::Correlated;
-  if (s == "decorrelated") return PixelPattern::Decorrelated;
-  if (s == "interleaved") return PixelPattern::Interleaved;
-  throw Error("--pattern",
-              "unknown pixel pattern '" + s + "' (correlated|decorrelated|interleaved)",
-              ExitCode::Usage);
-}
-
 const char* toString(SampleStrategy s) {
   switch (s) {
     case SampleStrategy::Stratified:

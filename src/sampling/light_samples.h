@@ -30,8 +30,6 @@ struct SamplingParams {
   std::uint32_t seed = 1;
 };
 
-SampleStrategy parseSampleStrategy(const std::string& s);  // "stratified|poisson|vogel"
-PixelPattern parsePixelPattern(const std::string& s);      // "correlated|decorrelated|interleaved"
 const char* toString(SampleStrategy s);
 const char* toString(PixelPattern p);
 

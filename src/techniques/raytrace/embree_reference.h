@@ -27,19 +27,10 @@
 
 #include "core/image.h"
 #include "sampling/light_samples.h"
+#include "scene/gbuffer.h"
 #include "scene/scene.h"
 
 namespace penumbra {
-
-// Per-pixel surface data read back from the GPU G-buffer (top row first, like Image).
-struct CpuGBuffer {
-  int width = 0, height = 0;
-  std::vector<glm::vec3> position;  // the scene's coordinates: world position minus `origin`
-  std::vector<glm::vec3> normal;    // world, unit, facing the camera
-  std::vector<std::uint8_t> valid;  // 1 where a surface was hit
-  std::optional<glm::vec3> camera;  // the view the G-buffer was rendered from, if any
-  glm::dvec3 origin{0.0};           // Scene::origin of the scene it was rendered from
-};
 
 // Per-light visibility: the RGB visibility buffer of eq. 2 (textured lights weight each sample by
 // its L_i) and, when available, per-(pixel, sample) transmittance [pixel * N + k].

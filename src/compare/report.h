@@ -1,4 +1,4 @@
-// Writing a comparison run (pipeline/compare.h) for people and programs: report.json,
+// Writing a comparison run (compare/compare.h) for people and programs: report.json,
 // report.csv, table.txt, plot.svg (speed against error with the Pareto front) and index.html,
 // a self-contained page (no network, no script libraries: images beside it, the plot inline).
 #pragma once
@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "pipeline/compare.h"
+#include "compare/compare.h"
 
 namespace penumbra {
 

@@ -1,4 +1,4 @@
-#include "pipeline/compare.h"
+#include "compare/compare.h"
 
 #include <algorithm>
 #include <optional>
@@ -14,7 +14,6 @@
 #include "core/image_io.h"
 #include "core/log.h"
 #include "core/progress.h"
-#include "sampling/shared.hpp"
 
 namespace penumbra {
 namespace {
@@ -131,63 +130,7 @@ nlohmann::json errorsJson(const TechniqueErrors& e) {
   return j;
 }
 
-// ---- sweeps, presets, insets ---------------------------------------------------------------
-
-namespace {
-
-std::vector<std::string> splitList(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : s + sep) {
-    if (c == sep) {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  return out;
-}
-
-int parsePositive(const std::string& what, const std::string& v, int hi) {
-  std::size_t used = 0;
-  long x = 0;
-  try {
-    x = std::stol(v, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != v.size() || x < 1 || x > hi)
-    throw Error(what, fmt::format("expected an integer in 1..{}, got '{}'", hi, v), ExitCode::Usage);
-  return int(x);
-}
-
-}  // namespace
-
-SweepAxis parseSweep(const std::string& arg) {
-  auto eq = arg.find('=');
-  if (eq == std::string::npos || eq == 0 || eq + 1 == arg.size())
-    throw Error("--sweep", "expected key=v1,v2,..., got '" + arg + "'", ExitCode::Usage);
-  SweepAxis axis{arg.substr(0, eq), splitList(arg.substr(eq + 1), ',')};
-  for (auto& v : axis.values)
-    if (v.empty()) throw Error("--sweep", "empty value in '" + arg + "'", ExitCode::Usage);
-  for (std::size_t i = 0; i < axis.values.size(); ++i)
-    for (std::size_t k = 0; k < i; ++k)
-      if (axis.values[i] == axis.values[k])
-        throw Error("--sweep", axis.key + ": value '" + axis.values[i] + "' given twice", ExitCode::Usage);
-  return axis;
-}
-
-Inset parseInset(const std::string& arg) {
-  auto parts = splitList(arg, ',');
-  if (parts.size() != 4) throw Error("--inset", "expected x,y,w,h, got '" + arg + "'", ExitCode::Usage);
-  Inset r;
-  r.x = parts[0] == "0" ? 0 : parsePositive("--inset", parts[0], 1 << 16);
-  r.y = parts[1] == "0" ? 0 : parsePositive("--inset", parts[1], 1 << 16);
-  r.w = parsePositive("--inset", parts[2], 1 << 16);
-  r.h = parsePositive("--inset", parts[3], 1 << 16);
-  return r;
-}
+// ---- insets ------------------------------------------------------------------------------
 
 std::vector<Inset> chooseInsets(const FrameResult& ref, int count) {
   const int W = ref.color.width, H = ref.color.height;
@@ -227,6 +170,12 @@ std::vector<Inset> chooseInsets(const FrameResult& ref, int count) {
     out.push_back(pick);
   }
   return out;
+}
+
+SweepAxis SweepAxis::of(const std::string& key, const std::vector<int>& values) {
+  SweepAxis axis{key, {}, values};
+  for (int v : values) axis.values.push_back(std::to_string(v));
+  return axis;
 }
 
 std::string ComparePreset::fileSuffix() const {
@@ -275,10 +224,13 @@ std::vector<ComparePreset> makePresets(const RenderSettings& settings, const Com
       for (auto& v : axis.values) {
         ComparePreset p = base;
         p.values.emplace_back(axis.key, v);
+        const std::size_t i = std::size_t(&v - axis.values.data());
+        if (!isParam && axis.integers.size() != axis.values.size())
+          throw Error("compare", "sweep '" + axis.key + "' has no integer values (SweepAxis::of)");
         if (axis.key == "samples") {
-          p.samples = parsePositive("--sweep samples", v, PENUMBRA_MAX_SAMPLES);
+          p.samples = axis.integers[i];
         } else if (axis.key == "resolution") {
-          p.width = parsePositive("--sweep resolution", v, 16384);
+          p.width = axis.integers[i];
           p.height = std::max(1, int(std::lround(double(p.width) * settings.height / settings.width)));
         } else {
           p.params.push_back(axis.key + "=" + v);
@@ -354,7 +306,10 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
   result.presets = makePresets(settings, o);
   const bool converged =
       o.converged || std::any_of(o.sweeps.begin(), o.sweeps.end(), [](auto& a) { return a.key == "samples"; });
-  if (converged && !o.converged) PLOG_INFO("samples are swept: errors are also measured against raytrace-converged");
+  if (converged && !o.converged)
+    PLOG_INFO("samples are swept: errors are also measured against {}", o.convergedReference.name);
+  if (!o.reference.create || (converged && !o.convergedReference.create))
+    throw Error("compare", "no reference technique was handed in (CompareOptions::reference, convergedReference)");
   const int frames = std::max(1, o.frames);
   const bool animated = scene.isAnimated();
   if (frames > 1 && !animated && std::all_of(scene.lights.begin(), scene.lights.end(), [](auto& l) { return l.emissionFrames.size() < 2; }))
@@ -363,7 +318,7 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
   // Every technique at every preset is created (and its parameters checked) before the long
   // renders start; presets that do not change what a technique renders are dropped.
   struct Job {
-    std::string technique;
+    const TechniqueInfo* technique;
     std::vector<std::string> read;
   };
   std::vector<std::vector<Job>> jobs(result.presets.size());
@@ -371,14 +326,14 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
     TechniqueParams all(result.presets[0].params);
     std::vector<std::string> keys;
     for (std::size_t p = 0; p < result.presets.size(); ++p)
-      for (auto& name : o.techniques) {
+      for (auto& info : o.techniques) {
         TechniqueParams params(result.presets[p].params);
-        makeTechnique(name, params);
+        info.create(params);
         all.noteReads(params);
-        std::string key = name + " " + renderKey(result.presets[p], params.read());
+        std::string key = info.name + " " + renderKey(result.presets[p], params.read());
         if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
         keys.push_back(key);
-        jobs[p].push_back({name, params.read()});
+        jobs[p].push_back({&info, params.read()});
       }
     all.checkConsumed();
   }
@@ -497,16 +452,16 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
     };
 
     // References: raytrace with this preset's samples; raytrace-converged once per size.
-    progress.step("reference: raytrace" + at);
+    progress.step("reference: " + o.reference.name + at);
     CompareRun refRun;
-    refRun.technique = "raytrace", refRun.preset = pi, refRun.reference = true;
+    refRun.technique = o.reference.name, refRun.preset = pi, refRun.reference = true;
     std::vector<FrameVisibility> refFrames;
-    auto refTech = makeTechnique("raytrace");
+    auto refTech = o.reference.create(TechniqueParams{});
     FrameResult ref;
     try {
       ref = renderRun(*refTech, refRun, s.shading, frames > 1 ? &refFrames : nullptr);
     } catch (const Error& e) {  // nothing can be measured without it: the comparison ends
-      throw Error("compare", "the reference (raytrace" + at + ") failed: " + e.what(), e.exitCode());
+      throw Error("compare", "the reference (" + o.reference.name + at + ") failed: " + e.what(), e.exitCode());
     }
     if (pi == 0) {
       result.insets = o.insets.empty() ? chooseInsets(ref) : o.insets;
@@ -515,30 +470,31 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
     const FrameResult* conv = nullptr;
     if (converged) {
       std::string key = fmt::format("{}x{}", s.width, s.height);
-      progress.step("reference: raytrace-converged" + at);
+      progress.step("reference: " + o.convergedReference.name + at);
       if (!convergedRefs.count(key)) {
-        auto t = makeTechnique("raytrace-converged");
+        auto t = o.convergedReference.create(TechniqueParams{});
         Slot slot;
         convergedRefs[key] = rendererFor(0, s.shading, slot).render(*t);
         if (!o.outDir.empty() && o.writeExr)
-          writeFrame((fs::path(o.outDir) / ("raytrace-converged_" + key + ".exr")).string(), convergedRefs[key]);
+          writeFrame((fs::path(o.outDir) / (o.convergedReference.name + "_" + key + ".exr")).string(), convergedRefs[key]);
       }
       conv = &convergedRefs[key];
       refRun.converged = measureErrors(ref, *conv);
     }
     refRun.errors = measureErrors(ref, ref);
-    writeImages("raytrace" + suffix, ref, conv, refRun);
+    writeImages(o.reference.name + suffix, ref, conv, refRun);
     result.runs.push_back(std::move(refRun));
 
     for (auto& job : jobs[pi]) {
-      progress.step(job.technique + at);
+      const std::string& name = job.technique->name;
+      progress.step(name + at);
       CompareRun run;
-      run.technique = job.technique, run.preset = pi, run.params = job.read;
+      run.technique = name, run.preset = pi, run.params = job.read;
       std::vector<FrameVisibility> kept;
       FrameResult f;
       try {
         TechniqueParams params(preset.params);
-        auto tech = makeTechnique(job.technique, params);
+        auto tech = job.technique->create(params);
         ShadingMode shading = s.shading;
         if (shading == ShadingMode::PerSample && !tech->providesPerSample()) shading = ShadingMode::Modulate;
         f = renderRun(*tech, run, shading, frames > 1 ? &kept : nullptr);
@@ -546,11 +502,11 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
       } catch (const std::exception& e) {
         // One technique's failure is its row of the report, not the end of the comparison.
         CompareRun failed;
-        failed.technique = job.technique, failed.preset = pi, failed.params = job.read;
+        failed.technique = name, failed.preset = pi, failed.params = job.read;
         failed.shading = run.shading;
         failed.failed = true;
         failed.failure = e.what();
-        PLOG_ERROR("{}{} failed: {}", job.technique, at, failed.failure);
+        PLOG_ERROR("{}{} failed: {}", name, at, failed.failure);
         result.runs.push_back(std::move(failed));
         continue;
       }
@@ -574,7 +530,7 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
         }
         run.meanFrameRmse = sum / double(kept.size());
       }
-      writeImages(job.technique + suffix, f, conv ? conv : &ref, run);
+      writeImages(name + suffix, f, conv ? conv : &ref, run);
       result.runs.push_back(std::move(run));
     }
   }

@@ -7,7 +7,7 @@
 // technique parameters), each with its own same-sample reference (and, with `converged`, the
 // converged reference of its resolution); every technique is timed (warm-up, then the median
 // and spread of each stage) and measured at each preset that changes what it renders.
-// src/pipeline/report.h writes the result as JSON, CSV, a table, an SVG plot and an HTML page.
+// src/compare/report.h writes the result as JSON, CSV, a table, an SVG plot and an HTML page.
 #pragma once
 
 #include <optional>
@@ -51,26 +51,32 @@ void writeFrame(const std::string& path, const FrameResult& frame, float exposur
 nlohmann::json frameSummary(const FrameResult& frame);
 nlohmann::json errorsJson(const TechniqueErrors& e);
 
-// One --sweep axis: "key=v1,v2,...". Keys: `samples`, `resolution` (the image width; the
-// height keeps the scene's aspect) or a technique parameter (--param key).
+// One --sweep axis (cli/options.h parses "key=v1,v2,..."). Keys: `samples`, `resolution` (the
+// image width; the height keeps the scene's aspect) or a technique parameter (--param key).
 struct SweepAxis {
   std::string key;
-  std::vector<std::string> values;
+  std::vector<std::string> values;  // as given: labels, file names, --param values
+  std::vector<int> integers;        // `samples` and `resolution`: the values as numbers
+  // An axis of numbers (`samples` or `resolution`).
+  static SweepAxis of(const std::string& key, const std::vector<int>& values);
 };
-SweepAxis parseSweep(const std::string& arg);  // throws Error("--sweep") (usage)
 
 // A zoomed region of the first preset's images, in its pixels (x, y from the top left).
 struct Inset {
   int x = 0, y = 0, w = 0, h = 0;
 };
-Inset parseInset(const std::string& arg);  // "x,y,w,h"; throws Error("--inset") (usage)
 
 // Two square regions where the reference has the most penumbra pixels (visibility strictly
 // between 0 and 1), not overlapping: where techniques differ most.
 std::vector<Inset> chooseInsets(const FrameResult& reference, int count = 2);
 
 struct CompareOptions {
-  std::vector<std::string> techniques;
+  // What is compared, and the references it is compared with (techniques/registry.h hands them
+  // in: findTechnique("raytrace"), findTechnique("raytrace-converged")): compare looks nothing
+  // up by name.
+  std::vector<TechniqueInfo> techniques;
+  TechniqueInfo reference;           // same samples, per sample
+  TechniqueInfo convergedReference;  // with `converged` (or a samples sweep)
   std::vector<std::string> params;  // --param key=value, for every technique
   std::vector<SweepAxis> sweeps;
   bool converged = false;          // also measure against raytrace-converged (forced by a samples sweep)

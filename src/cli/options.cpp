@@ -1,0 +1,91 @@
+#include "cli/options.h"
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "sampling/shared.hpp"
+
+namespace penumbra::cli {
+
+gl::Backend parseBackend(const std::string& name) {
+  if (name == "egl") return gl::Backend::Egl;
+  if (name == "osmesa") return gl::Backend::OSMesa;
+  throw Error("--backend", "unknown backend '" + name + "' (egl, osmesa)", ExitCode::Usage);
+}
+
+ShadingMode parseShadingMode(const std::string& s) {
+  if (s == "modulate") return ShadingMode::Modulate;
+  if (s == "per-sample") return ShadingMode::PerSample;
+  throw Error("--shading", "unknown shading mode '" + s + "' (modulate, per-sample)", ExitCode::Usage);
+}
+
+SampleStrategy parseSampleStrategy(const std::string& s) {
+  if (s == "stratified") return SampleStrategy::Stratified;
+  if (s == "poisson") return SampleStrategy::Poisson;
+  if (s == "vogel") return SampleStrategy::Vogel;
+  throw Error("--strategy", "unknown sampling strategy '" + s + "' (stratified|poisson|vogel)", ExitCode::Usage);
+}
+
+PixelPattern parsePixelPattern(const std::string& s) {
+  if (s == "correlated") return PixelPattern::Correlated;
+  if (s == "decorrelated") return PixelPattern::Decorrelated;
+  if (s == "interleaved") return PixelPattern::Interleaved;
+  throw Error("--pattern", "unknown pixel pattern '" + s + "' (correlated|decorrelated|interleaved)", ExitCode::Usage);
+}
+
+int parsePositive(const std::string& what, const std::string& v, int hi) {
+  std::size_t used = 0;
+  long x = 0;
+  try {
+    x = std::stol(v, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != v.size() || x < 1 || x > hi)
+    throw Error(what, fmt::format("expected an integer in 1..{}, got '{}'", hi, v), ExitCode::Usage);
+  return int(x);
+}
+
+namespace {
+// "a,b,,c," -> {"a", "b", "", "c", ""}: every empty item kept, so that it is refused (CLI11's
+// ->delimiter, used for plain lists, drops a trailing one).
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out(1);
+  for (char c : s) {
+    if (c == ',') out.emplace_back();
+    else out.back() += c;
+  }
+  return out;
+}
+}  // namespace
+
+SweepAxis parseSweep(const std::string& arg) {
+  auto eq = arg.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == arg.size())
+    throw Error("--sweep", "expected key=v1,v2,..., got '" + arg + "'", ExitCode::Usage);
+  SweepAxis axis{arg.substr(0, eq), splitList(arg.substr(eq + 1)), {}};
+  for (auto& v : axis.values)
+    if (v.empty()) throw Error("--sweep", "empty value in '" + arg + "'", ExitCode::Usage);
+  for (std::size_t i = 0; i < axis.values.size(); ++i)
+    for (std::size_t k = 0; k < i; ++k)
+      if (axis.values[i] == axis.values[k])
+        throw Error("--sweep", axis.key + ": value '" + axis.values[i] + "' given twice", ExitCode::Usage);
+  if (axis.key == "samples" || axis.key == "resolution")
+    for (auto& v : axis.values)
+      axis.integers.push_back(parsePositive("--sweep " + axis.key, v,
+                                            axis.key == "samples" ? PENUMBRA_MAX_SAMPLES : 16384));
+  return axis;
+}
+
+Inset parseInset(const std::string& arg) {
+  auto parts = splitList(arg);
+  if (parts.size() != 4) throw Error("--inset", "expected x,y,w,h, got '" + arg + "'", ExitCode::Usage);
+  Inset r;
+  r.x = parts[0] == "0" ? 0 : parsePositive("--inset", parts[0], 1 << 16);
+  r.y = parts[1] == "0" ? 0 : parsePositive("--inset", parts[1], 1 << 16);
+  r.w = parsePositive("--inset", parts[2], 1 << 16);
+  r.h = parsePositive("--inset", parts[3], 1 << 16);
+  return r;
+}
+
+}  // namespace penumbra::cli

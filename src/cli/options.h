@@ -1,0 +1,29 @@
+// Option strings of the command line to the typed settings the libraries take: every flag value
+// penumbra and the standalone bench binaries read as text is parsed here, and the usage errors
+// (exit 2) name the flag. The libraries take enums and structs and never see a flag.
+#pragma once
+
+#include <string>
+
+#include "compare/compare.h"
+#include "gl/context.h"
+#include "pipeline/renderer.h"
+#include "sampling/light_samples.h"
+
+namespace penumbra::cli {
+
+gl::Backend parseBackend(const std::string& name);         // "egl" | "osmesa", else Error("--backend")
+ShadingMode parseShadingMode(const std::string& s);          // "modulate" | "per-sample", else Error("--shading")
+SampleStrategy parseSampleStrategy(const std::string& s);    // "stratified|poisson|vogel", else Error("--strategy")
+PixelPattern parsePixelPattern(const std::string& s);        // "correlated|decorrelated|interleaved", else Error("--pattern")
+
+// One --sweep axis: "key=v1,v2,..."; `samples` and `resolution` values must be integers in
+// 1..PENUMBRA_MAX_SAMPLES and 1..16384. Throws Error("--sweep") (usage).
+SweepAxis parseSweep(const std::string& arg);
+// "x,y,w,h"; throws Error("--inset") (usage).
+Inset parseInset(const std::string& arg);
+
+// An integer in 1..hi, else Error(what, "expected an integer in 1..hi, got 'v'") (usage).
+int parsePositive(const std::string& what, const std::string& v, int hi);
+
+}  // namespace penumbra::cli
