@@ -140,8 +140,12 @@ std::string paramsMarkdown() {
     std::string defaults;
     for (auto& [value, names] : r.defaults)
       defaults += (defaults.empty() ? "" : ", ") + value + (r.defaults.size() > 1 ? " (" + shortNames(names) + ")" : "");
-    out += fmt::format("| `{}` | {} | {} | {} | {} |\n", r.spec->key, shortNames(r.techniques), defaults,
-                       r.spec->rangeText(), r.spec->meaning);
+    auto cell = [](std::string s) {  // a '|' inside a cell is escaped (GitHub tables)
+      for (std::size_t p = s.find('|'); p != std::string::npos; p = s.find('|', p + 2)) s.insert(p, "\\");
+      return s;
+    };
+    out += fmt::format("| `{}` | {} | {} | {} | {} |\n", r.spec->key, shortNames(r.techniques), cell(defaults),
+                       cell(r.spec->rangeText()), cell(r.spec->meaning));
   }
   return out;
 }

@@ -1,6 +1,8 @@
 #include "core/key_values.h"
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -20,15 +22,13 @@ void KeyPlace::fail(const std::string& problem) const {
 }
 
 namespace {
-// The one text-to-number parser: the whole text must be a number (std::stod reads a prefix).
+// The one text-to-number parser: the whole text must be a number (strtod reads a prefix); one
+// beyond a double's range reads as infinite (refused as not finite).
 bool parseNumber(const std::string& text, double& x) {
-  std::size_t used = 0;
-  try {
-    x = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return false;
-  }
-  return used == text.size();
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return false;
+  char* end = nullptr;
+  x = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size();
 }
 
 double finiteNumber(const KeyValue& v, const KeyPlace& place) {

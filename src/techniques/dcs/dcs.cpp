@@ -776,7 +776,8 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
       ParamSpec::choice("opacity", kOpacityChoices[o.opacity == dcs::OpacityMode::Sum ? 0 : 1], kOpacityChoices,
                         "semi-opaque occluders: the product of transmittances or the paper's saturated sum of opacities"),
       ParamSpec::number("opacity-tolerance", o.opacityTolerance, 1e-6, 0.25,
-                        "the largest single-layer transmittance error the unit coding may make (dcs/opacity.h)"),
+                        "the largest single-layer transmittance error the unit coding may make (dcs/opacity.h)")
+          .shown("1/1024"),
       ParamSpec::integer("targets", o.maxTargets, 1, PENUMBRA_DCS_MAX_TARGETS,
                          "packed RGBA32F counter targets per pass (the paper's 4)"),
       ParamSpec::choice("min-base", std::to_string(o.minBase), baseChoices(),
@@ -786,15 +787,15 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
                          "(the check after the pass and the re-render still apply; tests force them with it)")
           .shown("bound pass"),
       ParamSpec::path("lut-file", "the edge LUT file (refused unless built for the light's sample pattern); empty: "
-                                  "<lut-dir>/edge_<shape>_<strategy>_<pattern>_n<N>_seed<S>.lut if it exists, else "
+                                  "`<lut-dir>/edge_<shape>_<strategy>_<pattern>_n<N>_seed<S>.lut` if it exists, else "
                                   "built in memory"),
-      ParamSpec::path("lut-dir", "where dcs looks for edge LUTs; empty: $PENUMBRA_LUT_DIR, else the source tree's luts/"),
+      ParamSpec::path("lut-dir", "where dcs looks for edge LUTs; empty: `$PENUMBRA_LUT_DIR`, else the source tree's `luts/`"),
       ParamSpec::integer("lut-cube", o.lutSize.cube, 1, 1024, "sector table size of an edge LUT built in memory (texels "
                                                               "per cube face side)"),
       ParamSpec::integer("lut-line", o.lutSize.line, 2, 4096, "line table size of an edge LUT built in memory (even)"),
       ParamSpec::boolean("profile", o.profile,
-                         "count where the wedge pass's fragments go (statistics profile*; slower). A debugging aid, "
-                         "also on with the environment variable PENUMBRA_DCS_PROFILE=1"),
+                         "count where the wedge pass's fragments go (statistics `profile*`; slower). A debugging aid, "
+                         "also on with the environment variable `PENUMBRA_DCS_PROFILE=1`"),
   };
 }
 
