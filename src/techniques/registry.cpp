@@ -31,17 +31,22 @@ TechniqueInfo dcsEntry(std::string name, std::string description, DcsOptions pre
   return {std::move(name), std::move(description), dcsParams(preset),
           [](const TechniqueArgs& a) { return makeDepthComplexitySampling(readDcsOptions(a)); }};
 }
+// A technique that is a preset of a family: the family's declarations with the preset's
+// defaults, and its factory.
+template <class Preset>
+TechniqueInfo presetEntry(std::string name, std::string description, std::vector<ParamSpec> params, Preset preset,
+                          std::unique_ptr<Technique> (*make)(const TechniqueArgs&, Preset)) {
+  return {std::move(name), std::move(description), std::move(params),
+          [preset, make](const TechniqueArgs& a) { return make(a, preset); }};
+}
 TechniqueInfo pcssEntry(std::string name, std::string description, PcssOptions preset) {
-  return {std::move(name), std::move(description), pcssParams(preset),
-          [preset](const TechniqueArgs& a) { return makePercentageCloserSoftShadows(a, preset); }};
+  return presetEntry(std::move(name), std::move(description), pcssParams(preset), preset, makePercentageCloserSoftShadows);
 }
 TechniqueInfo vssmEntry(std::string name, std::string description, VssmOptions preset) {
-  return {std::move(name), std::move(description), vssmParams(preset),
-          [preset](const TechniqueArgs& a) { return makeVarianceSoftShadowMapping(a, preset); }};
+  return presetEntry(std::move(name), std::move(description), vssmParams(preset), preset, makeVarianceSoftShadowMapping);
 }
 TechniqueInfo vwssEntry(std::string name, std::string description, VwssMode mode) {
-  return {std::move(name), std::move(description), vwssParams(mode),
-          [mode](const TechniqueArgs& a) { return makeViewWarpedSoftShadows(a, mode); }};
+  return presetEntry(std::move(name), std::move(description), vwssParams(mode), mode, makeViewWarpedSoftShadows);
 }
 VssmOptions vssmPreset(bool exactSat, int shadowLevels) {
   VssmOptions o;
