@@ -65,8 +65,10 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
                         {"penumbra mask + shadow mask + checker", PcssMode::PenumbraMask, true}};
     double chss = 0.0;
     for (const Row& row : rows) {
-      auto tech = makePercentageCloserSoftShadows(TechniqueParams({"map=" + std::to_string(map)}),
-                                                  pcssPreset(row.mode, false, row.checker));
+      const PcssOptions preset = pcssPreset(row.mode, false, row.checker);
+      const TechniqueParams given({"map=" + std::to_string(map)});
+      const std::vector<ParamSpec> declared = pcssParams(preset);
+      auto tech = makePercentageCloserSoftShadows(TechniqueArgs(given, declared, "pcss"), preset);
       bench::Timing t = bench::timeFrames(renderer, *tech, frames, warmup);
       double passes = t.stage("pcss min filter") + t.stage("pcss penumbra mask") + t.stage("pcss shadow mask") +
                       t.stage("pcss checkerboard upsample");

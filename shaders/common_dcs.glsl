@@ -18,6 +18,7 @@
 // open and non-manifold edges need no special case. Divergence from the paper: we integrate in
 // 3D (segment p -> y through e) instead of projecting e onto a light plane, so sphere lights
 // need nothing special and no edge is clipped against the light border.
+#include "dcs_bindings.h"
 #include "common_volume.glsl"
 
 struct DcsEdge {

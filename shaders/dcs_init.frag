@@ -10,6 +10,7 @@
 // end on t (side 0) counts neither (silhouette.h: a light point on a surface is not occluded by
 // it). ShadowVolumeCounter::place lists them per sample on the CPU, in double; this pass adds
 // them per sample digit.
+#include "dcs_bindings.h"
 #include "common_light.glsl"
 // Every digit carries a bias (DCS_BIAS), so that a count that ends slightly negative (the
 // shadow-volume count and the wedges disagree about a point on a volume's side: the edge band)

@@ -4,6 +4,7 @@
 // into the per-sample array, and add this pass's share of the visibility buffer (eq. 1-2). A counter that overflowed its digit
 // carries into its neighbour; that changes the digit sum, so comparing it with the checksum
 // (the plain sum of all updates) detects it, and the pixel is reported.
+#include "dcs_bindings.h"
 #include "common_light.glsl"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;

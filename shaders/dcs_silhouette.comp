@@ -2,6 +2,7 @@
 // invocation per edge classifies the light against the planes of the edge's triangles and
 // appends the edge when a plane touches or cuts the light or when its multiplicity for the
 // whole light is non-zero. Same rule as the CPU path, in float.
+#include "dcs_bindings.h"
 #include "common_dcs.glsl"
 
 layout(local_size_x = 64) in;

@@ -2,6 +2,7 @@
 // into a half-width target; the others take the mean of their four computed neighbours,
 // weighted by depth agreement (neighbours on another surface, a bilateral test on the
 // G-buffer's position and normal, count 1/1000).
+#include "single_view_bindings.h"
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 layout(binding = PENUMBRA_UNIT_PCSS_SOURCE) uniform sampler2D checker;

@@ -3,6 +3,7 @@
 //    and of the min-filtered map, 2.3);
 //  * MAX_FILTER: the largest value within `radius` texels: on reversed depth, the nearest
 //    occluder (Sterna 2.3's min filter of the shadow map).
+#include "single_view_bindings.h"
 layout(binding = PENUMBRA_UNIT_PCSS_SOURCE) uniform sampler2D source;
 uniform ivec2 direction;
 uniform int radius;

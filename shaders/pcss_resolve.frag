@@ -9,6 +9,7 @@
 //    the PCSS the VSSM paper compares with.
 // CHECKERBOARD (Sterna 3): this pass covers every other pixel (a half-width target); the
 // upsample pass (pcss_checker.frag) fills in the rest.
+#include "single_view_bindings.h"
 #include "pcss_common.glsl"
 #if defined(PENUMBRA_MASK) || defined(MIN_FILTER)
 layout(binding = PENUMBRA_UNIT_PCSS_AUX) uniform sampler2D pcssAux;  // linear, clamp

@@ -1,5 +1,6 @@
 // The VWSS point buffer (src/techniques/vwss): a count, then xyz world positions, 3 floats each
 // (the paper's 32-bit float points, section 3.1).
+#include "shadow_map_bindings.h"
 layout(std430, binding = PENUMBRA_SSBO_POINTS) buffer Points {
   uint pointCount;  // points generated (may exceed the capacity: then the pass is rerun)
   uint pointPad0, pointPad1, pointPad2;

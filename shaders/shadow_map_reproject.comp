@@ -2,6 +2,7 @@
 // thread splats its point into `layerCount` maps from `firstLayer` (1: serial, K: partially
 // parallel, all: fully parallel). FROM_DEPTH_MAP (fragment reprojection, section 3): the points
 // are the texels of the z-buffered central depth map, rebuilt from their depth.
+#include "shadow_map_bindings.h"
 #include "common_light.glsl"
 #include "shadow_map_common.glsl"
 #include "shadow_map_splat.glsl"

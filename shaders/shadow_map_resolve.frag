@@ -6,6 +6,7 @@
 // visibility buffer of DCS eq. 2 (textured lights are exact per sample).
 // Depth bias (shadow_map_common.glsl: receiver-plane depth per tap, plus depthBias), applied
 // here after the maps are made (fragment reprojection section 3.1.1: bias after reprojection).
+#include "shadow_map_bindings.h"
 #include "common_light.glsl"
 #include "shadow_map_common.glsl"
 

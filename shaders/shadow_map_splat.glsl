@@ -6,6 +6,7 @@
 // Hard case 22: a non-finite point, a point behind or on a sample's near plane (w <= near,
 // including w = -0.0 and NaN: the comparison is false) and one outside the frustum are skipped,
 // so the map keeps what it had; the stored depth is near / w > 0, never -0.0 or NaN.
+#include "shadow_map_bindings.h"
 layout(binding = PENUMBRA_IMAGE_SHADOW_MAPS, r32ui) uniform coherent uimage2DArray shadowMaps;
 
 void splatPoint(vec3 p, int first, int count) {

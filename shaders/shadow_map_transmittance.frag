@@ -4,6 +4,7 @@
 // by its opacity in 1/255 steps (z keeps 15 bits of mantissa: a relative depth error below
 // 4e-5, far inside the depth bias). The most entries any texel asked for goes to the status
 // image, so that a frame whose K was too small is redone with enough (no entry is dropped).
+#include "shadow_map_bindings.h"
 layout(binding = PENUMBRA_IMAGE_SEMI_COUNT, r32ui) uniform coherent uimage2DArray semiCount;
 layout(binding = PENUMBRA_IMAGE_SEMI_LAYERS, r32ui) uniform writeonly uimage2DArray semiLayers;
 layout(binding = PENUMBRA_IMAGE_SEMI_STATUS, r32ui) uniform coherent uimage2D semiStatus;

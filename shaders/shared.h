@@ -22,6 +22,9 @@
 #define PENUMBRA_GBUF_ALBEDO 2     // RGBA16F: base colour, a = opacity
 
 // ---- texture units -------------------------------------------------------------------------
+// Those every technique shares. A technique's own binding points are in its header beside its
+// shaders (dcs_bindings.h, shadow_map_bindings.h, single_view_bindings.h), which its shaders and
+// its C++ include.
 #define PENUMBRA_UNIT_GBUF_POSITION 0
 #define PENUMBRA_UNIT_GBUF_NORMAL 1
 #define PENUMBRA_UNIT_GBUF_ALBEDO 2
@@ -29,25 +32,8 @@
 #define PENUMBRA_UNIT_SAMPLE_VIS 4      // R16F 2D array: per-sample transmittance, one layer a sample
 #define PENUMBRA_UNIT_MATERIAL_TEX 5
 #define PENUMBRA_UNIT_COUNTER 6         // R32F: shadow-volume count (hard-sv, dcs)
-#define PENUMBRA_UNIT_DCS_COUNTERS 7    // RGBA32F 2D array: dcs packed counters, a layer a target
-#define PENUMBRA_UNIT_DCS_CHECKSUM 8    // R32F: dcs sum of the counters of a pass
-#define PENUMBRA_UNIT_DCS_SECTOR_LUT 9  // RGBA32UI cube-map array: dcs edge LUT, sectors (a cube a set)
-#define PENUMBRA_UNIT_DCS_LINE_LUT 10   // RGBA32UI 2D array: dcs edge LUT, lines (a layer a set)
 #define PENUMBRA_UNIT_FILTER_SOURCE 11  // RGBA32F: input of the interleaved-sampling filter
-#define PENUMBRA_UNIT_SHADOW_MAPS 12    // multi-view depth maps (techniques/shadow_map): a layer a sample
-#define PENUMBRA_UNIT_CENTRAL_DEPTH 13  // reproject: the z-buffered central depth map
-#define PENUMBRA_UNIT_SEMI_COUNT 14     // R32UI 2D array: semi-opaque surfaces on each map texel
-#define PENUMBRA_UNIT_SEMI_LAYERS 15    // R32UI 2D array: K entries a map (shadow_map/maps.h)
-#define PENUMBRA_UNIT_PCSS_DEPTH 16     // pcss: the light centre's depth map, read raw (blocker search)
-#define PENUMBRA_UNIT_PCSS_COMPARE 17   // pcss: the same map through a depth-comparison sampler (PCF)
-#define PENUMBRA_UNIT_PCSS_AUX 18       // pcss: the penumbra mask or the min-filtered map, read by the shadow pass
-#define PENUMBRA_UNIT_PCSS_SOURCE 19    // pcss: input of a separable filter / the checkerboard target
 #define PENUMBRA_IMAGE_SAMPLE_VIS 0     // image unit of the per-sample visibility array
-#define PENUMBRA_IMAGE_SHADOW_MAPS 1    // R32UI 2D array: point-rendered depth maps (atomicMax)
-#define PENUMBRA_IMAGE_SEMI_COUNT 2     // R32UI 2D array: semi-opaque surfaces a texel (atomicAdd)
-#define PENUMBRA_IMAGE_SEMI_LAYERS 3    // R32UI 2D array: their entries (depth and opacity)
-#define PENUMBRA_IMAGE_SEMI_STATUS 4    // R32UI 1 x 1: most semi-opaque surfaces on one map texel
-#define PENUMBRA_IMAGE_DCS_PROFILE 5    // R32UI 6 x 1: dcs wedge counters (PENUMBRA_DCS_PROFILE=1)
 
 // ---- shader storage / uniform buffer bindings ----------------------------------------------
 // A graphics program (vertex/geometry/fragment) that writes a storage block declares storage
@@ -59,15 +45,6 @@
 // several stages write are images (their write access is given at bind time).
 #define PENUMBRA_SSBO_LIGHT_SAMPLES 0   // vec4 position (xyz), per set then sample
 #define PENUMBRA_SSBO_SAMPLE_RADIANCE 1 // vec4 normalised luminance L_i (rgb) of eq. 2
-#define PENUMBRA_SSBO_DCS_EDGES 2       // dcs: edges (endpoints, incidence range, rule)
-#define PENUMBRA_SSBO_DCS_INCIDENCES 3  // dcs: incident triangles (third vertex, plane normal)
-#define PENUMBRA_SSBO_DCS_STATUS 4      // dcs: resolve status (overflowing pixels)
-#define PENUMBRA_SSBO_DCS_PACKED 6      // dcs: packed sample positions (edge_lut.h), naive mode
-#define PENUMBRA_SSBO_POINTS 7          // vwss: point count, then xyz world positions (3 floats each)
-#define PENUMBRA_SSBO_VSSM_SAT 9        // vssm: summed-area table of the depth moments, a texel a pair
-#define PENUMBRA_SSBO_VSSM_HSM 10       // vssm: min-max hierarchical shadow map, all levels, a texel a pair
-#define PENUMBRA_SSBO_DCS_PATH_FIRST 11  // dcs: per light sample, the first of its path crossings (then the end)
-#define PENUMBRA_SSBO_DCS_PATH 12        // dcs: path crossings (triangle plane, sides, rule, units)
 #define PENUMBRA_VSSM_FIXED_ONE 32767.0 // vssm exact SAT: depth in [0,1] as 15-bit integers (sums of
                                         // squares stay below 2^53 at 2048^2: exact in doubles)
 

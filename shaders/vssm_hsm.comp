@@ -1,6 +1,7 @@
 // vssm min-max hierarchical shadow map (VSSM Algorithm 1 L4, section 6.1: mip-maps): level 0
 // holds each texel's normalised depth twice (min, max); level k the min and max of the 2 x 2
 // texels under it. All levels in one buffer, level k at offset sum_{l<k} (size >> l)^2.
+#include "single_view_bindings.h"
 #include "compute_index.glsl"
 layout(local_size_x = PENUMBRA_MAP_LOCAL_SIZE) in;
 layout(std430, binding = PENUMBRA_SSBO_VSSM_HSM) buffer Hsm { vec2 hsm[]; };

@@ -16,6 +16,7 @@
 // shadowLevels > 0, the adaptive quad-tree of that height traversed linearly with child / next
 // links (Algorithm 2; the paper's mixed default: uniform m = 5 for the blocker, H = 3 for the
 // shadow).
+#include "single_view_bindings.h"
 #include "pcss_common.glsl"
 #ifdef EXACT
 #define SAT_T dvec2

@@ -7,6 +7,7 @@
 //    variance (hard case 17).
 // PASS 0: moments into the table; PASS 1: prefix sums along rows; PASS 2: along columns (a
 // thread a row / column).
+#include "single_view_bindings.h"
 #ifdef EXACT
 #define SAT_T dvec2
 #else

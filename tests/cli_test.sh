@@ -110,7 +110,7 @@ esac
 expect 0 "" -- "$P" compare -W 32 -H 32 --samples 4 --techniques mvr,vwss --param map=64 --param k=1 -o "$T/cmp3"
 expect 2 "no technique of this run has a parameter 'k'" -- "$P" render -t mvr -W 32 -H 32 --param k=1 -o "$T/p.png"
 expect 2 "map: 7 is outside" -- "$P" render -t mvr -W 32 -H 32 --param map=7 -o "$T/p.png"
-expect 2 "pcf: must be 1, 5 or 9" -- "$P" render -t mvr -W 32 -H 32 --param pcf=4 -o "$T/p.png"
+expect 2 "pcf: expected one of 1, 5, 9" -- "$P" render -t mvr -W 32 -H 32 --param pcf=4 -o "$T/p.png"
 expect 2 "expected key=value" -- "$P" render -t mvr -W 32 -H 32 --param map -o "$T/p.png"
 expect 2 "given twice" -- "$P" render -t mvr -W 32 -H 32 --param map=64 --param map=128 -o "$T/p.png"
 expect 2 "expected a number" -- "$P" render -t vwss -W 32 -H 32 --param scale=big -o "$T/p.png"

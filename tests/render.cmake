@@ -6,12 +6,21 @@ penumbra_add_gl_test(test_render
   ${CMAKE_CURRENT_SOURCE_DIR}/render_dcs_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_shadow_map_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_pcss_test.cpp
-  ${CMAKE_CURRENT_SOURCE_DIR}/render_robustness_test.cpp)
+  ${CMAKE_CURRENT_SOURCE_DIR}/render_robustness_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/gl_program_test.cpp)
 
 # The CLI: exit codes and one-line errors for bad input (tests/cli_test.sh).
 add_test(NAME cli_exit_codes COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/cli_test.sh $<TARGET_FILE:penumbra>
          ${PROJECT_SOURCE_DIR})
 set_tests_properties(cli_exit_codes PROPERTIES SKIP_RETURN_CODE 77)
+
+# README's technique-parameter table equals the declarations (`penumbra list --params --format
+# markdown`, tests/params_readme_test.sh). No GL needed.
+add_test(NAME params_readme COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/params_readme_test.sh $<TARGET_FILE:penumbra>
+         ${PROJECT_SOURCE_DIR})
+
+# Technique parameters: declarations, dcs through --param, the shared key/value reader. No GL.
+penumbra_add_test(test_technique_params ${CMAKE_CURRENT_SOURCE_DIR}/technique_params_test.cpp LIBS penumbra_render)
 
 # DCS counter packing: no GL needed.
 penumbra_add_test(test_dcs_packing ${CMAKE_CURRENT_SOURCE_DIR}/dcs_packing_test.cpp LIBS penumbra_techniques)

@@ -185,7 +185,7 @@ TEST(Pipeline, EveryTechniqueRendersWithoutGlErrors) {
   for (auto& t : techniqueTable()) {
     if (t.name == "raytrace-converged") continue;  // 1024 rays a pixel: covered by the CLI run
     Renderer renderer(context(), scene, settings(64, 8));
-    auto tech = t.create({});
+    auto tech = makeTechnique(t.name);
     FrameResult f = renderer.render(*tech);
     EXPECT_EQ(gl::Context::takeErrorCount(), 0) << t.name;
     double sum = 0;

@@ -103,14 +103,93 @@ void checkOutputPath(const std::string& path) {
 
 }  // namespace
 
-int listTechniques(bool asJson) {
-  if (asJson) {
+namespace {
+// The family of a technique: its name up to the first '-' ("pcss-mask" -> "pcss").
+std::string familyOf(const std::string& name) { return name.substr(0, name.find('-')); }
+
+// `names` (in table order) shortened: a family of several techniques that all appear is "family*".
+std::string shortNames(const std::vector<std::string>& names) {
+  std::vector<std::string> out, done;
+  for (auto& t : techniqueTable()) {
+    const std::string f = familyOf(t.name);
+    if (std::find(done.begin(), done.end(), f) != done.end()) continue;
+    done.push_back(f);
+    std::vector<std::string> members, in;
+    for (auto& u : techniqueTable())
+      if (familyOf(u.name) == f) members.push_back(u.name);
+    for (auto& m : members)
+      if (std::find(names.begin(), names.end(), m) != names.end()) in.push_back(m);
+    if (in.size() == members.size() && members.size() > 1) out.push_back(f + "*");
+    else out.insert(out.end(), in.begin(), in.end());
+  }
+  return fmt::format("{}", fmt::join(out, ", "));
+}
+
+// README's table of technique parameters (section "Command line", between the params markers;
+// tests/params_readme_test.sh checks they are equal): one row per parameter declaration (key,
+// values, meaning), the techniques declaring it and their defaults.
+std::string paramsMarkdown() {
+  struct Row {
+    const ParamSpec* spec;
+    std::vector<std::string> techniques;
+    std::vector<std::pair<std::string, std::vector<std::string>>> defaults;  // default -> techniques
+  };
+  std::vector<Row> rows;
+  for (auto& t : techniqueTable())
+    for (auto& p : t.params) {
+      auto row = std::find_if(rows.begin(), rows.end(), [&](const Row& r) {
+        return r.spec->key == p.key && r.spec->meaning == p.meaning && r.spec->rangeText() == p.rangeText();
+      });
+      if (row == rows.end()) row = rows.insert(rows.end(), Row{&p, {}, {}});
+      row->techniques.push_back(t.name);
+      auto d = std::find_if(row->defaults.begin(), row->defaults.end(), [&](auto& e) { return e.first == p.defaultText(); });
+      if (d == row->defaults.end()) d = row->defaults.insert(row->defaults.end(), {p.defaultText(), {}});
+      d->second.push_back(t.name);
+    }
+  std::string out = "| key | techniques | default | values | meaning |\n|---|---|---|---|---|\n";
+  for (auto& r : rows) {
+    std::string defaults;
+    for (auto& [value, names] : r.defaults)
+      defaults += (defaults.empty() ? "" : ", ") + value + (r.defaults.size() > 1 ? " (" + shortNames(names) + ")" : "");
+    auto cell = [](std::string s) {  // a '|' inside a cell is escaped (GitHub tables)
+      for (std::size_t p = s.find('|'); p != std::string::npos; p = s.find('|', p + 2)) s.insert(p, "\\");
+      return s;
+    };
+    out += fmt::format("| `{}` | {} | {} | {} | {} |\n", r.spec->key, shortNames(r.techniques), cell(defaults),
+                       cell(r.spec->rangeText()), cell(r.spec->meaning));
+  }
+  return out;
+}
+}  // namespace
+
+int listTechniques(bool asJson, bool withParams, const std::string& format) {
+  if (format != "text" && format != "markdown" && format != "json")
+    throw Error("--format", "expected text, markdown or json, got '" + format + "'", ExitCode::Usage);
+  if (asJson || format == "json") {
     json j = json::array();
-    for (auto& t : techniqueTable()) j.push_back({{"name", t.name}, {"description", t.description}});
+    for (auto& t : techniqueTable()) {
+      json e = {{"name", t.name}, {"description", t.description}};
+      if (withParams) {
+        e["params"] = json::array();
+        for (auto& p : t.params)
+          e["params"].push_back({{"key", p.key}, {"default", p.defaultText()}, {"values", p.rangeText()}, {"meaning", p.meaning}});
+      }
+      j.push_back(e);
+    }
     std::printf("%s\n", j.dump(2).c_str());
     return 0;
   }
-  for (auto& t : techniqueTable()) std::printf("%-20s %s\n", t.name.c_str(), t.description.c_str());
+  if (format == "markdown") {
+    if (!withParams) throw Error("--format", "markdown is the parameter table: use it with --params", ExitCode::Usage);
+    std::printf("%s", paramsMarkdown().c_str());
+    return 0;
+  }
+  for (auto& t : techniqueTable()) {
+    std::printf("%-20s %s\n", t.name.c_str(), t.description.c_str());
+    if (!withParams) continue;
+    for (auto& p : t.params)
+      std::printf("    %-18s %-22s %-24s %s\n", p.key.c_str(), p.defaultText().c_str(), p.rangeText().c_str(), p.meaning.c_str());
+  }
   return 0;
 }
 
@@ -159,7 +238,7 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   checkImageSize(*context, settings);
   Renderer renderer(*context, scene, settings);
   TechniqueParams params(o.params);
-  auto tech = info.create(params);
+  auto tech = makeTechnique(info.name, params);
   params.checkConsumed();
   if (settings.shading == ShadingMode::PerSample && !tech->providesPerSample())
     throw Error("--shading", "per-sample shading (eq. 6) needs a technique with per-sample visibility",

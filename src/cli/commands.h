@@ -25,7 +25,9 @@ struct CommonOptions {
   bool json = false;
 };
 
-int listTechniques(bool json);
+// `penumbra list [--params] [--format text|markdown|json]`: the techniques, with --params every
+// parameter each declares (default, values, meaning); markdown is README's parameter table.
+int listTechniques(bool json, bool withParams, const std::string& format);
 int info(const CommonOptions& o);
 int render(const CommonOptions& o, const std::string& technique, const std::string& output);
 struct CompareCliOptions {

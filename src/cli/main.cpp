@@ -47,9 +47,13 @@ int main(int argc, char** argv) {
   app.fallthrough();
 
   cli::CommonOptions o;
-  bool listJson = false;
+  bool listJson = false, listParams = false;
+  std::string listFormat = "text";
   auto* list = app.add_subcommand("list", "list the techniques, one line each");
-  list->add_flag("--json", listJson, "machine-readable output");
+  list->add_flag("--json", listJson, "machine-readable output (as --format json)");
+  list->add_flag("--params", listParams, "every technique's parameters (--param key=value): default, values, meaning");
+  list->add_option("--format", listFormat, "text, markdown (README's parameter table, with --params) or json")
+      ->capture_default_str();
 
   auto* info = app.add_subcommand("info", "print a scene's triangle and light counts and mesh reports");
   addCommon(info, o, false);
@@ -102,7 +106,7 @@ int main(int argc, char** argv) {
   setLogLevel(logLevel);
 
   try {
-    if (*list) return cli::listTechniques(listJson);
+    if (*list) return cli::listTechniques(listJson, listParams, listFormat);
     if (*info) return cli::info(o);
     if (*render) return cli::render(o, technique, output);
     if (*lut) return cli::lut(o, lutOptions);

@@ -1,4 +1,5 @@
 #include "gl/objects.h"
+#include "gl/shader_source.h"
 
 #include <algorithm>
 #include <atomic>

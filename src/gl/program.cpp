@@ -12,6 +12,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/error.h"
+#include "gl/shader_source.h"
 
 namespace penumbra::gl {
 
@@ -33,28 +34,6 @@ std::string shaderSource(const std::string& file) {
 }
 
 namespace {
-
-// Replaces each line `#include "name"` by the named shader file (one level is enough here, but
-// nested includes work too; each file is included once).
-std::string resolveIncludes(const std::string& src, std::vector<std::string>& seen) {
-  std::istringstream in(src);
-  std::string line, out;
-  int lineNo = 0;
-  while (std::getline(in, line)) {
-    ++lineNo;
-    auto pos = line.find("#include \"");
-    if (pos != std::string::npos && line.find_first_not_of(" \t") == pos) {
-      std::string name = line.substr(pos + 10, line.find('"', pos + 10) - pos - 10);
-      if (std::find(seen.begin(), seen.end(), name) == seen.end()) {
-        seen.push_back(name);
-        out += resolveIncludes(shaderSource(name), seen);
-      }
-      continue;
-    }
-    out += line + "\n";
-  }
-  return out;
-}
 
 GLenum stageOf(const std::string& file) {
   auto ext = file.substr(file.rfind('.') + 1);
@@ -106,10 +85,8 @@ Program::Program(const std::vector<std::string>& files, const std::vector<std::s
   std::vector<GLuint>& shaders = stages.ids;
   std::vector<std::string> sources;
   for (auto& file : files) {
-    std::string header = "#version 450 core\n";
-    for (auto& d : defines) header += "#define " + d + "\n";
-    std::vector<std::string> seen{"shared.h"};
-    std::string src = header + shaderSource("shared.h") + "#line 1\n" + resolveIncludes(shaderSource(file), seen);
+    const ShaderText text = assembleShader(file, defines);
+    const std::string& src = text.text;
     sources.push_back(src);
     GLuint sh = glCreateShader(stageOf(file));
     detail::objectCreated(Kind::Shader);
@@ -122,9 +99,7 @@ Program::Program(const std::vector<std::string>& files, const std::vector<std::s
       char log[4096];
       glGetShaderInfoLog(sh, sizeof log, nullptr, log);
       detail::deleteObject(Kind::Shader, sh);
-      std::string msg(log);
-      for (auto& c : msg) if (c == '\n') c = ' ';
-      throw Error("shaders/" + file, "compile error: " + msg);
+      throw Error("shaders/" + file, "compile error: " + nameLogLocations(log, text.files));
     }
     glAttachShader(prog, sh);
     shaders.push_back(sh);

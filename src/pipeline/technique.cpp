@@ -1,4 +1,5 @@
-// TechniqueParams (pipeline/technique.h): the checked `--param key=value` set techniques read.
+// ParamSpec declarations and TechniqueParams (pipeline/technique.h): the checked `--param
+// key=value` set techniques read, through their own declarations (TechniqueArgs).
 #include "pipeline/technique.h"
 
 #include <algorithm>
@@ -7,8 +8,85 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/key_values.h"
 
 namespace penumbra {
+
+// ---- ParamSpec -------------------------------------------------------------------------------
+
+ParamSpec ParamSpec::integer(std::string key, int fallback, int lo, int hi, std::string meaning) {
+  ParamSpec p;
+  p.key = std::move(key), p.type = Type::Integer, p.fallback = fallback, p.lo = lo, p.hi = hi, p.meaning = std::move(meaning);
+  return p;
+}
+ParamSpec ParamSpec::number(std::string key, double fallback, double lo, double hi, std::string meaning) {
+  ParamSpec p = integer(std::move(key), 0, 0, 0, std::move(meaning));
+  p.type = Type::Number, p.fallback = fallback, p.lo = lo, p.hi = hi;
+  return p;
+}
+ParamSpec ParamSpec::boolean(std::string key, bool fallback, std::string meaning) {
+  ParamSpec p = integer(std::move(key), fallback ? 1 : 0, 0, 1, std::move(meaning));
+  p.type = Type::Boolean;
+  return p;
+}
+ParamSpec ParamSpec::choice(std::string key, std::string fallback, std::vector<std::string> choices, std::string meaning) {
+  PENUMBRA_CHECK(std::find(choices.begin(), choices.end(), fallback) != choices.end(), "choice default not a choice");
+  ParamSpec p = integer(std::move(key), 0, 0, 0, std::move(meaning));
+  p.type = Type::Choice, p.text = std::move(fallback), p.choices = std::move(choices);
+  return p;
+}
+ParamSpec ParamSpec::path(std::string key, std::string meaning) {
+  ParamSpec p = integer(std::move(key), 0, 0, 0, std::move(meaning));
+  p.type = Type::Text;
+  return p;
+}
+ParamSpec ParamSpec::withDefault(double value) const {
+  ParamSpec p = *this;
+  p.fallback = value;
+  return p;
+}
+ParamSpec ParamSpec::withDefault(std::string value) const {
+  ParamSpec p = *this;
+  p.text = std::move(value);
+  return p;
+}
+ParamSpec ParamSpec::shown(std::string rule) const {
+  ParamSpec p = *this;
+  p.shownDefault = std::move(rule);
+  return p;
+}
+std::string ParamSpec::defaultText() const {
+  if (!shownDefault.empty()) return shownDefault;
+  switch (type) {
+    case Type::Integer: case Type::Number: return fmt::format("{}", fallback);
+    case Type::Boolean: return fallback != 0.0 ? "1" : "0";
+    case Type::Choice: return text;
+    case Type::Text: return text.empty() ? "(none)" : text;
+  }
+  return {};
+}
+std::string ParamSpec::rangeText() const {
+  switch (type) {
+    case Type::Integer: case Type::Number: return fmt::format("[{}, {}]", lo, hi);
+    case Type::Boolean: return "0/1";
+    case Type::Choice: {
+      std::string out;
+      for (auto& c : choices) out += (out.empty() ? "" : "|") + c;
+      return out;
+    }
+    case Type::Text: return "path";
+  }
+  return {};
+}
+
+const ParamSpec& TechniqueArgs::spec(const std::string& key) const {
+  for (auto& p : declared_)
+    if (p.key == key) return p;
+  checkFailed(("technique '" + technique_ + "' reads '" + key + "' it does not declare").c_str(), __FILE__, __LINE__,
+              "declare every parameter in the technique's ParamSpec list");
+}
+
+// ---- TechniqueParams -------------------------------------------------------------------------
 
 TechniqueParams::TechniqueParams(const std::vector<std::string>& keyValues) {
   for (auto& kv : keyValues) {
@@ -35,41 +113,33 @@ const std::string* TechniqueParams::find(const std::string& key) const {
 }
 
 namespace {
-double parseNumber(const std::string& key, const std::string& v, double lo, double hi) {
-  std::size_t used = 0;
-  double x = 0.0;
-  try {
-    x = std::stod(v, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != v.size() || !std::isfinite(x))
-    throw Error("--param", key + ": expected a number, got '" + v + "'", ExitCode::Usage);
-  if (x < lo || x > hi)
-    throw Error("--param", fmt::format("{}: {} is outside [{}, {}]", key, v, lo, hi), ExitCode::Usage);
-  return x;
-}
+KeyPlace paramPlace(const ParamSpec& spec) { return {"--param", spec.key, ExitCode::Usage}; }
 }  // namespace
 
-int TechniqueParams::getInt(const std::string& key, int fallback, int lo, int hi) const {
-  const std::string* v = find(key);
-  if (!v) return fallback;
-  double x = parseNumber(key, *v, lo, hi);
-  if (x != std::floor(x)) throw Error("--param", key + ": expected an integer, got '" + *v + "'", ExitCode::Usage);
-  return int(x);
+int TechniqueParams::integer(const ParamSpec& spec) const {
+  PENUMBRA_CHECK(spec.type == ParamSpec::Type::Integer, "integer read of a non-integer parameter");
+  const std::string* v = find(spec.key);
+  return v ? readInteger(KeyValue::ofText(*v), paramPlace(spec), int(spec.lo), int(spec.hi)) : int(spec.fallback);
 }
 
-double TechniqueParams::getDouble(const std::string& key, double fallback, double lo, double hi) const {
-  const std::string* v = find(key);
-  return v ? parseNumber(key, *v, lo, hi) : fallback;
+double TechniqueParams::number(const ParamSpec& spec) const {
+  PENUMBRA_CHECK(spec.type == ParamSpec::Type::Number, "number read of a non-number parameter");
+  const std::string* v = find(spec.key);
+  return v ? readNumber(KeyValue::ofText(*v), paramPlace(spec), spec.lo, spec.hi) : spec.fallback;
 }
 
-bool TechniqueParams::getBool(const std::string& key, bool fallback) const {
-  const std::string* v = find(key);
-  if (!v) return fallback;
-  if (*v == "1" || *v == "true" || *v == "on") return true;
-  if (*v == "0" || *v == "false" || *v == "off") return false;
-  throw Error("--param", key + ": expected 0/1, got '" + *v + "'", ExitCode::Usage);
+bool TechniqueParams::boolean(const ParamSpec& spec) const {
+  PENUMBRA_CHECK(spec.type == ParamSpec::Type::Boolean, "boolean read of a non-boolean parameter");
+  const std::string* v = find(spec.key);
+  return v ? readBoolean(KeyValue::ofText(*v), paramPlace(spec)) : spec.fallback != 0.0;
+}
+
+std::string TechniqueParams::text(const ParamSpec& spec) const {
+  PENUMBRA_CHECK(spec.type == ParamSpec::Type::Choice || spec.type == ParamSpec::Type::Text, "text read of a value parameter");
+  const std::string* v = find(spec.key);
+  if (!v) return spec.text;
+  if (spec.type == ParamSpec::Type::Text) return readString(KeyValue::ofText(*v), paramPlace(spec));
+  return spec.choices[std::size_t(readChoice(KeyValue::ofText(*v), paramPlace(spec), spec.choices))];
 }
 
 void TechniqueParams::checkConsumed() const {

@@ -76,23 +76,56 @@ class Technique {
   std::uint64_t serial_;
 };
 
+// One technique parameter, declared once beside the technique (pbrt-v4's Create(dict) model):
+// the declaration gives the factory its value (default, range or choices checked), `--param`
+// its checking, `penumbra list --params` its line and README its table row (tests/
+// params_readme_test.sh compares README with `penumbra list --params --format markdown`).
+struct ParamSpec {
+  enum class Type { Integer, Number, Boolean, Choice, Text };
+  std::string key;
+  Type type = Type::Number;
+  double fallback = 0.0;             // Integer, Number, Boolean (0/1): the value when not given
+  double lo = 0.0, hi = 0.0;         // Integer, Number: the accepted range
+  std::vector<std::string> choices;  // Choice
+  std::string text;                  // Choice, Text: the value when not given
+  std::string shownDefault;          // when the default is a rule, not a value ("auto", "GL limit")
+  std::string meaning;
+
+  static ParamSpec integer(std::string key, int fallback, int lo, int hi, std::string meaning);
+  static ParamSpec number(std::string key, double fallback, double lo, double hi, std::string meaning);
+  static ParamSpec boolean(std::string key, bool fallback, std::string meaning);
+  static ParamSpec choice(std::string key, std::string fallback, std::vector<std::string> choices, std::string meaning);
+  static ParamSpec path(std::string key, std::string meaning);  // Text, empty by default
+  // The same parameter with another default (a preset: pcss-ultra's samples).
+  ParamSpec withDefault(double value) const;
+  ParamSpec withDefault(std::string value) const;
+  // The default as a rule, for lists and README ("auto", "eq. 3").
+  ParamSpec shown(std::string rule) const;
+  std::string defaultText() const;  // the shown rule or the value
+  std::string rangeText() const;    // "[16, 16384]", "0/1", "exact|naive|lut", "path"
+};
+
 // Parameters of techniques from the command line (`--param key=value`, repeatable). One set is
-// shared by every technique of a run: each technique reads the keys it knows (get* records
+// shared by every technique of a run: each technique reads the keys it declares (reads record
 // them as known and consumed); `checkConsumed` then refuses a key no technique read, naming the
-// keys that were known, so a misspelt parameter is never silently dropped.
+// keys that were known, so a misspelt parameter is never silently dropped. Values are converted
+// and checked by the reader the scene loader uses too (core/key_values.h).
 class TechniqueParams {
  public:
   TechniqueParams() = default;
   // "key=value" strings; throws Error("--param") for a malformed one or a repeated key.
   explicit TechniqueParams(const std::vector<std::string>& keyValues);
-  int getInt(const std::string& key, int fallback, int lo, int hi) const;
-  double getDouble(const std::string& key, double fallback, double lo, double hi) const;
-  bool getBool(const std::string& key, bool fallback) const;
+  int integer(const ParamSpec& spec) const;
+  double number(const ParamSpec& spec) const;
+  bool boolean(const ParamSpec& spec) const;
+  std::string text(const ParamSpec& spec) const;  // Choice (one of its choices) or Text
   bool empty() const { return values_.empty(); }
   // Throws Error("--param") if a given key was read by no technique created with these params.
   void checkConsumed() const;
   // "key=value" of the given keys some technique created with these params read.
   std::vector<std::string> read() const;
+  // The keys techniques created with these params asked for (given or not).
+  const std::vector<std::string>& known() const { return known_; }
   // Counts `other`'s reads as reads of these params (one check over techniques created with
   // separate copies, e.g. one per technique and sweep preset).
   void noteReads(const TechniqueParams& other);
@@ -103,11 +136,31 @@ class TechniqueParams {
   mutable std::vector<std::string> known_, consumed_;
 };
 
+// The parameters as one technique reads them: the run's TechniqueParams through the
+// technique's own declarations. Reading a key the technique does not declare is a programmer
+// error (PENUMBRA_CHECK), so its declarations are all it reads.
+class TechniqueArgs {
+ public:
+  TechniqueArgs(const TechniqueParams& given, const std::vector<ParamSpec>& declared, std::string technique)
+      : given_(given), declared_(declared), technique_(std::move(technique)) {}
+  int integer(const std::string& key) const { return given_.integer(spec(key)); }
+  double number(const std::string& key) const { return given_.number(spec(key)); }
+  bool boolean(const std::string& key) const { return given_.boolean(spec(key)); }
+  std::string text(const std::string& key) const { return given_.text(spec(key)); }
+  const ParamSpec& spec(const std::string& key) const;
+
+ private:
+  const TechniqueParams& given_;
+  const std::vector<ParamSpec>& declared_;
+  std::string technique_;
+};
+
 // A technique by name: what the table (techniques/registry.h) holds and what compare is handed.
 struct TechniqueInfo {
   std::string name;
   std::string description;  // one line for `penumbra list`
-  std::function<std::unique_ptr<Technique>(const TechniqueParams&)> create;
+  std::vector<ParamSpec> params;  // every parameter it reads, with its defaults
+  std::function<std::unique_ptr<Technique>(const TechniqueArgs&)> create;
 };
 
 // The table of techniques is a layer above: techniques/registry.h.

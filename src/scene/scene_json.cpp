@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/key_values.h"
 #include "core/memory.h"
 #include "core/log.h"
 #include "scene/loaders.h"
@@ -48,8 +49,20 @@ struct Context {
   }
 };
 
-// One JSON object being interpreted. Keys read through it are marked used; finish() warns about
-// the rest so that a misspelt key is never silently ignored.
+// A JSON scalar as the shared key/value reader sees it (core/key_values.h).
+KeyValue keyValueOf(const Json& v) {
+  KeyValue k;
+  k.shown = v.dump();
+  if (v.is_number_integer()) k.kind = KeyValue::Kind::Integer, k.number = v.get<double>();
+  else if (v.is_number()) k.kind = KeyValue::Kind::Number, k.number = v.get<double>();
+  else if (v.is_boolean()) k.kind = KeyValue::Kind::Boolean, k.boolean = v.get<bool>();
+  else if (v.is_string()) k.kind = KeyValue::Kind::String, k.text = v.get<std::string>();
+  return k;
+}
+
+// One JSON object being interpreted, its values converted and checked by the reader technique
+// parameters use too (core/key_values.h). Keys read through it are marked used; finish() warns
+// about the rest so that a misspelt key is never silently ignored.
 class Fields {
  public:
   Fields(Context& ctx, const Json& object, std::string context)
@@ -78,24 +91,15 @@ class Fields {
   }
   int integer(const std::string& key, int fallback, int lo, int hi) {
     const Json* v = get(key);
-    if (!v) return fallback;
-    if (!v->is_number_integer() || v->get<long long>() < lo || v->get<long long>() > hi) {
-      ctx_.fail(at(key), "expected an integer in [" + std::to_string(lo) + ", " +
-                             std::to_string(hi) + "], got " + v->dump());
-    }
-    return int(v->get<long long>());
+    return v ? readInteger(keyValueOf(*v), place(at(key)), lo, hi) : fallback;
   }
   bool boolean(const std::string& key, bool fallback) {
     const Json* v = get(key);
-    if (!v) return fallback;
-    if (!v->is_boolean()) ctx_.fail(at(key), "expected true or false, got " + v->dump());
-    return v->get<bool>();
+    return v ? readBoolean(keyValueOf(*v), place(at(key))) : fallback;
   }
   std::string string(const std::string& key, const std::string& fallback) {
     const Json* v = get(key);
-    if (!v) return fallback;
-    if (!v->is_string()) ctx_.fail(at(key), "expected a string, got " + v->dump());
-    return v->get<std::string>();
+    return v ? readString(keyValueOf(*v), place(at(key))) : fallback;
   }
   glm::vec3 vec3(const std::string& key, glm::vec3 fallback) {
     const Json* v = get(key);
@@ -117,9 +121,10 @@ class Fields {
   }
 
   float toFloat(const Json& v, const std::string& context) const {
-    if (!v.is_number()) ctx_.fail(context, "expected a number, got " + v.dump());
-    const float x = v.get<float>();
-    if (!std::isfinite(x)) ctx_.fail(context, "not a finite number: " + v.dump());
+    const KeyValue k = keyValueOf(v);
+    const double inf = std::numeric_limits<double>::infinity();
+    const float x = float(readNumber(k, place(context), -inf, inf));
+    if (!std::isfinite(x)) place(context).fail("not a finite number: " + k.shown);
     return x;
   }
   glm::vec3 toVec(const Json& v, const std::string& context, int n) const {
@@ -135,6 +140,7 @@ class Fields {
   static std::string fmtFloat(float x) { return fmt::format("{}", x); }
 
  private:
+  KeyPlace place(const std::string& context) const { return {ctx_.where, context, ExitCode::Error}; }
   Context& ctx_;
   const Json& object_;
   std::string context_;

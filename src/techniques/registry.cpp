@@ -13,77 +13,95 @@
 
 namespace penumbra {
 
+namespace {
+DcsOptions dcsPreset(SilhouetteMode silhouettes, dcs::OpacityMode opacity, int coverage) {
+  DcsOptions o;
+  o.silhouettes = silhouettes;
+  o.opacity = opacity;
+  o.coverage = coverage;
+  return o;
+}
+TechniqueInfo dcsEntry(std::string name, std::string description, DcsOptions preset) {
+  return {std::move(name), std::move(description), dcsParams(preset),
+          [](const TechniqueArgs& a) { return makeDepthComplexitySampling(readDcsOptions(a)); }};
+}
+// A technique that is a preset of a family: the family's declarations with the preset's
+// defaults, and its factory.
+template <class Preset>
+TechniqueInfo presetEntry(std::string name, std::string description, std::vector<ParamSpec> params, Preset preset,
+                          std::unique_ptr<Technique> (*make)(const TechniqueArgs&, Preset)) {
+  return {std::move(name), std::move(description), std::move(params),
+          [preset, make](const TechniqueArgs& a) { return make(a, preset); }};
+}
+TechniqueInfo pcssEntry(std::string name, std::string description, PcssOptions preset) {
+  return presetEntry(std::move(name), std::move(description), pcssParams(preset), preset, makePercentageCloserSoftShadows);
+}
+TechniqueInfo vssmEntry(std::string name, std::string description, VssmOptions preset) {
+  return presetEntry(std::move(name), std::move(description), vssmParams(preset), preset, makeVarianceSoftShadowMapping);
+}
+TechniqueInfo vwssEntry(std::string name, std::string description, VwssMode mode) {
+  return presetEntry(std::move(name), std::move(description), vwssParams(mode), mode, makeViewWarpedSoftShadows);
+}
+VssmOptions vssmPreset(bool exactSat, int shadowLevels) {
+  VssmOptions o;
+  o.exactSat = exactSat;
+  o.shadowLevels = shadowLevels;
+  return o;
+}
+}  // namespace
+
 const std::vector<TechniqueInfo>& techniqueTable() {
+  using dcs::OpacityMode;
   static const std::vector<TechniqueInfo> table = {
-      {"none", "unshadowed direct lighting", [](const TechniqueParams&) { return makeUnshadowed(); }},
-      {"hard-sv", "hard shadows from the light centre, z-fail shadow volumes (float counter)",
-       [](const TechniqueParams&) { return makeHardShadowVolumes(); }},
-      {"dcs", "depth complexity sampling: per-sample occluder counts, accurate silhouettes (exact; semi-opaque layers multiply)",
-       [](const TechniqueParams&) { return makeDepthComplexitySampling({SilhouetteMode::Accurate}); }},
-      {"dcs-standard", "depth complexity sampling with standard silhouettes (from the light centre)",
-       [](const TechniqueParams&) { return makeDepthComplexitySampling({SilhouetteMode::Standard}); }},
-      {"dcs-sum", "depth complexity sampling, semi-opaque occluders as the paper's sum of opacities",
-       [](const TechniqueParams&) {
-         DcsOptions o;
-         o.opacity = dcs::OpacityMode::Sum;
-         return makeDepthComplexitySampling(o);
-       }},
-      {"dcs-naive", "dcs with the paper's covered-sample loop over 8-bit packed positions (approximate)",
-       [](const TechniqueParams&) {
-         DcsOptions o;
-         o.coverage = PENUMBRA_DCS_COVERAGE_NAIVE;
-         return makeDepthComplexitySampling(o);
-       }},
-      {"dcs-lut", "dcs with the paper's edge LUT (cube-map sectors & line table, approximate)",
-       [](const TechniqueParams&) {
-         DcsOptions o;
-         o.coverage = PENUMBRA_DCS_COVERAGE_LUT;
-         return makeDepthComplexitySampling(o);
-       }},
+      {"none", "unshadowed direct lighting", {}, [](const TechniqueArgs&) { return makeUnshadowed(); }},
+      {"hard-sv", "hard shadows from the light centre, z-fail shadow volumes (float counter)", {},
+       [](const TechniqueArgs&) { return makeHardShadowVolumes(); }},
+      dcsEntry("dcs", "depth complexity sampling: per-sample occluder counts, accurate silhouettes (exact; semi-opaque layers multiply)",
+               dcsPreset(SilhouetteMode::Accurate, OpacityMode::Product, PENUMBRA_DCS_COVERAGE_EXACT)),
+      dcsEntry("dcs-standard", "depth complexity sampling with standard silhouettes (from the light centre)",
+               dcsPreset(SilhouetteMode::Standard, OpacityMode::Product, PENUMBRA_DCS_COVERAGE_EXACT)),
+      dcsEntry("dcs-sum", "depth complexity sampling, semi-opaque occluders as the paper's sum of opacities",
+               dcsPreset(SilhouetteMode::Accurate, OpacityMode::Sum, PENUMBRA_DCS_COVERAGE_EXACT)),
+      dcsEntry("dcs-naive", "dcs with the paper's covered-sample loop over 8-bit packed positions (approximate)",
+               dcsPreset(SilhouetteMode::Accurate, OpacityMode::Product, PENUMBRA_DCS_COVERAGE_NAIVE)),
+      dcsEntry("dcs-lut", "dcs with the paper's edge LUT (cube-map sectors & line table, approximate)",
+               dcsPreset(SilhouetteMode::Accurate, OpacityMode::Product, PENUMBRA_DCS_COVERAGE_LUT)),
       {"mvr", "multi-view rasterisation: a depth map per light sample, one draw each, PCF (VWSS paper's reference)",
-       [](const TechniqueParams& p) { return makeMultiViewRasterisation(p, false); }},
-      {"mvr-layered", "mvr in one instanced draw, a geometry shader routing instances to map layers",
-       [](const TechniqueParams& p) { return makeMultiViewRasterisation(p, true); }},
-      {"vwss", "view-warped soft shadows: points from one enlarged central view, compute splat (buffered)",
-       [](const TechniqueParams& p) { return makeViewWarpedSoftShadows(p, VwssMode::Buffered); }},
-      {"vwss-unbuffered", "vwss splatting from the point-generation fragment shader (no point buffer)",
-       [](const TechniqueParams& p) { return makeViewWarpedSoftShadows(p, VwssMode::Unbuffered); }},
-      {"vwss-graphics", "vwss's points drawn as GL_POINTS, a draw per map, depth-tested (graphics pipeline)",
-       [](const TechniqueParams& p) { return makeViewWarpedSoftShadows(p, VwssMode::Graphics); }},
+       mvrParams(), [](const TechniqueArgs& a) { return makeMultiViewRasterisation(a, false); }},
+      {"mvr-layered", "mvr in one instanced draw, a geometry shader routing instances to map layers", mvrParams(),
+       [](const TechniqueArgs& a) { return makeMultiViewRasterisation(a, true); }},
+      vwssEntry("vwss", "view-warped soft shadows: points from one enlarged central view, compute splat (buffered)",
+                VwssMode::Buffered),
+      vwssEntry("vwss-unbuffered", "vwss splatting from the point-generation fragment shader (no point buffer)",
+                VwssMode::Unbuffered),
+      vwssEntry("vwss-graphics", "vwss's points drawn as GL_POINTS, a draw per map, depth-tested (graphics pipeline)",
+                VwssMode::Graphics),
       {"reproject", "fragment reprojection: the central z-buffered map reprojected into every map (atomics)",
-       [](const TechniqueParams& p) { return makeFragmentReprojection(p, true); }},
-      {"reproject-unsync", "fragment reprojection without synchronisation (last writer wins)",
-       [](const TechniqueParams& p) { return makeFragmentReprojection(p, false); }},
-      {"pcss", "percentage-closer soft shadows, one map from the light centre, Vogel disk + noise (Sterna: 32 blocker, 16 PCF samples)",
-       [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::Regular, false, false)); }},
-      {"pcss-ultra", "pcss with the 'Ultra' preset the VWSS paper compares with (64 blocker, 96 PCF samples)",
-       [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::Regular, true, false)); }},
-      {"pcss-mask", "pcss with Sterna's quarter-resolution blurred penumbra mask (kernel scale 1.4)",
-       [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::PenumbraMask, false, false)); }},
-      {"pcss-minfilter", "pcss with Sterna's min filter: blocker depth from the separable nearest-depth filter of the map, blurred",
-       [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::MinFilter, false, false)); }},
-      {"pcss-dense", "pcss as Fernando's original: every texel of the blocker-search and filter kernels (at most 32x32)",
-       [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::Dense, false, false)); }},
-      {"pcss-checker", "pcss computed on a checkerboard (half the pixels), depth-aware upsampling",
-       [](const TechniqueParams& p) { return makePercentageCloserSoftShadows(p, pcssPreset(PcssMode::Regular, false, true)); }},
-      {"vssm", "variance soft shadow mapping: exact summed-area table of depth moments, min-max HSM, 5x5 uniform blocker / H=3 adaptive shadow subdivision, contact fallback",
-       [](const TechniqueParams& p) { return makeVarianceSoftShadowMapping(p, {}); }},
-      {"vssm-uniform", "vssm with uniform subdivision for both kernels (5x5 blocker, 8x8 shadow)",
-       [](const TechniqueParams& p) {
-         VssmOptions o;
-         o.shadowLevels = 0;
-         return makeVarianceSoftShadowMapping(p, o);
-       }},
-      {"vssm-fp32", "vssm on a plain fp32 summed-area table (fails at large maps: hard case 17)",
-       [](const TechniqueParams& p) {
-         VssmOptions o;
-         o.exactSat = false;
-         return makeVarianceSoftShadowMapping(p, o);
-       }},
-      {"raytrace", "Embree reference with the same light samples as every technique (per sample)",
-       [](const TechniqueParams&) { return makeRaytraceSameSamples(); }},
-      {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility only)",
-       [](const TechniqueParams&) { return makeRaytraceConverged(1024); }},
+       reprojectParams(), [](const TechniqueArgs& a) { return makeFragmentReprojection(a, true); }},
+      {"reproject-unsync", "fragment reprojection without synchronisation (last writer wins)", reprojectParams(),
+       [](const TechniqueArgs& a) { return makeFragmentReprojection(a, false); }},
+      pcssEntry("pcss", "percentage-closer soft shadows, one map from the light centre, Vogel disk + noise (Sterna: 32 blocker, 16 PCF samples)",
+                pcssPreset(PcssMode::Regular, false, false)),
+      pcssEntry("pcss-ultra", "pcss with the 'Ultra' preset the VWSS paper compares with (64 blocker, 96 PCF samples)",
+                pcssPreset(PcssMode::Regular, true, false)),
+      pcssEntry("pcss-mask", "pcss with Sterna's quarter-resolution blurred penumbra mask (kernel scale 1.4)",
+                pcssPreset(PcssMode::PenumbraMask, false, false)),
+      pcssEntry("pcss-minfilter", "pcss with Sterna's min filter: blocker depth from the separable nearest-depth filter of the map, blurred",
+                pcssPreset(PcssMode::MinFilter, false, false)),
+      pcssEntry("pcss-dense", "pcss as Fernando's original: every texel of the blocker-search and filter kernels (at most 32x32)",
+                pcssPreset(PcssMode::Dense, false, false)),
+      pcssEntry("pcss-checker", "pcss computed on a checkerboard (half the pixels), depth-aware upsampling",
+                pcssPreset(PcssMode::Regular, false, true)),
+      vssmEntry("vssm", "variance soft shadow mapping: exact summed-area table of depth moments, min-max HSM, 5x5 uniform blocker / H=3 adaptive shadow subdivision, contact fallback",
+                VssmOptions{}),
+      vssmEntry("vssm-uniform", "vssm with uniform subdivision for both kernels (5x5 blocker, 8x8 shadow)",
+                vssmPreset(true, 0)),
+      vssmEntry("vssm-fp32", "vssm on a plain fp32 summed-area table (fails at large maps: hard case 17)",
+                vssmPreset(false, VssmOptions{}.shadowLevels)),
+      {"raytrace", "Embree reference with the same light samples as every technique (per sample)", {},
+       [](const TechniqueArgs&) { return makeRaytraceSameSamples(); }},
+      {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility only)", {},
+       [](const TechniqueArgs&) { return makeRaytraceConverged(1024); }},
   };
   return table;
 }
@@ -104,7 +122,8 @@ std::vector<TechniqueInfo> findTechniques(const std::vector<std::string>& names)
 }
 
 std::unique_ptr<Technique> makeTechnique(const std::string& name, const TechniqueParams& params) {
-  return findTechnique(name).create(params);
+  const TechniqueInfo& info = findTechnique(name);
+  return info.create(TechniqueArgs(params, info.params, info.name));
 }
 
 }  // namespace penumbra

@@ -36,10 +36,13 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "gl/objects.h"
+#include "gl/program_cache.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
+#include "techniques/dcs/edge_lut_gpu.h"
 #include "techniques/dcs/packing.h"
 #include "techniques/shadow_volume/shadow_volume.h"
+#include "dcs_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra {
 namespace {
@@ -116,6 +119,30 @@ std::vector<glm::vec3> lightCorners(const Light& l, float& radius) {
   return out;
 }
 
+// Blending for counters and visibility: every fragment adds.
+void additiveBlend() {
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+}
+// Wedge faces are depth-tested against the visible surface: a fragment survives where the
+// surface is behind the face (reversed Z: smaller depth).
+void beginWedgeState() {
+  additiveBlend();
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glDepthFunc(GL_GEQUAL);
+  glEnable(GL_DEPTH_CLAMP);
+}
+void endWedgeState() {
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_CLAMP);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_TRUE);
+}
+
 class DepthComplexitySampling final : public Technique {
  public:
   explicit DepthComplexitySampling(const DcsOptions& o) : options_(o) {
@@ -178,7 +205,6 @@ class DepthComplexitySampling final : public Technique {
     bound_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
     boundFbo_ = gl::Framebuffer({&bound_}, &gpu.depth());
     checksum_ = gl::Texture::make2D(GL_RG32F, gpu.width(), gpu.height());
-    boundPrograms_.clear();
     programs_.clear();
     luts_.clear();
     boundCache_.clear();
@@ -187,313 +213,40 @@ class DepthComplexitySampling final : public Technique {
     emptyVao_ = gl::VertexArray::create();
   }
 
+  // Per light, five named passes over one LightFrame: the centre count D(c) (placement, path
+  // crossings, shadow volumes), the edge selection (potential silhouettes), the counter plan
+  // (the bound that sizes the counters), the counter passes (init, wedges, resolve; again with a
+  // wider base if the measured bound says a digit could have overflowed) and the bound check.
   void renderVisibility(LightPass& lightPass) override {
-    // The integration origin (hard cases 27-28): the light centre, unless it lies exactly on a
-    // mesh edge or vertex (a light centred on a box's edge or corner). There a path from it to
-    // a sample starts on the border of the surface, where neither the crossing of one triangle
-    // (dcs_init.frag) nor an edge update (a wedge whose plane holds the start) describes the
-    // jump; any point of the light can serve as the origin of the integration (DCS 4.2: D(s) =
-    // D(x) + the changes from x to s), so a point next to the centre, off every border, does.
-    Light origin = lightPass.light;
-    stats_.shiftedOrigin = false;
-    if (origin.shape != LightShape::Point && volumes_.onMeshBorder(glm::dvec3(origin.position))) {
-      origin.position = offBorder(lightPass.light);
-      stats_.shiftedOrigin = true;
-    }
-    LightPass pass{lightPass.scene, origin, lightPass.lightIndex, lightPass.samples, lightPass.gpu, lightPass.timer,
+    LightFrame f;
+    f.light = integrationOrigin(lightPass.light);
+    LightPass pass{lightPass.scene, f.light, lightPass.lightIndex, lightPass.samples, lightPass.gpu, lightPass.timer,
                    lightPass.cpuGBuffer, lightPass.visibility, lightPass.perSample, lightPass.cpuPerSample};
-    const Light& light = pass.light;
     // The paper's 2D covered-sample modes need a planar light (and its centre as the origin);
     // others use the exact test.
-    const int coverage = dcs::edgeLutSupports(light) && !stats_.shiftedOrigin ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;
-    stats_.coverage = coverage;
-    const GpuLut* lut = coverage != PENUMBRA_DCS_COVERAGE_EXACT ? &lutFor(pass) : nullptr;
-    float radius = 0.0f;
-    std::vector<glm::vec3> corners = lightCorners(lightPass.light, radius);
-    radius += glm::length(origin.position - lightPass.light.position);  // around the origin
-    // Hard cases 27-29: the closed meshes the light touches or enters are counted per triangle
-    // (every crossing), and the paths from the centre to the samples that pass through a
-    // triangle get their jump in the init pass (ShadowVolumeCounter::place).
-    ShadowVolumeCounter::Placement placed;
-    pass.timer.time("dcs placement", [&] {
-      placed = volumes_.place(glm::dvec3(light.position), &pass.samples.positions, double(radius),
-                              glm::dvec3(pass.gpu.cameraPosition()));
-      useRules(placed.rules);
-    });
-    stats_.perTriangleMeshes = placed.perTriangleMeshes;
-    stats_.coplanarTriangles = placed.coplanarTriangles;
-    if (placed.coplanarTriangles > 0 && warnedCoplanar_.insert(pass.lightIndex).second)
-      PLOG_WARN("dcs: light '{}' lies in the plane of {} triangles: where its samples cross such a face's border the counts "
-                "may differ from the reference (a path along a surface is not resolved exactly)",
-                light.name, placed.coplanarTriangles);
-    stats_.pathCrossings = placed.crossings.size();
-    int maxPathGain = 0;  // the most a sample's path crossings can add to its count
-    {
-      std::vector<GpuPathCrossing> gpuCrossings;
-      for (std::size_t k = 0; k + 1 < placed.firstCrossing.size(); ++k) {
-        int gain = 0;
-        for (std::uint32_t j = placed.firstCrossing[k]; j < placed.firstCrossing[k + 1]; ++j) {
-          const auto& x = placed.crossings[j];
-          const auto& m = volumes_.meshes()[x.mesh];
-          gain += m.units;
-          gpuCrossings.push_back({trianglePlane(m.topology.weldedPositions, m.topology.weldedTriangles[x.at.triangle]),
-                                  glm::ivec4(x.at.sideC, x.at.sideS,
-                                             placed.rules[x.mesh] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0, m.units)});
-        }
-        maxPathGain = std::max(maxPathGain, gain);
-      }
-      if (!gpuCrossings.empty()) {
-        pathFirstBuffer_ = gl::Buffer(placed.firstCrossing);
-        pathBuffer_ = gl::Buffer(gpuCrossings);
-      }
-    }
-    const bool hasPathCrossings = !placed.crossings.empty();
-    volumes_.count(pass, placed.rules);  // D(c): stages "silhouettes", "shadow volume"
-
-    std::vector<int> edgeIds;
-    pass.timer.time("dcs edges", [&] {
-      geo::LightExtent extent = extentOf(lightPass.light);
-      if (options_.gpuSilhouettes && options_.silhouettes == SilhouetteMode::Accurate) {
-        edgeIds = gpuAccurateSilhouette(extent);
-        return;
-      }
-      const auto& meshes = volumes_.meshes();
-      for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
-        const auto& m = meshes[mi];
-        if (m.units == 0) continue;  // never occludes
-        if (options_.silhouettes == SilhouetteMode::Accurate) {
-          for (auto e : geo::extractAccurateSilhouette(m.topology, extent, placed.rules[mi])) edgeIds.push_back(int(edgeOffset_[mi] + e));
-        } else {
-          for (auto& s : geo::extractPointSilhouette(m.topology, glm::dvec3(light.position), placed.rules[mi]).sides)
-            edgeIds.push_back(int(edgeOffset_[mi] + s.edge));
-        }
-      }
-    });
-    stats_.edges = edgeIds.size();
-    stats_.reruns = 0;
-    stats_.edgeChecksum = 0;
-    for (int id : edgeIds) stats_.edgeChecksum += std::uint64_t(id) * 2654435761u % 1000003u;
-    gl::Buffer idBuffer(edgeIds);
-    gl::VertexArray idVao = gl::VertexArray::create();
-    idVao.vertexBuffer(idBuffer, sizeof(int)).attributeInt(0, 1, 0);
-    edgeBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGES);
-    incidenceBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
-
+    f.coverage = dcs::edgeLutSupports(f.light) && !stats_.shiftedOrigin ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;
+    stats_.coverage = f.coverage;
+    f.lut = f.coverage != PENUMBRA_DCS_COVERAGE_EXACT ? &lutFor(pass) : nullptr;
+    f.corners = lightCorners(lightPass.light, f.radius);
+    f.radius += glm::length(f.light.position - lightPass.light.position);  // around the origin
     // The eye's largest distance to the near-plane window (shaders/dcs_wedge.geom), with room.
     const Camera& cam = pass.scene.camera;
-    float tanY = std::tan(glm::radians(0.5f * cam.fovY)), aspect = float(pass.gpu.width()) / float(pass.gpu.height());
-    float nearRadius = 2.0f * cam.zNear * std::sqrt(1.0f + tanY * tanY * (1.0f + aspect * aspect));
-    auto drawWedges = [&](const gl::Program& prog) {
-      if (light.shape == LightShape::Point) return;  // every sample is the centre: D(s) = D(c)
-      prog.use();
-      setLightUniforms(prog, light, pass.samples);
-      prog.set("clipFromWorld", pass.gpu.clipFromWorld());
-      for (std::size_t j = 0; j < corners.size(); ++j)
-        prog.set(fmt::format("lightCorners[{}]", j).c_str(), corners[j]);
-      prog.set("lightCornerCount", int(corners.size()));
-      prog.set("eyePosition", pass.gpu.cameraPosition());
-      prog.set("nearRadius", nearRadius);
-      prog.set("margin", wedgeMargin_);
-      prog.set("lightRadius", radius);
-      if (lut) {
-        glm::vec2 half = light.shape == LightShape::Rect ? 0.5f * light.size : glm::vec2(light.size.x);
-        prog.set("lightAxisU", light.tangent / half.x);
-        prog.set("lightAxisV", light.bitangent() / half.y);
-        prog.set("lutExtent", lut->extent);
-        lut->sector.bind(PENUMBRA_UNIT_DCS_SECTOR_LUT);
-        lut->line.bind(PENUMBRA_UNIT_DCS_LINE_LUT);
-        lut->packed.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PACKED);
-      }
-      idVao.bind();
-      glDrawArrays(GL_POINTS, 0, GLsizei(edgeIds.size()));
-    };
-    auto additive = [] {
-      glDisable(GL_DEPTH_TEST);
-      glDisable(GL_CULL_FACE);
-      glEnable(GL_BLEND);
-      glBlendEquation(GL_FUNC_ADD);
-      glBlendFunc(GL_ONE, GL_ONE);
-    };
-    // Wedge faces are depth-tested against the visible surface: a fragment survives where the
-    // surface is behind the face (reversed Z: smaller depth).
-    auto wedgeState = [&] {
-      additive();
-      glEnable(GL_DEPTH_TEST);
-      glDepthMask(GL_FALSE);
-      glDepthFunc(GL_GEQUAL);
-      glEnable(GL_DEPTH_CLAMP);
-    };
-    auto endWedgeState = [] {
-      glDisable(GL_BLEND);
-      glDisable(GL_DEPTH_CLAMP);
-      glDisable(GL_DEPTH_TEST);
-      glDepthMask(GL_TRUE);
-    };
+    const float tanY = std::tan(glm::radians(0.5f * cam.fovY)), aspect = float(pass.gpu.width()) / float(pass.gpu.height());
+    f.nearRadius = 2.0f * cam.zNear * std::sqrt(1.0f + tanY * tanY * (1.0f + aspect * aspect));
 
-    // Adaptive sampling (5.3): the counter base must hold the largest value any counter reaches,
-    // D(c) + bias + the positive updates that cover one of its samples. Every counter pass
-    // measures exactly that per pixel (the checksum target's second channel), so a frame can
-    // choose its packing from the previous frame's maximum for this light and check it: if a
-    // counter could have overflowed, the passes run again with the packing the measured bound
-    // needs (never a silently wrong count). The first frame of a light has no previous maximum
-    // and runs the bound pass, which computes the bound before any counter exists.
-    int maxCount = 0;
-    auto cached = boundCache_.find(pass.lightIndex);
-    if (cached != boundCache_.end()) {
-      maxCount = cached->second;
-    } else if (options_.firstFrameBound >= 0) {
-      maxCount = options_.firstFrameBound + kBias + maxPathGain;
-    } else {
-      maxCount = pass.timer.time("dcs bound", [&] {
-        boundFbo_.bind();
-        const float zero[4] = {0, 0, 0, 0};
-        glClearNamedFramebufferfv(boundFbo_.id(), GL_COLOR, 0, zero);
-        pass.gpu.bindGBuffer();
-        wedgeState();
-        drawWedges(boundProgramFor(coverage));
-        endWedgeState();
-        Image dc = volumes_.counter().read(1), bound = bound_.read(1);
-        float m = 0.0f;
-        for (std::size_t i = 0; i < dc.data.size(); ++i) m = std::max(m, std::round(dc.data[i]) + bound.data[i]);
-        // Float sums of positive integers never round below 2^24 once past it: a bound too
-        // deep for every base is seen as such (and refused) before an int could overflow.
-        if (!(double(m) + kBias + double(maxPathGain) <= double(kMaxExactCount)))
-          refuseDepth(light, double(m) + double(maxPathGain));
-        return int(m) + kBias + maxPathGain;
-      });
-    }
-
-    int N = pass.samples.count;
-    // Counters initialised to D(c), all edges' updates, resolve; per pass over a subset of the
-    // samples (each pass adds its samples' share of eq. 1-2 into the visibility buffer).
-    auto runCounterPasses = [&](const dcs::PackingPlan& plan) {
-      GpuStatus status;
-      statusBuffer_.write(&status, sizeof status);
-      statusBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_STATUS);
-      profileImage_.clear(glm::vec4(0.0f));
-      profileImage_.bindImage(PENUMBRA_IMAGE_DCS_PROFILE, GL_READ_WRITE);
-      Programs& progs = programsFor(plan, coverage);
-      ensureCounters(plan, pass.gpu);
-      const gl::Program& resolve = pass.perSample ? progs.resolvePerSample : progs.resolve;
-      double w = 1.0, sum = 0.0;  // sum of B^d over a channel's digits
-      for (int d = 0; d < plan.counters.digits; ++d, w *= plan.counters.base) sum += w;
-      for (int pi = 0; pi < plan.passes; ++pi) {
-        unsigned first = unsigned(pi * plan.samplesPerPass);
-        unsigned count = unsigned(std::min(plan.samplesPerPass, N - int(first)));
-        pass.timer.time("dcs wedges", [&] {
-          counterFbo_.bind();
-          glDisable(GL_BLEND);
-          glDisable(GL_DEPTH_TEST);
-          volumes_.counter().bind(PENUMBRA_UNIT_COUNTER);
-          pass.gpu.bindGBuffer();
-          progs.init.use();
-          progs.init.set("digitSum", float(sum));
-          progs.init.set("passFirst", first);
-          progs.init.set("passCount", count);
-          progs.init.set("pathCrossings", hasPathCrossings ? 1 : 0);
-          if (hasPathCrossings) {
-            setLightUniforms(progs.init, light, pass.samples);
-            progs.init.set("eyePosition", pass.gpu.cameraPosition());
-            pathFirstBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PATH_FIRST);
-            pathBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PATH);
-          }
-          emptyVao_.bind();
-          glDrawArrays(GL_TRIANGLES, 0, 3);
-          wedgeState();
-          progs.wedge.set("passFirst", first);
-          progs.wedge.set("passCount", count);
-          drawWedges(progs.wedge);  // outer and inner updates together (shaders/dcs_wedge.frag)
-          endWedgeState();
-        });
-        pass.timer.time("resolve", [&] {
-          glMemoryBarrier(GL_ALL_BARRIER_BITS);
-          counters_.bind(PENUMBRA_UNIT_DCS_COUNTERS);
-          checksum_.bind(PENUMBRA_UNIT_DCS_CHECKSUM);
-          if (pass.perSample) pass.perSample->bindImage(PENUMBRA_IMAGE_SAMPLE_VIS, GL_WRITE_ONLY);
-          resolve.set("passFirst", first);
-          resolve.set("passCount", count);
-          resolve.set("counterBase", float(plan.counters.base));
-          resolve.set("opaqueUnits", float(coding_.opaqueUnits));
-          resolve.set("unitLog", coding_.unitLog);
-          gl::Framebuffer fbo({&pass.visibility}, nullptr);
-          fbo.bind();
-          additive();
-          pass.gpu.bindGBuffer();
-          resolve.use();
-          setLightUniforms(resolve, light, pass.samples);
-          emptyVao_.bind();
-          glDrawArrays(GL_TRIANGLES, 0, 3);
-          glDisable(GL_BLEND);
-          glMemoryBarrier(GL_ALL_BARRIER_BITS);
-        });
-      }
-      statusBuffer_.read(&status, sizeof status);
-      if (options_.profile) {
-        const std::vector<std::uint32_t> c = profileImage_.readUint();  // shaders/common_dcs.glsl prof*
-        stats_.profile = {c[0], c[1], c[2], c[3], c[4], c[5]};
-      }
-      return status;
-    };
-
-    int minLayout = 0;
-    while (minLayout + 1 < dcs::kLayoutCount && dcs::kLayouts[minLayout].base < options_.minBase) ++minLayout;
-    dcs::PackingPlan plan;
-    GpuStatus status;
-    for (int attempt = 0;; ++attempt) {
-      plan = dcs::planPacking(N, maxCount, options_.maxTargets, minLayout);
-      // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes
-      // (once per light, not on every frame that reuses the bound).
-      if ((plan.layout > minLayout || plan.passes > 1) && (cached == boundCache_.end() || attempt > 0))
-        PLOG_INFO("dcs: light '{}': counts up to {} (bound, + bias {}) need {}", light.name, maxCount - kBias, kBias,
-                   plan.describe());
-      status = runCounterPasses(plan);
-      if (std::int64_t(status.boundMax) > kMaxExactCount) {
-        boundCache_.erase(pass.lightIndex);
-        refuseDepth(light, double(status.boundMax) - kBias);
-      }
-      int measured = int(status.boundMax);
-      boundCache_[pass.lightIndex] = measured;
-      if (std::int64_t(plan.counters.base) - 1 >= measured) break;
-      PENUMBRA_CHECK(plan.layout + 1 < dcs::kLayoutCount && attempt < dcs::kLayoutCount, "dcs: no counter base fits");
-      PLOG_INFO("dcs: light '{}': counts up to {} overflow base {}; rendering again", light.name, measured - kBias,
-                plan.counters.base);
-      maxCount = measured;
-      pass.visibility.clear(glm::vec4(0.0f));
-      ++stats_.reruns;
-    }
-    stats_.plan = plan;
-    stats_.boundMaxCount = status.boundMax >= std::uint32_t(kBias) ? status.boundMax - kBias : 0;
-    stats_.maxCount = status.maxCount >= std::uint32_t(kBias) ? status.maxCount - kBias : 0;
-    stats_.negativePixels = status.negativePixels;
-    stats_.inconsistentPixels = status.overflowPixels;
-    // The bound makes an overflow impossible: every count stays below D(c) + bound <= B - 1 - bias
-    // during and after the update. A digit-sum mismatch therefore means a count below -bias: the
-    // shadow-volume count and the wedges disagree about a point (an edge-band pixel of a volume
-    // side), and the borrow corrupts the pixel's other samples. With accurate silhouettes and
-    // the exact covered-sample test that image is wrong where dcs promises the reference's: an
-    // error, never a warning. Standard silhouettes (dcs-standard, they miss edges) and the
-    // paper's 2D modes (naive, lut) are approximate by design; they report such pixels.
-    std::size_t pixels = std::size_t(pass.gpu.width()) * std::size_t(pass.gpu.height());
-    // A count that ends in [-bias, -1] (read as 0) is the same disagreement, caught by the bias
-    // before it borrowed: exact dcs has none on any scene (render_dcs_test), so one is an error too.
-    const bool exact = coverage == PENUMBRA_DCS_COVERAGE_EXACT && options_.silhouettes == SilhouetteMode::Accurate;
-    if ((status.overflowPixels > 0 || status.negativePixels > 0) && exact)
-      throw Error("dcs", fmt::format("light '{}': {} pixels with inconsistent counts (a counter left its digit) and {} "
-                                     "with negative counts: the shadow-volume count and the wedges disagree, the image "
-                                     "would be wrong there",
-                                     light.name, status.overflowPixels, status.negativePixels));
-    if (status.overflowPixels > pixels / 1000)
-      PLOG_WARN("dcs: {} pixels with inconsistent counts (shadow-volume count vs wedges at a volume side)",
-                status.overflowPixels);
-    PLOG_DEBUG("dcs: {} edges, bound {}, {}, {} inconsistent pixels", stats_.edges, maxCount - kBias,
-               plan.describe(), status.overflowPixels);
+    centreCount(pass, f);
+    selectEdges(pass, f, lightPass.light);
+    const bool hadBound = boundCache_.count(pass.lightIndex) > 0;
+    const int maxCount = counterBound(pass, f);
+    auto [plan, status] = planAndCount(pass, f, maxCount, hadBound);
+    checkBound(pass, f, plan, status, maxCount);
   }
 
   bool providesPerSample() const override { return true; }
 
   std::size_t memoryBytes() const override {
     std::size_t lutBytes = 0;
-    for (auto& [hash, l] : luts_) lutBytes += l.sector.bytes() + l.line.bytes() + l.packed.size();
+    for (auto& [hash, l] : luts_) lutBytes += l.bytes();
     return volumes_.counter().bytes() + bound_.bytes() + checksum_.bytes() + (counters_ ? counters_.bytes() : 0) +
            edgeBuffer_.size() + incidenceBuffer_.size() + lutBytes;
   }
@@ -530,13 +283,315 @@ class DepthComplexitySampling final : public Technique {
 
  private:
   struct Programs {
-    gl::Program init, wedge, resolve, resolvePerSample;
+    const gl::Program &init, &wedge, &resolve, &resolvePerSample;
   };
+
+  using GpuLut = dcs::GpuEdgeLut;
+  // What one light's passes share (renderVisibility).
+  struct LightFrame {
+    Light light;  // the light, its position the integration origin (integrationOrigin)
+    int coverage = PENUMBRA_DCS_COVERAGE_EXACT;  // the covered-sample mode for this light
+    const GpuLut* lut = nullptr;                 // the edge LUT of the 2D modes
+    std::vector<glm::vec3> corners;              // the polytope around the light (lightCorners)
+    float radius = 0.0f;                         // its bounding radius around the origin
+    float nearRadius = 0.0f;                     // the eye's largest distance to the near-plane window
+    ShadowVolumeCounter::Placement placed;
+    int maxPathGain = 0;  // the most a sample's path crossings can add to its count
+    std::vector<int> edgeIds;
+    gl::Buffer idBuffer;
+    gl::VertexArray idVao;
+  };
+
+  // The integration origin (hard cases 27-28): the light centre, unless it lies exactly on a
+  // mesh edge or vertex (a light centred on a box's edge or corner). There a path from it to
+  // a sample starts on the border of the surface, where neither the crossing of one triangle
+  // (dcs_init.frag) nor an edge update (a wedge whose plane holds the start) describes the
+  // jump; any point of the light can serve as the origin of the integration (DCS 4.2: D(s) =
+  // D(x) + the changes from x to s), so a point next to the centre, off every border, does.
+  Light integrationOrigin(const Light& light) {
+    Light origin = light;
+    stats_.shiftedOrigin = false;
+    if (origin.shape != LightShape::Point && volumes_.onMeshBorder(glm::dvec3(origin.position))) {
+      origin.position = offBorder(light);
+      stats_.shiftedOrigin = true;
+    }
+    return origin;
+  }
+
+  // Pass 1, the centre count: D(c), the integration constant (paper 7.2). Hard cases 27-29:
+  // the closed meshes the light touches or enters are counted per triangle (every crossing),
+  // and the paths from the centre to the samples that pass through a triangle get their jump in
+  // the init pass (ShadowVolumeCounter::place).
+  void centreCount(LightPass& pass, LightFrame& f) {
+    const Light& light = f.light;
+    ShadowVolumeCounter::Placement& placed = f.placed;
+    pass.timer.time("dcs placement", [&] {
+      placed = volumes_.place(glm::dvec3(light.position), &pass.samples.positions, double(f.radius),
+                              glm::dvec3(pass.gpu.cameraPosition()));
+      useRules(placed.rules);
+    });
+    stats_.perTriangleMeshes = placed.perTriangleMeshes;
+    stats_.coplanarTriangles = placed.coplanarTriangles;
+    if (placed.coplanarTriangles > 0 && warnedCoplanar_.insert(pass.lightIndex).second)
+      PLOG_WARN("dcs: light '{}' lies in the plane of {} triangles: where its samples cross such a face's border the counts "
+                "may differ from the reference (a path along a surface is not resolved exactly)",
+                light.name, placed.coplanarTriangles);
+    stats_.pathCrossings = placed.crossings.size();
+    f.maxPathGain = 0;
+    std::vector<GpuPathCrossing> gpuCrossings;
+    for (std::size_t k = 0; k + 1 < placed.firstCrossing.size(); ++k) {
+      int gain = 0;
+      for (std::uint32_t j = placed.firstCrossing[k]; j < placed.firstCrossing[k + 1]; ++j) {
+        const auto& x = placed.crossings[j];
+        const auto& m = volumes_.meshes()[x.mesh];
+        gain += m.units;
+        gpuCrossings.push_back({trianglePlane(m.topology.weldedPositions, m.topology.weldedTriangles[x.at.triangle]),
+                                glm::ivec4(x.at.sideC, x.at.sideS,
+                                           placed.rules[x.mesh] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0, m.units)});
+      }
+      f.maxPathGain = std::max(f.maxPathGain, gain);
+    }
+    if (!gpuCrossings.empty()) {
+      pathFirstBuffer_ = gl::Buffer(placed.firstCrossing);
+      pathBuffer_ = gl::Buffer(gpuCrossings);
+    }
+    volumes_.count(pass, placed.rules);  // D(c): stages "silhouettes", "shadow volume"
+  }
+
+  // Pass 2, the edge selection: the potential silhouette edges of the (unshifted) light,
+  // accurate (a silhouette for some point of the light) or standard (from the centre).
+  void selectEdges(LightPass& pass, LightFrame& f, const Light& unshifted) {
+    std::vector<int>& edgeIds = f.edgeIds;
+    pass.timer.time("dcs edges", [&] {
+      geo::LightExtent extent = extentOf(unshifted);
+      if (options_.gpuSilhouettes && options_.silhouettes == SilhouetteMode::Accurate) {
+        edgeIds = gpuAccurateSilhouette(extent);
+        return;
+      }
+      const auto& meshes = volumes_.meshes();
+      for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
+        const auto& m = meshes[mi];
+        if (m.units == 0) continue;  // never occludes
+        if (options_.silhouettes == SilhouetteMode::Accurate) {
+          for (auto e : geo::extractAccurateSilhouette(m.topology, extent, f.placed.rules[mi])) edgeIds.push_back(int(edgeOffset_[mi] + e));
+        } else {
+          for (auto& s : geo::extractPointSilhouette(m.topology, glm::dvec3(f.light.position), f.placed.rules[mi]).sides)
+            edgeIds.push_back(int(edgeOffset_[mi] + s.edge));
+        }
+      }
+    });
+    stats_.edges = edgeIds.size();
+    stats_.reruns = 0;
+    stats_.edgeChecksum = 0;
+    for (int id : edgeIds) stats_.edgeChecksum += std::uint64_t(id) * 2654435761u % 1000003u;
+    f.idBuffer = gl::Buffer(edgeIds);
+    f.idVao = gl::VertexArray::create();
+    f.idVao.vertexBuffer(f.idBuffer, sizeof(int)).attributeInt(0, 1, 0);
+    edgeBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGES);
+    incidenceBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
+  }
+
+  // Every selected edge's wedge (shaders/dcs_wedge.*) with `prog`.
+  void drawWedges(const gl::Program& prog, const LightPass& pass, const LightFrame& f) {
+    const Light& light = f.light;
+    if (light.shape == LightShape::Point) return;  // every sample is the centre: D(s) = D(c)
+    prog.use();
+    setLightUniforms(prog, light, pass.samples);
+    prog.set("clipFromWorld", pass.gpu.clipFromWorld());
+    for (std::size_t j = 0; j < f.corners.size(); ++j)
+      prog.set(fmt::format("lightCorners[{}]", j).c_str(), f.corners[j]);
+    prog.set("lightCornerCount", int(f.corners.size()));
+    prog.set("eyePosition", pass.gpu.cameraPosition());
+    prog.set("nearRadius", f.nearRadius);
+    prog.set("margin", wedgeMargin_);
+    prog.set("lightRadius", f.radius);
+    if (f.lut) {
+      glm::vec2 half = light.shape == LightShape::Rect ? 0.5f * light.size : glm::vec2(light.size.x);
+      prog.set("lightAxisU", light.tangent / half.x);
+      prog.set("lightAxisV", light.bitangent() / half.y);
+      prog.set("lutExtent", f.lut->extent);
+      f.lut->sector.bind(PENUMBRA_UNIT_DCS_SECTOR_LUT);
+      f.lut->line.bind(PENUMBRA_UNIT_DCS_LINE_LUT);
+      f.lut->packed.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PACKED);
+    }
+    f.idVao.bind();
+    glDrawArrays(GL_POINTS, 0, GLsizei(f.edgeIds.size()));
+  }
+
+  // Pass 3, the counter plan's bound. Adaptive sampling (5.3): the counter base must hold the
+  // largest value any counter reaches, D(c) + bias + the positive updates that cover one of its
+  // samples. Every counter pass measures exactly that per pixel (the checksum target's second
+  // channel), so a frame can choose its packing from the previous frame's maximum for this
+  // light and check it: if a counter could have overflowed, the passes run again with the
+  // packing the measured bound needs (never a silently wrong count). The first frame of a light
+  // has no previous maximum and runs the bound pass, which computes the bound before any
+  // counter exists.
+  int counterBound(LightPass& pass, const LightFrame& f) {
+    auto cached = boundCache_.find(pass.lightIndex);
+    if (cached != boundCache_.end()) return cached->second;
+    if (options_.firstFrameBound >= 0) return options_.firstFrameBound + kBias + f.maxPathGain;
+    return pass.timer.time("dcs bound", [&] {
+      boundFbo_.bind();
+      const float zero[4] = {0, 0, 0, 0};
+      glClearNamedFramebufferfv(boundFbo_.id(), GL_COLOR, 0, zero);
+      pass.gpu.bindGBuffer();
+      beginWedgeState();
+      drawWedges(boundProgramFor(f.coverage), pass, f);
+      endWedgeState();
+      Image dc = volumes_.counter().read(1), bound = bound_.read(1);
+      float m = 0.0f;
+      for (std::size_t i = 0; i < dc.data.size(); ++i) m = std::max(m, std::round(dc.data[i]) + bound.data[i]);
+      // Float sums of positive integers never round below 2^24 once past it: a bound too
+      // deep for every base is seen as such (and refused) before an int could overflow.
+      if (!(double(m) + kBias + double(f.maxPathGain) <= double(kMaxExactCount)))
+        refuseDepth(f.light, double(m) + double(f.maxPathGain));
+      return int(m) + kBias + f.maxPathGain;
+    });
+  }
+
+  // The counter plan from `maxCount` and its passes, planned again with the measured bound
+  // until no digit could have overflowed.
+  std::pair<dcs::PackingPlan, GpuStatus> planAndCount(LightPass& pass, const LightFrame& f, int maxCount, bool hadBound) {
+    const Light& light = f.light;
+    int minLayout = 0;
+    while (minLayout + 1 < dcs::kLayoutCount && dcs::kLayouts[minLayout].base < options_.minBase) ++minLayout;
+    dcs::PackingPlan plan;
+    GpuStatus status;
+    for (int attempt = 0;; ++attempt) {
+      plan = dcs::planPacking(pass.samples.count, maxCount, options_.maxTargets, minLayout);
+      // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes
+      // (once per light, not on every frame that reuses the bound).
+      if ((plan.layout > minLayout || plan.passes > 1) && (!hadBound || attempt > 0))
+        PLOG_INFO("dcs: light '{}': counts up to {} (bound, + bias {}) need {}", light.name, maxCount - kBias, kBias,
+                   plan.describe());
+      status = counterPasses(pass, f, plan);
+      if (std::int64_t(status.boundMax) > kMaxExactCount) {
+        boundCache_.erase(pass.lightIndex);
+        refuseDepth(light, double(status.boundMax) - kBias);
+      }
+      int measured = int(status.boundMax);
+      boundCache_[pass.lightIndex] = measured;
+      if (std::int64_t(plan.counters.base) - 1 >= measured) break;
+      PENUMBRA_CHECK(plan.layout + 1 < dcs::kLayoutCount && attempt < dcs::kLayoutCount, "dcs: no counter base fits");
+      PLOG_INFO("dcs: light '{}': counts up to {} overflow base {}; rendering again", light.name, measured - kBias,
+                plan.counters.base);
+      maxCount = measured;
+      pass.visibility.clear(glm::vec4(0.0f));
+      ++stats_.reruns;
+    }
+    return {plan, status};
+  }
+
+  // Pass 4, the counter passes: per pass over a subset of the samples, counters initialised to
+  // D(c), all edges' updates, resolve (each pass adds its samples' share of eq. 1-2 into the
+  // visibility buffer).
+  GpuStatus counterPasses(LightPass& pass, const LightFrame& f, const dcs::PackingPlan& plan) {
+    const Light& light = f.light;
+    const bool hasPathCrossings = !f.placed.crossings.empty();
+    const int N = pass.samples.count;
+    GpuStatus status;
+    statusBuffer_.write(&status, sizeof status);
+    statusBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_STATUS);
+    profileImage_.clear(glm::vec4(0.0f));
+    profileImage_.bindImage(PENUMBRA_IMAGE_DCS_PROFILE, GL_READ_WRITE);
+    const Programs progs = programsFor(plan, f.coverage);
+    ensureCounters(plan, pass.gpu);
+    const gl::Program& resolve = pass.perSample ? progs.resolvePerSample : progs.resolve;
+    double w = 1.0, sum = 0.0;  // sum of B^d over a channel's digits
+    for (int d = 0; d < plan.counters.digits; ++d, w *= plan.counters.base) sum += w;
+    for (int pi = 0; pi < plan.passes; ++pi) {
+      unsigned first = unsigned(pi * plan.samplesPerPass);
+      unsigned count = unsigned(std::min(plan.samplesPerPass, N - int(first)));
+      pass.timer.time("dcs wedges", [&] {
+        counterFbo_.bind();
+        glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        volumes_.counter().bind(PENUMBRA_UNIT_COUNTER);
+        pass.gpu.bindGBuffer();
+        progs.init.use();
+        progs.init.set("digitSum", float(sum));
+        progs.init.set("passFirst", first);
+        progs.init.set("passCount", count);
+        progs.init.set("pathCrossings", hasPathCrossings ? 1 : 0);
+        if (hasPathCrossings) {
+          setLightUniforms(progs.init, light, pass.samples);
+          progs.init.set("eyePosition", pass.gpu.cameraPosition());
+          pathFirstBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PATH_FIRST);
+          pathBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PATH);
+        }
+        emptyVao_.bind();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        beginWedgeState();
+        progs.wedge.set("passFirst", first);
+        progs.wedge.set("passCount", count);
+        drawWedges(progs.wedge, pass, f);  // outer and inner updates together (shaders/dcs_wedge.frag)
+        endWedgeState();
+      });
+      pass.timer.time("resolve", [&] {
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        counters_.bind(PENUMBRA_UNIT_DCS_COUNTERS);
+        checksum_.bind(PENUMBRA_UNIT_DCS_CHECKSUM);
+        if (pass.perSample) pass.perSample->bindImage(PENUMBRA_IMAGE_SAMPLE_VIS, GL_WRITE_ONLY);
+        resolve.set("passFirst", first);
+        resolve.set("passCount", count);
+        resolve.set("counterBase", float(plan.counters.base));
+        resolve.set("opaqueUnits", float(coding_.opaqueUnits));
+        resolve.set("unitLog", coding_.unitLog);
+        gl::Framebuffer fbo({&pass.visibility}, nullptr);
+        fbo.bind();
+        additiveBlend();
+        pass.gpu.bindGBuffer();
+        resolve.use();
+        setLightUniforms(resolve, light, pass.samples);
+        emptyVao_.bind();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDisable(GL_BLEND);
+        glMemoryBarrier(GL_ALL_BARRIER_BITS);
+      });
+    }
+    statusBuffer_.read(&status, sizeof status);
+    if (options_.profile) {
+      const std::vector<std::uint32_t> c = profileImage_.readUint();  // shaders/common_dcs.glsl prof*
+      stats_.profile = {c[0], c[1], c[2], c[3], c[4], c[5]};
+    }
+    return status;
+  }
+
+  // Pass 5, the bound check. The bound makes an overflow impossible: every count stays below
+  // D(c) + bound <= B - 1 - bias during and after the update. A digit-sum mismatch therefore
+  // means a count below -bias: the shadow-volume count and the wedges disagree about a point
+  // (an edge-band pixel of a volume side), and the borrow corrupts the pixel's other samples.
+  // With accurate silhouettes and the exact covered-sample test that image is wrong where dcs
+  // promises the reference's: an error, never a warning. Standard silhouettes (dcs-standard,
+  // they miss edges) and the paper's 2D modes (naive, lut) are approximate by design; they
+  // report such pixels.
+  void checkBound(const LightPass& pass, const LightFrame& f, const dcs::PackingPlan& plan, const GpuStatus& status,
+                  int maxCount) {
+    const Light& light = f.light;
+    stats_.plan = plan;
+    stats_.boundMaxCount = status.boundMax >= std::uint32_t(kBias) ? status.boundMax - kBias : 0;
+    stats_.maxCount = status.maxCount >= std::uint32_t(kBias) ? status.maxCount - kBias : 0;
+    stats_.negativePixels = status.negativePixels;
+    stats_.inconsistentPixels = status.overflowPixels;
+    std::size_t pixels = std::size_t(pass.gpu.width()) * std::size_t(pass.gpu.height());
+    // A count that ends in [-bias, -1] (read as 0) is the same disagreement, caught by the bias
+    // before it borrowed: exact dcs has none on any scene (render_dcs_test), so one is an error too.
+    const bool exact = f.coverage == PENUMBRA_DCS_COVERAGE_EXACT && options_.silhouettes == SilhouetteMode::Accurate;
+    if ((status.overflowPixels > 0 || status.negativePixels > 0) && exact)
+      throw Error("dcs", fmt::format("light '{}': {} pixels with inconsistent counts (a counter left its digit) and {} "
+                                     "with negative counts: the shadow-volume count and the wedges disagree, the image "
+                                     "would be wrong there",
+                                     light.name, status.overflowPixels, status.negativePixels));
+    if (status.overflowPixels > pixels / 1000)
+      PLOG_WARN("dcs: {} pixels with inconsistent counts (shadow-volume count vs wedges at a volume side)",
+                status.overflowPixels);
+    PLOG_DEBUG("dcs: {} edges, bound {}, {}, {} inconsistent pixels", stats_.edges, maxCount - kBias,
+               plan.describe(), status.overflowPixels);
+  }
 
   // The accurate silhouette on the GPU (shaders/dcs_silhouette.comp), sorted to compare with the
   // CPU path; the order does not matter to the rendering.
   std::vector<int> gpuAccurateSilhouette(const geo::LightExtent& l) {
-    if (!silhouetteProgram_) silhouetteProgram_ = gl::Program({"dcs_silhouette.comp"});
     std::uint32_t total = std::uint32_t(edgeBuffer_.size() / sizeof(GpuEdge));
     gl::Buffer out(sizeof(std::uint32_t) * (1 + std::size_t(total)), nullptr);
     std::uint32_t zero = 0;
@@ -544,7 +599,7 @@ class DepthComplexitySampling final : public Technique {
     edgeBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGES);
     incidenceBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
     out.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_STATUS);
-    const gl::Program& p = silhouetteProgram_;
+    const gl::Program& p = programs_.get({"dcs_silhouette.comp"});
     p.use();
     p.set("totalEdges", total);
     p.set("lightKind", int(l.kind));
@@ -619,42 +674,28 @@ class DepthComplexitySampling final : public Technique {
     edgeRules_ = rules;
   }
 
-  Programs& programsFor(const dcs::PackingPlan& plan, int coverage) {
-    int key = (plan.layout * 16 + plan.targets) * 4 + coverage;
-    auto it = programs_.find(key);
-    if (it != programs_.end()) return it->second;
+  Programs programsFor(const dcs::PackingPlan& plan, int coverage) {
     std::vector<std::string> defs = {"DCS_BIAS " + std::to_string(kBias), "DCS_TARGETS " + std::to_string(plan.targets),
                                      "DIGITS " + std::to_string(plan.counters.digits),
                                      "DCS_BASE " + std::to_string(plan.counters.base),
                                      "DCS_OPACITY " + std::to_string(coding_.mode),
                                      "DCS_COVERAGE " + std::to_string(coverage)};
     if (options_.profile) defs.push_back("DCS_PROFILE");
-    Programs p{gl::Program({"fullscreen.vert", "dcs_init.frag"}, defs),
-               gl::Program({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, defs),
-               gl::Program({"fullscreen.vert", "dcs_resolve.frag"}, defs), gl::Program()};
-    defs.push_back("PER_SAMPLE_OUT");
-    p.resolvePerSample = gl::Program({"fullscreen.vert", "dcs_resolve.frag"}, defs);
-    return programs_.emplace(key, std::move(p)).first->second;
+    std::vector<std::string> perSample = defs;
+    perSample.push_back("PER_SAMPLE_OUT");
+    return {programs_.get({"fullscreen.vert", "dcs_init.frag"}, defs),
+            programs_.get({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, defs),
+            programs_.get({"fullscreen.vert", "dcs_resolve.frag"}, defs),
+            programs_.get({"fullscreen.vert", "dcs_resolve.frag"}, perSample)};
   }
 
   const gl::Program& boundProgramFor(int coverage) {
-    auto it = boundPrograms_.find(coverage);
-    if (it == boundPrograms_.end())
-      it = boundPrograms_
-               .emplace(coverage, gl::Program({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"},
-                                              {"BOUND", "DCS_TARGETS 1", "DIGITS 1",
-                                               "DCS_COVERAGE " + std::to_string(coverage)}))
-               .first;
-    return it->second;
+    return programs_.get({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"},
+                         {"BOUND", "DCS_TARGETS 1", "DIGITS 1", "DCS_COVERAGE " + std::to_string(coverage)});
   }
 
-  // The edge LUT of the light's sample pattern on the GPU (edge_lut.h), loaded or built once
-  // per pattern.
-  struct GpuLut {
-    gl::Texture sector, line;
-    gl::Buffer packed;
-    float extent = 0.0f;
-  };
+  // The edge LUT of the light's sample pattern on the GPU (edge_lut_gpu.h), loaded or built
+  // once per pattern.
   const GpuLut& lutFor(const LightPass& pass) {
     const LightSampleSet& s = pass.samples;
     std::vector<glm::vec2> normalised = dcs::normalisedSamples(s);
@@ -682,21 +723,7 @@ class DepthComplexitySampling final : public Technique {
         PLOG_INFO("dcs: edge LUT for {} built in memory (`penumbra lut` writes it to luts/)", dcs::edgeLutFileName(s));
       }
     });
-    // Bit fields widened to RGBA32UI texels (words beyond `words` are 0).
-    auto widen = [&](const std::vector<std::uint32_t>& words) {
-      std::vector<std::uint32_t> out(words.size() / std::size_t(table.words) * 4, 0u);
-      for (std::size_t t = 0; t < words.size() / std::size_t(table.words); ++t)
-        for (int w = 0; w < table.words; ++w) out[t * 4 + std::size_t(w)] = words[t * std::size_t(table.words) + std::size_t(w)];
-      return out;
-    };
-    GpuLut g;
-    g.sector = gl::Texture::makeCubeArray(GL_RGBA32UI, table.size.cube, table.sets);
-    g.sector.uploadUint4(widen(table.sector).data());
-    g.line = gl::Texture::make2DArray(GL_RGBA32UI, table.size.line, table.size.line, table.sets);
-    g.line.uploadUint4(widen(table.line).data());
-    g.packed = gl::Buffer(table.packed);
-    g.extent = table.extent;
-    return luts_.emplace(hash, std::move(g)).first->second;
+    return luts_.emplace(hash, dcs::uploadEdgeLut(table)).first->second;
   }
 
   // Counter targets (layers of one array texture) plus the checksum, as one MRT framebuffer.
@@ -721,9 +748,7 @@ class DepthComplexitySampling final : public Technique {
   gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (shaders/dcs_init.frag)
   gl::Texture bound_, checksum_, counters_;
   gl::Framebuffer boundFbo_, counterFbo_;
-  gl::Program silhouetteProgram_;
-  std::map<int, gl::Program> boundPrograms_;  // by covered-sample mode
-  std::map<int, Programs> programs_;
+  gl::ProgramCache programs_;  // by shaders and defines (counter layout, coverage, opacity coding)
   std::map<std::uint64_t, GpuLut> luts_;  // by sample-pattern hash
   std::set<int> warnedCoplanar_;  // lights warned about (once each)
   std::map<int, int> boundCache_;  // light index -> the last frame's measured bound (+ bias)
@@ -732,6 +757,77 @@ class DepthComplexitySampling final : public Technique {
 };
 
 }  // namespace
+
+namespace {
+const std::vector<std::string> kSilhouetteChoices = {"accurate", "standard"};
+const std::vector<std::string> kCoverageChoices = {"exact", "naive", "lut"};  // PENUMBRA_DCS_COVERAGE_*
+const std::vector<std::string> kOpacityChoices = {"sum", "product"};          // dcs::OpacityMode
+std::vector<std::string> baseChoices() {
+  std::vector<std::string> out;
+  for (const auto& l : dcs::kLayouts) out.push_back(std::to_string(l.base));
+  return out;
+}
+}  // namespace
+
+std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
+  return {
+      ParamSpec::choice("silhouettes", kSilhouetteChoices[o.silhouettes == SilhouetteMode::Accurate ? 0 : 1],
+                        kSilhouetteChoices,
+                        "potential silhouette edges: accurate (a silhouette from some point of the light, exact) or "
+                        "standard (from the light centre, DCS paper Fig. 4; misses edges)"),
+      ParamSpec::boolean("gpu-silhouettes", o.gpuSilhouettes,
+                         "accurate silhouettes by a compute shader (shaders/dcs_silhouette.comp) instead of the CPU"),
+      ParamSpec::choice("coverage", kCoverageChoices[std::size_t(o.coverage)], kCoverageChoices,
+                        "covered-sample test: exact (3D, per sample), naive (the paper's loop over 8-bit packed "
+                        "positions, 7.1) or lut (the paper's edge LUT, 7.3); the 2D modes serve rect and disk lights, "
+                        "others use exact"),
+      ParamSpec::choice("opacity", kOpacityChoices[o.opacity == dcs::OpacityMode::Sum ? 0 : 1], kOpacityChoices,
+                        "semi-opaque occluders: the product of transmittances or the paper's saturated sum of opacities"),
+      ParamSpec::number("opacity-tolerance", o.opacityTolerance, 1e-6, 0.25,
+                        "the largest single-layer transmittance error the unit coding may make (dcs/opacity.h)")
+          .shown("1/1024"),
+      ParamSpec::integer("targets", o.maxTargets, 1, PENUMBRA_DCS_MAX_TARGETS,
+                         "packed RGBA32F counter targets per pass (the paper's 4)"),
+      ParamSpec::choice("min-base", std::to_string(o.minBase), baseChoices(),
+                        "narrowest counter base the packing may use (5.3: more counters per channel, fewer passes)"),
+      ParamSpec::integer("first-bound", o.firstFrameBound, 0, int(dcs::kLayouts[dcs::kLayoutCount - 1].base) - 1,
+                         "a light's first frame plans its counters from this bound instead of running the bound pass "
+                         "(the check after the pass and the re-render still apply; tests force them with it)")
+          .shown("bound pass"),
+      ParamSpec::path("lut-file", "the edge LUT file (refused unless built for the light's sample pattern); empty: "
+                                  "`<lut-dir>/edge_<shape>_<strategy>_<pattern>_n<N>_seed<S>.lut` if it exists, else "
+                                  "built in memory"),
+      ParamSpec::path("lut-dir", "where dcs looks for edge LUTs; empty: `$PENUMBRA_LUT_DIR`, else the source tree's `luts/`"),
+      ParamSpec::integer("lut-cube", o.lutSize.cube, 1, 1024, "sector table size of an edge LUT built in memory (texels "
+                                                              "per cube face side)"),
+      ParamSpec::integer("lut-line", o.lutSize.line, 2, 4096, "line table size of an edge LUT built in memory (even)"),
+      ParamSpec::boolean("profile", o.profile,
+                         "count where the wedge pass's fragments go (statistics `profile*`; slower). A debugging aid, "
+                         "also on with the environment variable `PENUMBRA_DCS_PROFILE=1`"),
+  };
+}
+
+DcsOptions readDcsOptions(const TechniqueArgs& args) {
+  auto index = [](const std::vector<std::string>& choices, const std::string& v) {
+    return int(std::find(choices.begin(), choices.end(), v) - choices.begin());
+  };
+  DcsOptions o;
+  o.silhouettes = args.text("silhouettes") == "accurate" ? SilhouetteMode::Accurate : SilhouetteMode::Standard;
+  o.gpuSilhouettes = args.boolean("gpu-silhouettes");
+  o.coverage = index(kCoverageChoices, args.text("coverage"));
+  o.opacity = args.text("opacity") == "sum" ? dcs::OpacityMode::Sum : dcs::OpacityMode::Product;
+  o.opacityTolerance = args.number("opacity-tolerance");
+  o.maxTargets = args.integer("targets");
+  o.minBase = std::uint32_t(std::stoul(args.text("min-base")));
+  o.firstFrameBound = args.integer("first-bound");
+  o.lutFile = args.text("lut-file");
+  o.lutDirectory = args.text("lut-dir");
+  o.lutSize.cube = args.integer("lut-cube");
+  o.lutSize.line = args.integer("lut-line");
+  if (o.lutSize.line % 2) throw Error("--param", "lut-line: must be even, got " + std::to_string(o.lutSize.line), ExitCode::Usage);
+  o.profile = args.boolean("profile");
+  return o;
+}
 
 std::unique_ptr<Technique> makeDepthComplexitySampling(const DcsOptions& options) {
   return std::make_unique<DepthComplexitySampling>(options);

@@ -20,7 +20,7 @@ struct DcsOptions {
   std::uint32_t minBase = 8;  // narrowest counter base allowed (8, 16, 64, 256, 4096, 2^24)
   bool gpuSilhouettes = false;  // accurate silhouettes by a compute shader instead of the CPU
   // Count where the wedge pass's fragments go (statistics "profile*"); atomics slow it down.
-  // Also switched on by the environment variable PENUMBRA_DCS_PROFILE=1.
+  // A debugging aid, also switched on by the environment variable PENUMBRA_DCS_PROFILE=1.
   bool profile = false;
   // >= 0: the first frame of a light plans its counters from this bound instead of running the
   // bound pass (the after-pass check and re-render still apply; tests use it to force them).
@@ -40,6 +40,10 @@ struct DcsOptions {
   dcs::EdgeLutSize lutSize;
 };
 
+// Every field above as a `--param` (dcs.cpp declares them), its default the preset's: the
+// table's variants (dcs-standard, dcs-sum, dcs-naive, dcs-lut) are presets.
+std::vector<ParamSpec> dcsParams(const DcsOptions& preset);
+DcsOptions readDcsOptions(const TechniqueArgs& args);
 std::unique_ptr<Technique> makeDepthComplexitySampling(const DcsOptions& options = {});
 
 }  // namespace penumbra

@@ -15,16 +15,14 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
   void renderMaps(LightPass& pass, const shadow_map::MapFrame& frame) override {
     const gl::Texture& maps = ensureMaps(GL_DEPTH_COMPONENT32F, frame);
     pass.timer.time(name() + " depth maps", [&] {
-      if (!program_) {
-        program_ = layered_ ? gl::Program({"mvr_depth.vert", "mvr_depth.geom", "depth_only.frag"}, {"LAYERED"})
-                            : gl::Program({"mvr_depth.vert", "depth_only.frag"});
-      }
+      const gl::Program& program = layered_ ? programs().get({"mvr_depth.vert", "mvr_depth.geom", "depth_only.frag"}, {"LAYERED"})
+                                            : programs().get({"mvr_depth.vert", "depth_only.frag"});
       glEnable(GL_DEPTH_TEST);
       glDepthFunc(GL_GREATER);  // reversed depth
       glDepthMask(GL_TRUE);
       glDisable(GL_CULL_FACE);
       glDisable(GL_BLEND);
-      program_.use();
+      program.use();
       shadow_map::setMapUniforms(program_, frame);
       // No fragment in any map is checked against the first sample's view (map 0).
       shadow_map::drawWithOccluderCheck(name(), "depth maps", pass.scene, frame, pass.samples.positions.at(0),
@@ -41,7 +39,7 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
           }
           for (int l = 0; l < frame.layers; ++l) {
             layerFbos_[std::size_t(l)].bind();
-            program_.set("layer", l);
+            program.set("layer", l);
             pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
           }
         }
@@ -56,7 +54,6 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
 
  private:
   bool layered_;
-  gl::Program program_;
   gl::Framebuffer layeredFbo_;
   std::vector<gl::Framebuffer> layerFbos_;
   GLuint fboFor_ = 0;
@@ -64,8 +61,14 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
 
 }  // namespace
 
-std::unique_ptr<Technique> makeMultiViewRasterisation(const TechniqueParams& params, bool layered) {
-  return std::make_unique<MultiViewRasterisation>(shadow_map::readMapOptions(params), shadow_map::readPcfTaps(params),
+std::vector<ParamSpec> mvrParams() {
+  std::vector<ParamSpec> p = shadow_map::mapParams();
+  p.push_back(shadow_map::pcfParam());
+  return p;
+}
+
+std::unique_ptr<Technique> makeMultiViewRasterisation(const TechniqueArgs& args, bool layered) {
+  return std::make_unique<MultiViewRasterisation>(shadow_map::readMapOptions(args), shadow_map::readPcfTaps(args),
                                                   layered);
 }
 

@@ -9,6 +9,7 @@
 
 namespace penumbra {
 // layered: one instanced draw, a geometry shader routing each instance to its map layer;
-// otherwise one draw per map. Parameters: map, pcf, bias, slope-bias, max-angle.
-std::unique_ptr<Technique> makeMultiViewRasterisation(const TechniqueParams& params, bool layered);
+// otherwise one draw per map.
+std::vector<ParamSpec> mvrParams();
+std::unique_ptr<Technique> makeMultiViewRasterisation(const TechniqueArgs& args, bool layered);
 }  // namespace penumbra

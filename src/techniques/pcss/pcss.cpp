@@ -6,6 +6,7 @@
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
 #include "techniques/shadow_map/single_view.h"
+#include "single_view_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra {
 namespace {
@@ -39,7 +40,7 @@ class PercentageCloserSoftShadows final : public shadow_map::SingleViewTechnique
                          : std::clamp(int(std::ceil(lightHalfSize() / (2.0f * searchNear() * f.tanHalf) * float(f.size))), 1, 32);
         minA_.ensure(GL_R32F, f.size, f.size);
         minB_.ensure(GL_R32F, f.size, f.size);
-        const gl::Program& mx = program("max", {"fullscreen.vert", "pcss_filter.frag"}, {"MAX_FILTER"});
+        const gl::Program& mx = program({"fullscreen.vert", "pcss_filter.frag"}, {"MAX_FILTER"});
         mx.set("radius", minRadius_);
         gl::Sampler::unbind(PENUMBRA_UNIT_PCSS_SOURCE);
         filter(mx, depth(), minA_, {1, 0});
@@ -55,7 +56,7 @@ class PercentageCloserSoftShadows final : public shadow_map::SingleViewTechnique
         maskB_.ensure(GL_R32F, mw, mh);
         std::vector<std::string> defs;
         if (o_.noBlockerOne) defs.push_back("NO_BLOCKER_ONE");
-        const gl::Program& pm = program(o_.noBlockerOne ? "mask1" : "mask", {"fullscreen.vert", "pcss_penumbra.frag"}, defs);
+        const gl::Program& pm = program({"fullscreen.vert", "pcss_penumbra.frag"}, defs);
         setUniforms(pm, pass, o_.blockerSamples, o_.pcfSamples, o_.kernelScale);
         pass.gpu.bindGBuffer();
         bindMap();
@@ -72,9 +73,7 @@ class PercentageCloserSoftShadows final : public shadow_map::SingleViewTechnique
       if (o_.mode == PcssMode::Fixed) defs.push_back("FIXED");
       if (o_.mode == PcssMode::Dense) defs.push_back("DENSE");
       if (o_.checkerboard) defs.push_back("CHECKERBOARD");
-      std::string key = "resolve";
-      for (auto& d : defs) key += " " + d;
-      const gl::Program& prog = program(key, {"fullscreen.vert", "pcss_resolve.frag"}, defs);
+      const gl::Program& prog = program({"fullscreen.vert", "pcss_resolve.frag"}, defs);
       setUniforms(prog, pass, o_.blockerSamples, o_.pcfSamples, 1.0);
       prog.set("screenSize", glm::vec2(float(w), float(h)));
       if (aux) {
@@ -93,7 +92,7 @@ class PercentageCloserSoftShadows final : public shadow_map::SingleViewTechnique
     });
     if (o_.checkerboard) {
       pass.timer.time("pcss checkerboard upsample", [&] {
-        const gl::Program& up = program("checker", {"fullscreen.vert", "pcss_checker.frag"}, {});
+        const gl::Program& up = program({"fullscreen.vert", "pcss_checker.frag"}, {});
         up.set("eyePosition", pass.gpu.cameraPosition());
         checker_.texture.bind(PENUMBRA_UNIT_PCSS_SOURCE);
         gl::Framebuffer fbo({&pass.visibility}, nullptr);
@@ -126,7 +125,7 @@ class PercentageCloserSoftShadows final : public shadow_map::SingleViewTechnique
   }
   // Sterna's 7x7 Gaussian (sigma 3) of `a`, back into `a` through `tmp`.
   void blur(Target& a, Target& tmp) {
-    const gl::Program& g = program("gauss", {"fullscreen.vert", "pcss_filter.frag"}, {"GAUSSIAN"});
+    const gl::Program& g = program({"fullscreen.vert", "pcss_filter.frag"}, {"GAUSSIAN"});
     filter(g, a.texture, tmp, {1, 0});
     filter(g, tmp.texture, a, {0, 1});
   }
@@ -147,15 +146,37 @@ PcssOptions pcssPreset(PcssMode mode, bool ultra, bool checkerboard) {
   return o;
 }
 
-std::unique_ptr<Technique> makePercentageCloserSoftShadows(const TechniqueParams& params, PcssOptions o) {
-  o.blockerSamples = params.getInt("blocker-samples", o.blockerSamples, 1, 256);
-  o.pcfSamples = params.getInt("pcf-samples", o.pcfSamples, 1, 256);
-  o.checkerboard = params.getBool("checkerboard", o.checkerboard);
-  o.kernelScale = params.getDouble("kernel-scale", o.kernelScale, 0.25, 4.0);
-  o.noBlockerOne = params.getBool("no-blocker-one", o.noBlockerOne);
-  o.blur = params.getBool("blur", o.blur);
-  o.minRadius = params.getInt("min-radius", o.minRadius, 0, 64);
-  return std::make_unique<PercentageCloserSoftShadows>(shadow_map::readMapOptions(params), o);
+std::vector<ParamSpec> pcssParams(const PcssOptions& o) {
+  std::vector<ParamSpec> p = shadow_map::mapParams();
+  p.push_back(ParamSpec::integer("blocker-samples", o.blockerSamples, 1, 256, "Vogel-disk samples of the blocker search"));
+  p.push_back(ParamSpec::integer("pcf-samples", o.pcfSamples, 1, 256, "Vogel-disk samples of the PCF"));
+  p.push_back(ParamSpec::boolean("checkerboard", o.checkerboard, "compute half the pixels, upsample the rest (Sterna 3)"));
+  if (o.mode == PcssMode::PenumbraMask) {
+    p.push_back(ParamSpec::number("kernel-scale", o.kernelScale, 0.25, 4.0,
+                                  "blocker-search region scale of the mask (Sterna 2.2: 1.2-1.6)"));
+    p.push_back(ParamSpec::boolean("no-blocker-one", o.noBlockerOne,
+                                   "the mask holds the largest radius, not 0, where nothing blocks"));
+  }
+  if (o.mode == PcssMode::PenumbraMask || o.mode == PcssMode::MinFilter)
+    p.push_back(ParamSpec::boolean("blur", o.blur, "the 7x7 Gaussian (sigma 3) of the mask / min map"));
+  if (o.mode == PcssMode::MinFilter)
+    p.push_back(ParamSpec::integer("min-radius", o.minRadius, 0, 64,
+                                   "min-filter window half-size in texels; 0: the blocker search's reach, 1..32")
+                    .shown("from the light"));
+  return p;
+}
+
+std::unique_ptr<Technique> makePercentageCloserSoftShadows(const TechniqueArgs& args, PcssOptions o) {
+  o.blockerSamples = args.integer("blocker-samples");
+  o.pcfSamples = args.integer("pcf-samples");
+  o.checkerboard = args.boolean("checkerboard");
+  if (o.mode == PcssMode::PenumbraMask) {
+    o.kernelScale = args.number("kernel-scale");
+    o.noBlockerOne = args.boolean("no-blocker-one");
+  }
+  if (o.mode == PcssMode::PenumbraMask || o.mode == PcssMode::MinFilter) o.blur = args.boolean("blur");
+  if (o.mode == PcssMode::MinFilter) o.minRadius = args.integer("min-radius");
+  return std::make_unique<PercentageCloserSoftShadows>(shadow_map::readMapOptions(args), o);
 }
 
 }  // namespace penumbra

@@ -34,9 +34,11 @@ struct PcssOptions {
 // VWSS paper compares with (64 and 96).
 PcssOptions pcssPreset(PcssMode mode, bool ultra, bool checkerboard);
 
-// Parameters (besides the map ones of shadow_map/maps.h): blocker-samples, pcf-samples,
-// checkerboard, kernel-scale, no-blocker-one, blur, min-radius. Semi-opaque occluders are drawn
-// into the map as opaque (statistic "semi-opaque triangles as opaque").
-std::unique_ptr<Technique> makePercentageCloserSoftShadows(const TechniqueParams& params, PcssOptions options);
+// The parameters of a preset, its values their defaults: the map ones of shadow_map/maps.h,
+// blocker-samples, pcf-samples, checkerboard; kernel-scale, no-blocker-one (mask), blur (mask,
+// min filter), min-radius (min filter). Semi-opaque occluders are drawn into the map as opaque
+// (statistic "semi-opaque triangles as opaque").
+std::vector<ParamSpec> pcssParams(const PcssOptions& preset);
+std::unique_ptr<Technique> makePercentageCloserSoftShadows(const TechniqueArgs& args, PcssOptions preset);
 
 }  // namespace penumbra

@@ -5,6 +5,7 @@
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
 #include "techniques/shadow_map/maps.h"
+#include "shadow_map_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra {
 namespace {
@@ -23,20 +24,18 @@ class FragmentReprojection final : public shadow_map::MultiViewTechnique {
         central_ = gl::Texture::make2D(GL_DEPTH_COMPONENT32F, size, size);
         centralFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &central_);
       }
-      if (!depthProgram_) depthProgram_ = gl::Program({"mvr_depth.vert", "depth_only.frag"}, {"CENTRAL"});
-      shadow_map::renderDepthView(name(), pass, frame, pass.light.position, centralFbo_, depthProgram_);
+      shadow_map::renderDepthView(name(), pass, frame, pass.light.position, centralFbo_,
+                                  programs().get({"mvr_depth.vert", "depth_only.frag"}, {"CENTRAL"}));
     });
     pass.timer.time(name() + " depth maps", [&] {
-      if (!splatProgram_) {
-        std::vector<std::string> defs = {"FROM_DEPTH_MAP"};
-        if (!splat_.synchronized) defs.push_back("UNSYNCHRONIZED");
-        splatProgram_ = gl::Program({"shadow_map_reproject.comp"}, defs);
-      }
-      shadow_map::setMapUniforms(splatProgram_, frame);
-      splatProgram_.set("centralEye", pass.light.position);
-      splatProgram_.set("centralSize", size);
+      std::vector<std::string> defs = {"FROM_DEPTH_MAP"};
+      if (!splat_.synchronized) defs.push_back("UNSYNCHRONIZED");
+      const gl::Program& splat = programs().get({"shadow_map_reproject.comp"}, defs);
+      shadow_map::setMapUniforms(splat, frame);
+      splat.set("centralEye", pass.light.position);
+      splat.set("centralSize", size);
       central_.bind(PENUMBRA_UNIT_CENTRAL_DEPTH);
-      dispatches_ = shadow_map::splatMaps(splatProgram_, maps, std::size_t(size) * std::size_t(size), frame.layers, splat_);
+      dispatches_ = shadow_map::splatMaps(splat, maps, std::size_t(size) * std::size_t(size), frame.layers, splat_);
     });
   }
   std::size_t extraBytes() const override { return central_.bytes(); }
@@ -51,18 +50,26 @@ class FragmentReprojection final : public shadow_map::MultiViewTechnique {
   shadow_map::SplatOptions splat_;
   gl::Texture central_;
   gl::Framebuffer centralFbo_;
-  gl::Program depthProgram_, splatProgram_;
   int dispatches_ = 0;
 };
 
 }  // namespace
 
-std::unique_ptr<Technique> makeFragmentReprojection(const TechniqueParams& params, bool synchronized) {
+std::vector<ParamSpec> reprojectParams() {
+  std::vector<ParamSpec> p = shadow_map::mapParams();
+  p.push_back(shadow_map::pcfParam());
+  p.push_back(ParamSpec::integer("k", 0, 0, 4096, "maps per compute thread: 1 serial, 0 all (fully parallel)"));
+  p.push_back(ParamSpec::number("scale", 1.0, 0.125, 16.0,
+                                "central-map resolution over the map resolution (the paper raises it to fill gaps, 4.2.1)"));
+  return p;
+}
+
+std::unique_ptr<Technique> makeFragmentReprojection(const TechniqueArgs& args, bool synchronized) {
   shadow_map::SplatOptions s;
   s.synchronized = synchronized;
-  s.mapsPerThread = params.getInt("k", 0, 0, 4096);
-  double scale = params.getDouble("scale", 1.0, 0.125, 16.0);
-  return std::make_unique<FragmentReprojection>(shadow_map::readMapOptions(params), shadow_map::readPcfTaps(params), scale, s);
+  s.mapsPerThread = args.integer("k");
+  double scale = args.number("scale");
+  return std::make_unique<FragmentReprojection>(shadow_map::readMapOptions(args), shadow_map::readPcfTaps(args), scale, s);
 }
 
 }  // namespace penumbra

@@ -11,7 +11,7 @@
 #include "pipeline/technique.h"
 
 namespace penumbra {
-// Parameters (besides the map ones): scale (central map resolution / map resolution, default 1;
-// the paper raises it to fill gaps, section 4.2.1), k (maps per thread, default 0: all).
-std::unique_ptr<Technique> makeFragmentReprojection(const TechniqueParams& params, bool synchronized);
+// Parameters (besides the map ones): scale, k (reproject.cpp declares them).
+std::vector<ParamSpec> reprojectParams();
+std::unique_ptr<Technique> makeFragmentReprojection(const TechniqueArgs& args, bool synchronized);
 }  // namespace penumbra

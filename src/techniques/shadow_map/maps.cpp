@@ -10,24 +10,40 @@
 #include "gl/context.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
+#include "shadow_map_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra::shadow_map {
 
-MapOptions readMapOptions(const TechniqueParams& params) {
+std::vector<ParamSpec> mapParams() {
+  const MapOptions o;
+  return {ParamSpec::integer("map", o.size, 16, 16384, "depth-map resolution (square)"),
+          ParamSpec::number("bias", o.biasConstant, -1.0, 1e30,
+                            "constant depth bias, world units along the view axis; < 0: per point (eps: `shared.h` "
+                            "penumbraSurfaceEpsilon, relative to the positions' float magnitude)")
+              .shown("per point: 4 x (eps(p) + eps(sample))"),
+          ParamSpec::number("slope-bias", o.biasSlope, 0.0, 100.0,
+                            "slope margin on top of the receiver-plane depth, in texels of the receiver plane's depth slope"),
+          ParamSpec::number("max-angle", o.maxHalfAngle, 1.0, 89.0,
+                            "widest frustum half-angle (degrees); receivers beyond it are left unshadowed, and said so per "
+                            "pixel (report: `errors.unshadowedPixels`, the error without them "
+                            "`errors.visibilityExceptUnshadowed`, mask `<technique>_unshadowed.png` in the gallery)")};
+}
+
+MapOptions readMapOptions(const TechniqueArgs& args) {
   MapOptions o;
-  o.size = params.getInt("map", o.size, 16, 16384);
-  o.biasConstant = params.getDouble("bias", o.biasConstant, -1.0, 1e30);
-  o.biasSlope = params.getDouble("slope-bias", o.biasSlope, 0.0, 100.0);
-  o.maxHalfAngle = params.getDouble("max-angle", o.maxHalfAngle, 1.0, 89.0);
+  o.size = args.integer("map");
+  o.biasConstant = args.number("bias");
+  o.biasSlope = args.number("slope-bias");
+  o.maxHalfAngle = args.number("max-angle");
   return o;
 }
 
-int readPcfTaps(const TechniqueParams& params) {
-  int pcf = params.getInt("pcf", 5, 1, 9);
-  if (pcf != 1 && pcf != 5 && pcf != 9)
-    throw Error("--param", fmt::format("pcf: must be 1, 5 or 9, got {}", pcf), ExitCode::Usage);
-  return pcf;
+ParamSpec pcfParam() {
+  return ParamSpec::choice("pcf", "5", {"1", "5", "9"},
+                           "PCF taps per map: 1, 5 (centre + 4 neighbours, the VWSS paper's) or 9 (3x3)");
 }
+
+int readPcfTaps(const TechniqueArgs& args) { return std::stoi(args.text("pcf")); }
 
 void setBiasUniforms(const gl::Program& p, const MapOptions& o) {
   p.set("biasConstant", float(o.biasConstant));  // < 0: per point (shadow_map_common.glsl depthBias)
@@ -211,8 +227,9 @@ void MultiViewTechnique::prepare(const Scene& scene, GpuScene&) {
 }
 
 void MultiViewTechnique::renderSemiOpaque(LightPass& pass, const MapFrame& frame) {
-  if (!semiProgram_) {
-    semiProgram_ = gl::Program({"mvr_depth.vert", "mvr_depth.geom", "shadow_map_transmittance.frag"}, {"LAYERED"});
+  const gl::Program& semiProgram =
+      programs_.get({"mvr_depth.vert", "mvr_depth.geom", "shadow_map_transmittance.frag"}, {"LAYERED"});
+  if (!semiStatus_) {
     semiStatus_ = gl::Texture::make2D(GL_R32UI, 1, 1);
     semiFbo_ = gl::Framebuffer();
   }
@@ -241,10 +258,10 @@ void MultiViewTechnique::renderSemiOpaque(LightPass& pass, const MapFrame& frame
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    semiProgram_.use();
-    setMapUniforms(semiProgram_, frame);
-    semiProgram_.set("semiSlots", slots);
-    pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::SemiOpaque, &semiProgram_);
+    semiProgram.use();
+    setMapUniforms(semiProgram, frame);
+    semiProgram.set("semiSlots", slots);
+    pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::SemiOpaque, &semiProgram);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     const std::uint32_t most = semiStatus_.readUint().front();
     if (int(most) <= slots) {
@@ -279,14 +296,11 @@ const gl::Texture& MultiViewTechnique::ensureMaps(GLenum format, const MapFrame&
 
 const gl::Program& MultiViewTechnique::resolveProgram(bool perSample) {
   const bool semi = semiOpaque_ > 0;
-  auto key = std::make_tuple(maps_.format(), perSample, semi);
-  auto it = resolve_.find(key);
-  if (it != resolve_.end()) return it->second;
   std::vector<std::string> defs = {"PCF_TAPS " + std::to_string(pcf_)};
   if (maps_.format() == GL_R32UI) defs.push_back("UINT_MAPS");
   if (perSample) defs.push_back("PER_SAMPLE_OUT");
   if (semi) defs.push_back("SEMI_OPAQUE");
-  return resolve_.emplace(key, gl::Program({"fullscreen.vert", "shadow_map_resolve.frag"}, defs)).first->second;
+  return programs_.get({"fullscreen.vert", "shadow_map_resolve.frag"}, defs);
 }
 
 void MultiViewTechnique::renderVisibility(LightPass& pass) {

@@ -22,6 +22,7 @@
 #include <glm/glm.hpp>
 
 #include "gl/objects.h"
+#include "gl/program_cache.h"
 #include "pipeline/technique.h"
 
 namespace penumbra::shadow_map {
@@ -33,8 +34,9 @@ struct MapOptions {
   double biasSlope = 1.0;     // texels of the receiver plane's depth slope (shadow_map_common.glsl)
   double maxHalfAngle = 80.0; // degrees: receivers needing a wider frustum are left unshadowed
 };
-// Reads map, bias, slope-bias, max-angle from --param.
-MapOptions readMapOptions(const TechniqueParams& params);
+// The declarations of map, bias, slope-bias and max-angle (every shadow-map technique's).
+std::vector<ParamSpec> mapParams();
+MapOptions readMapOptions(const TechniqueArgs& args);
 // The uniforms of shadow_map_common.glsl biasedDepth.
 void setBiasUniforms(const gl::Program& program, const MapOptions& options);
 
@@ -131,6 +133,8 @@ class MultiViewTechnique : public Technique {
   const std::string& name() const { return name_; }
   const MapOptions& options() const { return options_; }
   const gl::Texture& maps() const { return maps_; }
+  // The technique's programs by shaders and defines.
+  gl::ProgramCache& programs() { return programs_; }
 
  private:
   const gl::Program& resolveProgram(bool perSample);
@@ -139,18 +143,19 @@ class MultiViewTechnique : public Technique {
   MapOptions options_;
   int pcf_;
   gl::Texture maps_;
-  std::map<std::tuple<GLenum, bool, bool>, gl::Program> resolve_;
+  gl::ProgramCache programs_;
   MapFrame frame_;
   std::size_t semiOpaque_ = 0;
   gl::Texture semiCount_, semiLayers_;
   gl::Framebuffer semiFbo_;
-  gl::Program semiProgram_;
   gl::Texture semiStatus_;  // 1 x 1 R32UI image (shaders/shadow_map_transmittance.frag)
   int semiSlots_ = 0, semiReruns_ = 0;
 };
 
 // Reads pcf (taps per map: 1, 5 or 9; default 5) from --param.
-int readPcfTaps(const TechniqueParams& params);
+// pcf, the multi-view techniques' taps per map (1, 5 or 9).
+ParamSpec pcfParam();
+int readPcfTaps(const TechniqueArgs& args);
 
 // Dispatches the bound compute program over `threads` invocations of PENUMBRA_MAP_LOCAL_SIZE-wide
 // groups, split over y beyond 65535 groups (shaders/compute_index.glsl globalIndex).

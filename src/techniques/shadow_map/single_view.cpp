@@ -5,6 +5,7 @@
 #include "gl/context.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
+#include "single_view_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra::shadow_map {
 namespace {
@@ -45,7 +46,7 @@ void SingleViewTechnique::renderVisibility(LightPass& pass) {
       depthFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &depth_);
     }
     renderDepthView(name_, pass, frame_, pass.light.position, depthFbo_,
-                    program("depth", {"mvr_depth.vert", "depth_only.frag"}, {"CENTRAL"}), true);
+                    program({"mvr_depth.vert", "depth_only.frag"}, {"CENTRAL"}), true);
   });
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
@@ -77,11 +78,9 @@ void SingleViewTechnique::setUniforms(const gl::Program& p, const LightPass& pas
   p.set("kernelScale", float(kernelScale));
 }
 
-const gl::Program& SingleViewTechnique::program(const std::string& key, const std::vector<std::string>& files,
+const gl::Program& SingleViewTechnique::program(const std::vector<std::string>& files,
                                                 const std::vector<std::string>& defines) {
-  auto it = programs_.find(key);
-  if (it == programs_.end()) it = programs_.emplace(key, gl::Program(files, defines)).first;
-  return it->second;
+  return programs_.get(files, defines);
 }
 
 void SingleViewTechnique::drawFullscreen(const gl::Framebuffer& fbo, const gl::Program& p) const {

@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "gl/objects.h"
+#include "gl/program_cache.h"
 #include "pipeline/technique.h"
 #include "techniques/shadow_map/maps.h"
+#include "single_view_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra::shadow_map {
 
@@ -45,8 +47,8 @@ class SingleViewTechnique : public Technique {
   // The uniforms of shaders/pcss_common.glsl (and the light's).
   void setUniforms(const gl::Program& p, const LightPass& pass, int blockerSamples, int pcfSamples,
                    double kernelScale) const;
-  const gl::Program& program(const std::string& key, const std::vector<std::string>& files,
-                             const std::vector<std::string>& defines);
+  // The program of `files` and `defines`, built once (gl::ProgramCache).
+  const gl::Program& program(const std::vector<std::string>& files, const std::vector<std::string>& defines);
   // A full-screen triangle into `fbo` (bound) with `p`.
   void drawFullscreen(const gl::Framebuffer& fbo, const gl::Program& p) const;
 
@@ -59,7 +61,7 @@ class SingleViewTechnique : public Technique {
   gl::Framebuffer depthFbo_;
   gl::Sampler raw_, compare_;
   gl::VertexArray vao_;
-  std::map<std::string, gl::Program> programs_;
+  gl::ProgramCache programs_;
   std::size_t semiOpaque_ = 0;
   float searchNear_ = 0.0f, halfSize_ = 0.0f;
 };

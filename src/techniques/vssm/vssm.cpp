@@ -7,6 +7,7 @@
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
 #include "techniques/shadow_map/single_view.h"
+#include "single_view_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra {
 namespace {
@@ -46,7 +47,7 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
       const std::size_t bytes = texels * (o_.exactSat ? 16 : 8);
       if (sat_.size() != bytes) sat_ = gl::Buffer(bytes, nullptr);
       sat_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_SAT);
-      const gl::Program& p = program("sat", {"vssm_sat.comp"}, o_.exactSat ? std::vector<std::string>{"EXACT"}
+      const gl::Program& p = program({"vssm_sat.comp"}, o_.exactSat ? std::vector<std::string>{"EXACT"}
                                                                             : std::vector<std::string>{});
       p.set("satSize", f.size);
       p.set("mapNear", f.zNear);
@@ -65,7 +66,7 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
       for (int s = f.size; s >= 1; s /= 2) texels += std::size_t(s) * std::size_t(s), ++hsmLevels_;
       if (hsm_.size() != texels * 8) hsm_ = gl::Buffer(texels * 8, nullptr);
       hsm_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_HSM);
-      const gl::Program& p = program("hsm", {"vssm_hsm.comp"}, {});
+      const gl::Program& p = program({"vssm_hsm.comp"}, {});
       p.set("satSize", f.size);
       p.set("mapNear", f.zNear);
       p.set("depthMin", depthMin_);
@@ -78,7 +79,7 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
       }
     });
     pass.timer.time(name() + " shadow pass", [&] {
-      const gl::Program& p = program("resolve", {"fullscreen.vert", "vssm_resolve.frag"},
+      const gl::Program& p = program({"fullscreen.vert", "vssm_resolve.frag"},
                                      o_.exactSat ? std::vector<std::string>{"EXACT"} : std::vector<std::string>{});
       setUniforms(p, pass, 0, 0, 1.0);
       p.set("depthMin", depthMin_);
@@ -122,12 +123,23 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
 
 }  // namespace
 
-std::unique_ptr<Technique> makeVarianceSoftShadowMapping(const TechniqueParams& params, VssmOptions o) {
-  o.blockerDiv = params.getInt("blocker-div", o.blockerDiv, 1, 16);
-  o.shadowDiv = params.getInt("shadow-div", o.shadowDiv, 1, 16);
-  o.blockerLevels = params.getInt("blocker-levels", o.blockerLevels, 0, 5);
-  o.shadowLevels = params.getInt("shadow-levels", o.shadowLevels, 0, 5);
-  return std::make_unique<VarianceSoftShadowMapping>(shadow_map::readMapOptions(params), o);
+std::vector<ParamSpec> vssmParams(const VssmOptions& o) {
+  std::vector<ParamSpec> p = shadow_map::mapParams();
+  p.push_back(ParamSpec::integer("blocker-div", o.blockerDiv, 1, 16, "uniform m x m sub-kernels of the blocker search"));
+  p.push_back(ParamSpec::integer("shadow-div", o.shadowDiv, 1, 16, "uniform n x n sub-kernels of the visibility"));
+  p.push_back(ParamSpec::integer("blocker-levels", o.blockerLevels, 0, 5,
+                                 "adaptive quad-tree height of the blocker search (0: uniform)"));
+  p.push_back(ParamSpec::integer("shadow-levels", o.shadowLevels, 0, 5,
+                                 "adaptive quad-tree height H of the visibility (0: uniform)"));
+  return p;
+}
+
+std::unique_ptr<Technique> makeVarianceSoftShadowMapping(const TechniqueArgs& args, VssmOptions o) {
+  o.blockerDiv = args.integer("blocker-div");
+  o.shadowDiv = args.integer("shadow-div");
+  o.blockerLevels = args.integer("blocker-levels");
+  o.shadowLevels = args.integer("shadow-levels");
+  return std::make_unique<VarianceSoftShadowMapping>(shadow_map::readMapOptions(args), o);
 }
 
 }  // namespace penumbra

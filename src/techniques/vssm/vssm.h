@@ -19,8 +19,10 @@ struct VssmOptions {
   int shadowLevels = 3;  // adaptive quad-tree height H for the visibility (the paper's H = 3)
 };
 
-// Parameters (besides the map ones): blocker-div, shadow-div, blocker-levels, shadow-levels.
-// The map size must be a power of two (the min-max hierarchy halves it).
-std::unique_ptr<Technique> makeVarianceSoftShadowMapping(const TechniqueParams& params, VssmOptions options);
+// The parameters of a preset, its values their defaults: the map ones (the map size must be a
+// power of two: the min-max hierarchy halves it), blocker-div, shadow-div, blocker-levels,
+// shadow-levels.
+std::vector<ParamSpec> vssmParams(const VssmOptions& preset);
+std::unique_ptr<Technique> makeVarianceSoftShadowMapping(const TechniqueArgs& args, VssmOptions preset);
 
 }  // namespace penumbra

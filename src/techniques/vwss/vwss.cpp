@@ -14,6 +14,7 @@
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
 #include "techniques/shadow_map/maps.h"
+#include "shadow_map_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra {
 namespace {
@@ -117,7 +118,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
 
     if (o_.mode == VwssMode::Unbuffered) {
       pass.timer.time(name() + " points+maps", [&] {
-        const gl::Program& prog = program("unbuffered", {"vwss_points.vert", "vwss_points.frag"}, {"UNBUFFERED"});
+        const gl::Program& prog = program({"vwss_points.vert", "vwss_points.frag"}, {"UNBUFFERED"});
         maps->bindImage(PENUMBRA_IMAGE_SHADOW_MAPS, GL_READ_WRITE);
         prog.set("layerCount", frame.layers);
         generate(prog);
@@ -133,7 +134,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
     // the central view is cut into bands of rows (scissor), each generated and splatted on its
     // own, halved until its points fit. The maps are the same (an atomicMax z-buffer does not
     // depend on the order its points arrive in), only the passes are more.
-    const gl::Program& pointsProg = program("points", {"vwss_points.vert", "vwss_points.frag"}, {});
+    const gl::Program& pointsProg = program({"vwss_points.vert", "vwss_points.frag"}, {});
     const std::size_t passLimit = passPointLimit();
     regrown_ = 0, bands_ = 0, dispatches_ = 0;
     pointCount_ = 0;
@@ -192,7 +193,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
   void splat(LightPass&, const shadow_map::MapFrame& frame, const gl::Texture& maps, std::size_t count) {
     points_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_POINTS);
     if (o_.mode == VwssMode::Graphics) {
-      const gl::Program& prog = program("draw", {"vwss_points_draw.vert", "depth_only.frag"}, {});
+      const gl::Program& prog = program({"vwss_points_draw.vert", "depth_only.frag"}, {});
       prog.use();
       shadow_map::setMapUniforms(prog, frame);
       prog.set("pointCapacity", unsigned(capacity_));
@@ -215,7 +216,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
       dispatches_ += frame.layers;
     } else {
-      const gl::Program& prog = program("splat", {"shadow_map_reproject.comp"}, {});
+      const gl::Program& prog = program({"shadow_map_reproject.comp"}, {});
       shadow_map::setMapUniforms(prog, frame);
       prog.set("pointCapacity", unsigned(capacity_));
       dispatches_ += shadow_map::splatMaps(prog, maps, count, frame.layers, o_.splat);
@@ -312,17 +313,13 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
     return false;
   }
 
-  const gl::Program& program(const std::string& key, const std::vector<std::string>& files,
-                             const std::vector<std::string>& defs) {
-    auto it = programs_.find(key);
-    if (it == programs_.end()) it = programs_.emplace(key, gl::Program(files, defs)).first;
-    return it->second;
+  const gl::Program& program(const std::vector<std::string>& files, const std::vector<std::string>& defs) {
+    return programs().get(files, defs);
   }
 
   VwssOptions o_;
   std::vector<Occluder> occluders_;  // opaque meshes, for the back-face decision (backfaces unset)
   bool keptBackFaces_ = false;
-  std::map<std::string, gl::Program> programs_;
   shadow_map::NearestOccluder nearest_;
   gl::Buffer points_;
   std::size_t capacity_ = 0, pointCount_ = 0;
@@ -339,14 +336,34 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
 
 }  // namespace
 
-std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueParams& params, VwssMode mode) {
+std::vector<ParamSpec> vwssParams(VwssMode mode) {
+  std::vector<ParamSpec> p = shadow_map::mapParams();
+  p.push_back(shadow_map::pcfParam());
+  if (mode == VwssMode::Buffered)
+    p.push_back(ParamSpec::integer("k", 8, 0, 4096, "maps per compute thread: 1 serial, 0 all (fully parallel)"));
+  p.push_back(ParamSpec::integer("backfaces", -1, 0, 1,
+                                 "unset: keep back faces in point generation (VWSS 3.1's option) unless culling provably "
+                                 "drops no nearest occluder (every back face has the whole light behind its plane and "
+                                 "belongs to a closed, outward-wound mesh the light is outside; hard case 29); 0 cull, 1 keep")
+                  .shown("auto"));
+  p.push_back(ParamSpec::number("scale", 0.0, 0.0, 64.0, "point-generation resolution over the map resolution; 0: eq. 3")
+                  .shown("eq. 3"));
+  if (mode != VwssMode::Unbuffered)
+    p.push_back(ParamSpec::integer("pass-points", 0, 0, 1 << 30,
+                                   "most points one point-generation pass holds (0: the GL's limit); more are split into "
+                                   "bands of the central view (same maps: atomicMax)")
+                    .shown("GL limit"));
+  return p;
+}
+
+std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueArgs& args, VwssMode mode) {
   VwssOptions o;
   o.mode = mode;
-  if (mode == VwssMode::Buffered) o.splat.mapsPerThread = params.getInt("k", 8, 0, 4096);
-  o.backFaces = params.getInt("backfaces", -1, 0, 1);
-  o.scale = params.getDouble("scale", 0.0, 0.0, 64.0);
-  if (mode != VwssMode::Unbuffered) o.passPoints = params.getInt("pass-points", 0, 0, 1 << 30);
-  return std::make_unique<ViewWarpedSoftShadows>(shadow_map::readMapOptions(params), shadow_map::readPcfTaps(params), o);
+  if (mode == VwssMode::Buffered) o.splat.mapsPerThread = args.integer("k");
+  o.backFaces = args.integer("backfaces");
+  o.scale = args.number("scale");
+  if (mode != VwssMode::Unbuffered) o.passPoints = args.integer("pass-points");
+  return std::make_unique<ViewWarpedSoftShadows>(shadow_map::readMapOptions(args), shadow_map::readPcfTaps(args), o);
 }
 
 }  // namespace penumbra

@@ -16,10 +16,9 @@ namespace penumbra {
 
 enum class VwssMode { Buffered, Unbuffered, Graphics };
 
-// Parameters (besides the map ones of shadow_map/maps.h): k (maps per compute thread: 1 serial,
-// 0 all, default 8 as Listing 2), backfaces (1: keep back faces, section 3.1's option; 0: cull
-// them; unset: keep them unless culling provably drops no nearest occluder, hard case 29), scale
-// (point-generation resolution factor; 0: eq. 3).
-std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueParams& params, VwssMode mode);
+// Parameters: those of shadow_map/maps.h, k (buffered), backfaces, scale, pass-points (buffered,
+// graphics); vwss.cpp declares them.
+std::vector<ParamSpec> vwssParams(VwssMode mode);
+std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueArgs& args, VwssMode mode);
 
 }  // namespace penumbra

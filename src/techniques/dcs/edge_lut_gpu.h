@@ -1,0 +1,23 @@
+// The edge LUT of dcs/edge_lut.h on the GPU, as shaders/common_dcs.glsl reads it: the sector
+// table as an RGBA32UI cube-map array and the line table as an RGBA32UI 2D array (one layer per
+// sample set; bit fields widened to four words, words beyond EdgeLut::words 0), the packed
+// sample positions (paper 7.1) as a storage buffer.
+#pragma once
+
+#include <cstddef>
+
+#include "gl/objects.h"
+#include "techniques/dcs/edge_lut.h"
+
+namespace penumbra::dcs {
+
+struct GpuEdgeLut {
+  gl::Texture sector, line;
+  gl::Buffer packed;
+  float extent = 0.0f;  // EdgeLut::extent
+  std::size_t bytes() const { return sector.bytes() + line.bytes() + packed.size(); }
+};
+
+GpuEdgeLut uploadEdgeLut(const EdgeLut& table);
+
+}  // namespace penumbra::dcs
