@@ -20,7 +20,7 @@ add_test(NAME params_readme COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/params_readme
          ${PROJECT_SOURCE_DIR})
 
 # Technique parameters: declarations, dcs through --param, the shared key/value reader. No GL.
-penumbra_add_test(test_technique_params ${CMAKE_CURRENT_SOURCE_DIR}/technique_params_test.cpp LIBS penumbra_render)
+penumbra_add_test(test_technique_params ${CMAKE_CURRENT_SOURCE_DIR}/technique_params_test.cpp LIBS penumbra_techniques)
 
 # DCS counter packing: no GL needed.
 penumbra_add_test(test_dcs_packing ${CMAKE_CURRENT_SOURCE_DIR}/dcs_packing_test.cpp LIBS penumbra_techniques)

@@ -10,6 +10,7 @@
 
 #include "core/key_values.h"
 #include "pipeline/technique.h"
+#include "techniques/registry.h"
 
 namespace penumbra::test {
 namespace {

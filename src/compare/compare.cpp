@@ -328,7 +328,7 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
     for (std::size_t p = 0; p < result.presets.size(); ++p)
       for (auto& info : o.techniques) {
         TechniqueParams params(result.presets[p].params);
-        info.create(params);
+        info.make(params);
         all.noteReads(params);
         std::string key = info.name + " " + renderKey(result.presets[p], params.read());
         if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
@@ -456,7 +456,7 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
     CompareRun refRun;
     refRun.technique = o.reference.name, refRun.preset = pi, refRun.reference = true;
     std::vector<FrameVisibility> refFrames;
-    auto refTech = o.reference.create(TechniqueParams{});
+    auto refTech = o.reference.make(TechniqueParams{});
     FrameResult ref;
     try {
       ref = renderRun(*refTech, refRun, s.shading, frames > 1 ? &refFrames : nullptr);
@@ -472,7 +472,7 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
       std::string key = fmt::format("{}x{}", s.width, s.height);
       progress.step("reference: " + o.convergedReference.name + at);
       if (!convergedRefs.count(key)) {
-        auto t = o.convergedReference.create(TechniqueParams{});
+        auto t = o.convergedReference.make(TechniqueParams{});
         Slot slot;
         convergedRefs[key] = rendererFor(0, s.shading, slot).render(*t);
         if (!o.outDir.empty() && o.writeExr)
@@ -494,7 +494,7 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
       FrameResult f;
       try {
         TechniqueParams params(preset.params);
-        auto tech = job.technique->create(params);
+        auto tech = job.technique->make(params);
         ShadingMode shading = s.shading;
         if (shading == ShadingMode::PerSample && !tech->providesPerSample()) shading = ShadingMode::Modulate;
         f = renderRun(*tech, run, shading, frames > 1 ? &kept : nullptr);

@@ -161,6 +161,8 @@ struct TechniqueInfo {
   std::string description;  // one line for `penumbra list`
   std::vector<ParamSpec> params;  // every parameter it reads, with its defaults
   std::function<std::unique_ptr<Technique>(const TechniqueArgs&)> create;
+  // create() with `given` read through this technique's declarations.
+  std::unique_ptr<Technique> make(const TechniqueParams& given) const { return create(TechniqueArgs(given, params, name)); }
 };
 
 // The table of techniques is a layer above: techniques/registry.h.

@@ -122,8 +122,7 @@ std::vector<TechniqueInfo> findTechniques(const std::vector<std::string>& names)
 }
 
 std::unique_ptr<Technique> makeTechnique(const std::string& name, const TechniqueParams& params) {
-  const TechniqueInfo& info = findTechnique(name);
-  return info.create(TechniqueArgs(params, info.params, info.name));
+  return findTechnique(name).make(params);
 }
 
 }  // namespace penumbra

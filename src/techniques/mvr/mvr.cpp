@@ -23,7 +23,7 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
       glDisable(GL_CULL_FACE);
       glDisable(GL_BLEND);
       program.use();
-      shadow_map::setMapUniforms(program_, frame);
+      shadow_map::setMapUniforms(program, frame);
       // No fragment in any map is checked against the first sample's view (map 0).
       shadow_map::drawWithOccluderCheck(name(), "depth maps", pass.scene, frame, pass.samples.positions.at(0),
                                         frame.size, [&] {
