@@ -48,6 +48,7 @@
 #define PENUMBRA_IMAGE_SEMI_LAYERS 3    // R32UI 2D array: their entries (depth and opacity)
 #define PENUMBRA_IMAGE_SEMI_STATUS 4    // R32UI 1 x 1: most semi-opaque surfaces on one map texel
 #define PENUMBRA_IMAGE_DCS_PROFILE 5    // R32UI 6 x 1: dcs wedge counters (PENUMBRA_DCS_PROFILE=1)
+#define PENUMBRA_IMAGE_MAP_OUTSIDE 6    // R32UI G-buffer size: receivers outside the shadow maps (shadow_map_fit.comp)
 
 // ---- shader storage / uniform buffer bindings ----------------------------------------------
 // A graphics program (vertex/geometry/fragment) that writes a storage block declares storage
@@ -68,6 +69,7 @@
 #define PENUMBRA_SSBO_VSSM_HSM 10       // vssm: min-max hierarchical shadow map, all levels, a texel a pair
 #define PENUMBRA_SSBO_DCS_PATH_FIRST 11  // dcs: per light sample, the first of its path crossings (then the end)
 #define PENUMBRA_SSBO_DCS_PATH 12        // dcs: path crossings (triangle plane, sides, rule, units)
+#define PENUMBRA_SSBO_MAP_FIT 13         // shadow maps: the frustum fit's results, then a sum a G-buffer row
 #define PENUMBRA_VSSM_FIXED_ONE 32767.0 // vssm exact SAT: depth in [0,1] as 15-bit integers (sums of
                                         // squares stay below 2^53 at 2048^2: exact in doubles)
 

@@ -193,7 +193,8 @@ class DepthComplexitySampling final : public Technique {
       stats_.shiftedOrigin = true;
     }
     LightPass pass{lightPass.scene, origin, lightPass.lightIndex, lightPass.samples, lightPass.gpu, lightPass.timer,
-                   lightPass.cpuGBuffer, lightPass.visibility, lightPass.perSample, lightPass.cpuPerSample};
+                   lightPass.cpuGBuffer, lightPass.visibility, lightPass.perSample, lightPass.cpuPerSample,
+                   lightPass.cpuVisibility};
     const Light& light = pass.light;
     // The paper's 2D covered-sample modes need a planar light (and its centre as the origin);
     // others use the exact test.

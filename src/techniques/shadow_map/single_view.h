@@ -23,7 +23,7 @@ class SingleViewTechnique : public Technique {
   void renderVisibility(LightPass& pass) override;
   std::size_t memoryBytes() const override { return depth_.bytes() + extraBytes(); }
   std::vector<std::pair<std::string, double>> statistics() const override;
-  std::vector<std::uint8_t> unshadowedPixels() const override { return frame_.outsideMask; }
+  std::vector<std::uint8_t> unshadowedPixels() const override { return fit_.outsideMask(); }
 
  protected:
   virtual void renderShadow(LightPass& pass) = 0;
@@ -54,6 +54,7 @@ class SingleViewTechnique : public Technique {
   std::string name_;
   MapOptions map_;
   MapFrame frame_;
+  FrameFit fit_;
   NearestOccluder nearest_;
   gl::Texture depth_;
   gl::Framebuffer depthFbo_;
