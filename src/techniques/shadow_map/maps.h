@@ -6,7 +6,8 @@
 // in LightSampleSet::positions), all looking along one axis (the light normal of rect and disk
 // lights; for sphere and point lights the direction from the light to the receivers' centroid)
 // with one symmetric square frustum wide enough that every visible surface point the G-buffer
-// holds is inside every sample's frustum (then so is every occluder between it and a sample).
+// holds is inside every sample's frustum (then so is every occluder between it and a sample),
+// fitted on the GPU (FrameFit) so that no technique reads the G-buffer back.
 // Reversed depth z = near / d (shaders/shadow_map_common.glsl).
 #pragma once
 

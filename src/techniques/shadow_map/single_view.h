@@ -1,5 +1,6 @@
 // What the single-view shadow-map techniques share (pcss, vssm): one depth map from the light
-// centre (the frustum and bias of maps.h), the raw and comparison samplers of it, the uniforms of
+// centre (the frustum and bias of maps.h; the frustum holds the whole light, MapReach::Light, so
+// --samples and --seed do not change it), the raw and comparison samplers of it, the uniforms of
 // shaders/pcss_common.glsl, and a cache of programs. Each technique adds its passes in
 // renderShadow().
 #pragma once
