@@ -4,7 +4,8 @@
 #
 #   sh bench/gpu.sh pack [BUILD_DIR]     here (default build/): the binaries, stripped, and the
 #                                        shared libraries they need that are not the system's or
-#                                        the driver's (ldd), into .gpu-pack/ (git-ignored); the
+#                                        the driver's (ldd), as .gpu-pack/pack.tar.gz (git-ignored,
+#                                        ~24 MB: libembree3 is most of it); the
 #                                        glvnd loader packages into .gl/ (apt-get download) when
 #                                        they are not there yet.
 #   sh bench/gpu.sh run [BENCH ARGS...]  there, in the repository root with .gpu-pack/ and .gl/:
@@ -21,6 +22,7 @@
 # nor its LLVM travels. The device tool carries 64 MiB: `carry` .gpu-pack and .gl.
 set -eu
 PACK=.gpu-pack
+UNPACKED="${PENUMBRA_PACK_DIR:-/tmp/penumbra-pack}"  # where `run` unpacks it
 GL_DEBS=".gl"
 GL_TESTS="test_render test_render_resources test_render_compare"
 
@@ -39,18 +41,19 @@ pack() {
   B="${1:-build}"
   [ -x "$B/src/cli/penumbra" ] || die "$B/src/cli/penumbra: no build (cmake --build $B first)"
   src=$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$B/CMakeCache.txt")
-  rm -rf "$PACK" && mkdir -p "$PACK/bin" "$PACK/lib"
+  stage=$(mktemp -d)
+  rm -rf "$PACK" && mkdir -p "$PACK" "$stage/bin" "$stage/lib"
   bins="$B/src/cli/penumbra"
   for t in $GL_TESTS; do
     [ -x "$B/tests/$t" ] || die "$B/tests/$t: not built"
     bins="$bins $B/tests/$t"
   done
   for b in $bins; do
-    strip --strip-debug -o "$PACK/bin/$(basename "$b")" "$b"
+    strip --strip-debug -o "$stage/bin/$(basename "$b")" "$b"
     ldd "$b" | awk '/=> \// { print $3 }' | while read -r lib; do
       name=$(basename "$lib")
       system_lib "$name" && continue
-      [ -e "$PACK/lib/$name" ] || strip --strip-debug -o "$PACK/lib/$name" "$(readlink -f "$lib")"
+      [ -e "$stage/lib/$name" ] || strip --strip-debug -o "$stage/lib/$name" "$(readlink -f "$lib")"
     done
   done
   # Where the tests were built: they find scenes/ and tests/data/ under it (PENUMBRA_SOURCE_DIR).
@@ -67,11 +70,20 @@ pack() {
       echo "bench/gpu.sh: could not download the glvnd loaders into $GL_DEBS; the GPU machine must have libEGL.so.1" >&2
     fi
   fi
-  echo "packed $(ls "$PACK/bin" | wc -l) binaries, $(ls "$PACK/lib" | wc -l) libraries, $(du -sh "$PACK" | cut -f1) -> $PACK (source dir $src)"
+  # The models scenes name as "assimp:<path>" (Debian assimp-testmodels, /usr/share/assimp/models).
+  mkdir -p "$stage/assimp"
+  grep -rhoE 'assimp:[^" ]+\.(glb|gltf|obj|ply|off|stl)' scenes bench | sort -u | sed 's/^assimp://' | while read -r m; do
+    [ -e "/usr/share/assimp/models/$m" ] || continue
+    mkdir -p "$stage/assimp/$(dirname "$m")" && cp "/usr/share/assimp/models/$m" "$stage/assimp/$m"
+  done
+  tar -C "$stage" -czf "$PACK/pack.tar.gz" bin lib assimp
+  echo "packed $(ls "$stage/bin" | wc -l) binaries, $(ls "$stage/lib" | wc -l) libraries ($(ls "$stage/lib" | tr '\n' ' ')), $(du -sh "$PACK/pack.tar.gz" | cut -f1) -> $PACK/pack.tar.gz (source dir $src)"
+  rm -rf "$stage"
 }
 
 run() {
-  [ -d "$PACK/bin" ] || die "no $PACK (run 'sh bench/gpu.sh pack' on the build machine, carry $PACK and $GL_DEBS)"
+  [ -f "$PACK/pack.tar.gz" ] || die "no $PACK/pack.tar.gz (run 'sh bench/gpu.sh pack' on the build machine, carry $PACK and $GL_DEBS)"
+  rm -rf "$UNPACKED" && mkdir -p "$UNPACKED" && tar -C "$UNPACKED" -xzf "$PACK/pack.tar.gz"
   if ls "$GL_DEBS"/*.deb >/dev/null 2>&1 && ! ldconfig -p 2>/dev/null | grep -q 'libEGL.so.1 '; then
     for f in "$GL_DEBS"/*.deb; do dpkg -x "$f" /; done
     ldconfig
@@ -79,28 +91,37 @@ run() {
   for f in /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json /usr/share/glvnd/egl_vendor.d/10_nvidia.json; do
     if [ -e "$f" ] && [ -z "${__EGL_VENDOR_LIBRARY_FILENAMES:-}" ]; then export __EGL_VENDOR_LIBRARY_FILENAMES="$f"; fi
   done
-  export LD_LIBRARY_PATH="$PWD/$PACK/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  export LD_LIBRARY_PATH="$UNPACKED/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  if [ ! -d /usr/share/assimp/models ] && [ -n "$(ls "$UNPACKED/assimp" 2>/dev/null)" ]; then
+    mkdir -p /usr/share/assimp/models && cp -r "$UNPACKED/assimp/." /usr/share/assimp/models/
+  fi
   src=$(cat "$PACK/source-dir")
   if [ ! -e "$src/scenes" ]; then  # the tests' PENUMBRA_SOURCE_DIR: this checkout
     mkdir -p "$(dirname "$src")" && ln -sfn "$PWD" "$src"
   fi
-  missing=$(ldd "$PACK/bin/penumbra" | grep 'not found' || true)
-  [ -z "$missing" ] || die "libraries not found: $missing"
+  for b in "$UNPACKED"/bin/*; do
+    missing=$(ldd "$b" | grep 'not found' || true)
+    [ -z "$missing" ] || die "$(basename "$b"): libraries not found: $missing"
+    # Every library that is not the machine's own comes from the pack.
+    ldd "$b" | awk '/=> \// { print $3 }' | while read -r lib; do
+      system_lib "$(basename "$lib")" || case "$lib" in "$UNPACKED"/lib/*) ;; *) die "$(basename "$b"): $lib is not from the pack" ;; esac
+    done
+  done
   log=$(mktemp -d)
-  "$PACK/bin/penumbra" list >/dev/null
+  "$UNPACKED/bin/penumbra" list >/dev/null
   start=$(date +%s)
   failed=0
   for t in $GL_TESTS; do
     echo "== $t"
     rc=0
-    "$PACK/bin/$t" --gtest_brief=1 > "$log/$t.txt" 2>&1 || rc=$?
+    "$UNPACKED/bin/$t" --gtest_brief=1 > "$log/$t.txt" 2>&1 || rc=$?
     tail -3 "$log/$t.txt"
     # 77: no GL context, which on the GPU machine is a failure, not a skip.
     [ "$rc" -eq 0 ] || { echo "$t: exit $rc"; failed=1; }
   done
   echo "== penumbra bench --quick $*"
   rc=0
-  "$PACK/bin/penumbra" bench --quick "$@" || rc=$?
+  "$UNPACKED/bin/penumbra" bench --quick "$@" || rc=$?
   [ "$rc" -eq 0 ] || { echo "bench: exit $rc"; failed=1; }
   dir=""
   for a in "$@"; do [ "${prev:-}" = "-o" ] || [ "${prev:-}" = "--output" ] && dir="$a"; prev="$a"; done
@@ -124,7 +145,9 @@ case "$cmd" in
   local)
     pack "${1:-build}"
     # This machine's GL (Mesa llvmpipe) through the same loader path, only the pack's libraries added.
+    # The GL tests and the bench study shortened (GTEST_FILTER, one study): the path, not the numbers.
     out=/tmp/penumbra-gpu-local
+    export GTEST_FILTER="${GTEST_FILTER:-Timing*:*Pipeline*}"
     rm -rf "$out" && run -o "$out" --studies techniques ;;
   *) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
