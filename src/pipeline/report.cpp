@@ -304,9 +304,9 @@ std::string reportCsv(const CompareResult& r) {
       "scene,technique,reference,preset,params,samples,width,height,shading,total_ms_median,total_ms_min,total_ms_max,"
       "prepare_ms,stages_ms,memory_bytes,vis_rmse,vis_mean,vis_max,vis_rmse_outside_band,misclassified_pixels,"
       "sample_agreement,img_rmse,img_mean,img_max,conv_vis_rmse,conv_vis_mean,conv_vis_max,conv_img_rmse,flicker,"
-      "reference_motion,mean_frame_rmse,image,status,error,harness_ms_median,harness_stages_ms,primitives,"
-      "vertex_invocations,geometry_invocations,rasterized_primitives,fragment_invocations,compute_invocations,"
-      "pipeline_statistics\n";
+      "reference_motion,mean_frame_rmse,harness_ms_median,harness_stages_ms,primitives,vertex_invocations,"
+      "geometry_invocations,rasterized_primitives,fragment_invocations,compute_invocations,pipeline_statistics,"
+      "image,status,error\n";
   const std::string scene = r.info.value("sceneName", std::string());
   auto num = [](double v) { return fmt::format("{:.6g}", v); };
   for (auto& run : r.runs) {
@@ -316,10 +316,9 @@ std::string reportCsv(const CompareResult& r) {
       std::vector<std::string> f = {csvField(scene), csvField(run.technique), run.reference ? "1" : "0", csvField(p.label),
                                     csvField(join(run.params, " ")), std::to_string(p.samples), std::to_string(p.width),
                                     std::to_string(p.height), run.shading};
-      f.insert(f.end(), 23, "");
+      f.insert(f.end(), 23 + 9, "");
       f.push_back("failed");
       f.push_back(csvField(run.failure));
-      f.insert(f.end(), 9, "");
       c += join(f, ",") + "\n";
       continue;
     }
@@ -341,9 +340,6 @@ std::string reportCsv(const CompareResult& r) {
       f.insert(f.end(), 4, "");
     }
     for (double v : {run.flicker, run.referenceMotion, run.meanFrameRmse}) f.push_back(v >= 0.0 ? num(v) : "");
-    f.push_back(csvField(run.image));
-    f.push_back("ok");
-    f.push_back("");
     std::vector<std::string> harness;
     for (auto& [k, v] : run.harnessStages) harness.push_back(k + "=" + fmt::format("{:.3f}", v.median));
     f.push_back(num(run.harness.median));
@@ -354,6 +350,9 @@ std::string reportCsv(const CompareResult& r) {
       for (auto& [k, v] : totalCounts(run).fields()) f.push_back(std::to_string(v));
       f.push_back(csvField(countsText(run)));
     }
+    f.push_back(csvField(run.image));
+    f.push_back("ok");
+    f.push_back("");
     c += join(f, ",") + "\n";
   }
   return c;

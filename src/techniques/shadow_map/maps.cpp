@@ -193,12 +193,9 @@ MapFrame FrameFit::compute(const GpuScene& gpu, const Light& light, const LightS
   mask_.bindImage(PENUMBRA_IMAGE_MAP_OUTSIDE, GL_WRITE_ONLY);
   program_.set("pass", 2);
   program_.set("lightCentre", c);
-  program_.set("mapAxis", f.axis);
-  program_.set("mapRight", f.right);
-  program_.set("mapUp", f.up);
+  setMapUniforms(program_, f);  // the frame's axes and near plane (its tangent is still to fit)
   program_.set("reachLateral", f.sampleLateral);
   program_.set("reachAxialMax", f.sampleAxialMax);
-  program_.set("mapNear", f.zNear);
   program_.set("tanMax", std::tan(glm::radians(float(options.maxHalfAngle))));
   program_.set("oneSided", light.shape == LightShape::Rect || light.shape == LightShape::Disk ? 1 : 0);
   dispatchThreads(std::size_t(w) * std::size_t(h));
