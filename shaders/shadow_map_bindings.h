@@ -12,5 +12,8 @@
 #define PENUMBRA_IMAGE_SEMI_LAYERS 3    // R32UI 2D array: their entries (depth and opacity)
 #define PENUMBRA_IMAGE_SEMI_STATUS 4    // R32UI 1 x 1: most semi-opaque surfaces on one map texel
 #define PENUMBRA_SSBO_POINTS 7          // vwss: point count, then xyz world positions (3 floats each)
+// The frustum fit of every shadow-map technique, single-view too (shaders/shadow_map_fit.comp).
+#define PENUMBRA_IMAGE_MAP_OUTSIDE 6    // R32UI G-buffer size: receivers outside the shadow maps
+#define PENUMBRA_SSBO_MAP_FIT 13        // the fit's results, then a sum a G-buffer row
 
 #endif

@@ -7,7 +7,9 @@ penumbra_add_gl_test(test_render
   ${CMAKE_CURRENT_SOURCE_DIR}/render_shadow_map_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_pcss_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_robustness_test.cpp
-  ${CMAKE_CURRENT_SOURCE_DIR}/gl_program_test.cpp)
+  ${CMAKE_CURRENT_SOURCE_DIR}/gl_program_test.cpp
+
+  ${CMAKE_CURRENT_SOURCE_DIR}/render_timing_test.cpp)
 
 # The CLI: exit codes and one-line errors for bad input (tests/cli_test.sh).
 add_test(NAME cli_exit_codes COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/cli_test.sh $<TARGET_FILE:penumbra>

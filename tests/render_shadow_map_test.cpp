@@ -176,7 +176,7 @@ TEST(MultiView, VwssWithoutPointsIsAnError) {
   ASSERT_NE(mkdtemp(dir), nullptr);
   for (const char* f : {"shared.h", "common_light.glsl", "shadow_map_common.glsl", "shadow_map_points.glsl",
                         "vwss_points.vert", "shadow_map_reproject.comp", "compute_index.glsl", "shadow_map_splat.glsl",
-                        "shadow_map_bindings.h"}) {
+                        "shadow_map_bindings.h", "shadow_map_fit.comp"}) {
     std::ofstream(std::string(dir) + "/" + f) << gl::shaderSource(f);
   }
   std::ofstream(std::string(dir) + "/vwss_points.frag")

@@ -250,7 +250,7 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   j["renderer"] = context->renderer();
   j["output"] = output;
   if (o.json) std::printf("%s\n", j.dump(2).c_str());
-  else PLOG_INFO("{}: {:.1f} ms -> {}", technique, frame.timer.total(), output);
+  else PLOG_INFO("{}: {:.1f} ms (harness {:.1f} ms apart) -> {}", technique, frame.timer.total(), frame.timer.harnessTotal(), output);
   return 0;
 }
 

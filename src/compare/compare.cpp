@@ -108,12 +108,30 @@ void writeFrame(const std::string& path, const FrameResult& frame, float exposur
 }
 
 nlohmann::json frameSummary(const FrameResult& frame) {
-  nlohmann::json stages = nlohmann::json::object();
-  for (auto& s : frame.timer.stages()) stages[s.stage] = s.ms;
+  nlohmann::json stages = nlohmann::json::object(), harness = nlohmann::json::object(), counts = nlohmann::json::object();
+  for (auto& s : frame.timer.stages()) {
+    (s.kind == StageKind::Harness ? harness : stages)[s.stage] = s.ms;
+    if (s.counted && s.kind == StageKind::Technique) counts[s.stage] = countsJson(s.counts);
+  }
   nlohmann::json stats = nlohmann::json::object();
   for (auto& [k, v] : frame.statistics) stats[k] = v;
-  return {{"stagesMs", stages}, {"statistics", stats}, {"totalMs", frame.timer.total()}, {"memoryBytes", frame.memoryBytes},
-          {"width", frame.color.width}, {"height", frame.color.height}};
+  nlohmann::json j = {{"stagesMs", stages}, {"statistics", stats}, {"totalMs", frame.timer.total()},
+                      {"harnessStagesMs", harness}, {"harnessMs", frame.timer.harnessTotal()},
+                      {"memoryBytes", frame.memoryBytes}, {"width", frame.color.width}, {"height", frame.color.height}};
+  if (!counts.empty()) j["pipelineStatistics"] = counts;
+  return j;
+}
+
+nlohmann::json countsJson(const PipelineCounts& c) {
+  nlohmann::json j = nlohmann::json::object();
+  for (auto& [k, v] : c.fields()) j[k] = v;
+  return j;
+}
+
+PipelineCounts totalCounts(const CompareRun& run) {
+  PipelineCounts sum;
+  for (auto& [k, c] : run.counts) sum += c;
+  return sum;
 }
 
 nlohmann::json errorsJson(const TechniqueErrors& e) {
@@ -410,7 +428,10 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
             if (frames > 1 && i == 0) first = fr;
           });
       for (auto& [k, v] : t.stages) run.stages.emplace_back(k, v);
-      run.total = t.total, run.prepareMs = t.prepareMs;
+      for (auto& [k, v] : t.harnessStages) run.harnessStages.emplace_back(k, v);
+      for (auto& st : t.last.timer.stages())
+        if (st.counted && st.kind == StageKind::Technique && st.stage != "prepare") run.counts.emplace_back(st.stage, st.counts);
+      run.total = t.total, run.harness = t.harness, run.prepareMs = t.prepareMs;
       if (frames == 1) first = std::move(t.last);
       run.memoryBytes = first.memoryBytes, run.statistics = first.statistics;
       return first;
@@ -540,6 +561,10 @@ CompareResult compareTechniques(gl::Context& context, const Scene& given, const 
   j["scene"] = scene.sourcePath.empty() ? "default" : scene.sourcePath;
   j["sceneName"] = scene.name;
   j["renderer"] = context.renderer();
+  j["pipelineStatistics"] = !settings.pipelineStatistics ? "not counted (RenderSettings::pipelineStatistics off)"
+                            : gl::PipelineStatistics::supported()
+                                ? "counted per stage (ARB_pipeline_statistics_query)"
+                                : "not counted: " + context.renderer() + " has no ARB_pipeline_statistics_query";
   j["glVersion"] = context.version();
   {
     std::time_t now = std::time(nullptr);
@@ -585,6 +610,8 @@ nlohmann::json CompareResult::json() const {
     nlohmann::json stages = nlohmann::json::object(), spreads = nlohmann::json::object(), stats = nlohmann::json::object();
     for (auto& [k, v] : r.stages) stages[k] = v.median, spreads[k] = spreadJson(v);
     for (auto& [k, v] : r.statistics) stats[k] = v;
+    nlohmann::json harness = nlohmann::json::object();
+    for (auto& [k, v] : r.harnessStages) harness[k] = v.median;
     nlohmann::json t{{"name", r.technique},
                      {"preset", presets[r.preset].label},
                      {"presetIndex", r.preset},
@@ -598,6 +625,9 @@ nlohmann::json CompareResult::json() const {
                      {"stagesSpreadMs", spreads},
                      {"totalMs", r.total.median},
                      {"totalSpreadMs", spreadJson(r.total)},
+                     {"harnessStagesMs", harness},
+                     {"harnessMs", r.harness.median},
+                     {"harnessSpreadMs", spreadJson(r.harness)},
                      {"prepareMs", r.prepareMs},
                      {"memoryBytes", r.memoryBytes},
                      {"statistics", stats},
@@ -610,9 +640,14 @@ nlohmann::json CompareResult::json() const {
     if (r.failed) {
       // No numbers for a failed run: its timings and errors were never measured.
       for (const char* k : {"stagesMs", "stagesSpreadMs", "totalMs", "totalSpreadMs", "prepareMs", "memoryBytes",
-                            "statistics", "errors"})
+                            "statistics", "errors", "harnessStagesMs", "harnessMs", "harnessSpreadMs"})
         t.erase(k);
       t["error"] = r.failure;
+    }
+    if (!r.failed && !r.counts.empty()) {
+      nlohmann::json counts = nlohmann::json::object();
+      for (auto& [k, c] : r.counts) counts[k] = countsJson(c);
+      t["pipelineStatistics"] = {{"stages", counts}, {"total", countsJson(totalCounts(r))}};
     }
     if (r.converged) t["convergedErrors"] = errorsJson(*r.converged);
     if (r.flicker >= 0.0)

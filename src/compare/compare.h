@@ -49,6 +49,9 @@ TechniqueErrors measureErrors(const FrameResult& frame, const FrameResult& refer
 void writeFrame(const std::string& path, const FrameResult& frame, float exposure = 0.0f);
 
 nlohmann::json frameSummary(const FrameResult& frame);
+// {"primitives": .., "vertex": .., "geometry": .., "rasterized": .., "fragment": .., "compute": ..}
+nlohmann::json countsJson(const PipelineCounts& c);
+
 nlohmann::json errorsJson(const TechniqueErrors& e);
 
 // One --sweep axis (cli/options.h parses "key=v1,v2,..."). Keys: `samples`, `resolution` (the
@@ -108,7 +111,13 @@ struct CompareRun {
   std::vector<std::string> params;  // key=value of the given parameters this technique read
   std::string shading;
   std::vector<std::pair<std::string, Spread>> stages;  // ms; "prepare" left out
-  Spread total;                     // ms per frame, stages summed
+  Spread total;                     // ms per frame, stages summed: the technique's time
+  // The harness's readbacks and uploads (StageKind::Harness), apart from `total`.
+  std::vector<std::pair<std::string, Spread>> harnessStages;
+  Spread harness;
+  // The GL's pipeline statistics of the last timed frame per stage of `stages` (empty where the
+  // GL counts none: CompareResult::info["pipelineStatistics"] says why).
+  std::vector<std::pair<std::string, PipelineCounts>> counts;
   double prepareMs = 0.0;           // once per scene
   std::size_t memoryBytes = 0;
   std::vector<std::pair<std::string, double>> statistics;
@@ -130,6 +139,9 @@ struct CompareRun {
   // else against the same-sample one.
   double plotError() const { return converged ? converged->visibility.rmse : errors.visibility.rmse; }
 };
+
+// The sum of a run's pipeline statistics over its stages.
+PipelineCounts totalCounts(const CompareRun& run);
 
 struct CompareResult {
   nlohmann::json info;  // scene, renderer, GL version, settings, parameters, sweeps

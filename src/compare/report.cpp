@@ -60,6 +60,34 @@ std::string stagesText(const CompareRun& run) {
   return join(parts, ", ");
 }
 
+// The harness's stages (readbacks, uploads) of a run, apart from the technique's.
+std::string harnessText(const CompareRun& run) {
+  std::vector<std::string> parts;
+  for (auto& [k, v] : run.harnessStages) parts.push_back(fmt::format("{} {:.1f}", k, v.median));
+  return join(parts, ", ");
+}
+
+// A count in 4 significant digits with k/M/G (pipeline statistics).
+std::string countText(std::uint64_t n) {
+  if (n < 10000) return std::to_string(n);
+  const char* unit[] = {"k", "M", "G", "T"};
+  double v = double(n);
+  int u = -1;
+  while (v >= 1000.0 && u < 3) v /= 1000.0, ++u;
+  return fmt::format("{:.4g}{}", v, unit[u]);
+}
+
+// Each stage's counts: "stage: fragment=.. geometry=.. compute=.. primitives=..; ..." (CSV).
+std::string countsText(const CompareRun& run) {
+  std::vector<std::string> parts;
+  for (auto& [k, c] : run.counts) {
+    std::vector<std::string> f;
+    for (auto& [name, v] : c.fields()) f.push_back(fmt::format("{}={}", name, v));
+    parts.push_back(k + ": " + join(f, " "));
+  }
+  return join(parts, "; ");
+}
+
 // Technique names in first-appearance order (colours follow it).
 std::vector<std::string> techniqueOrder(const CompareResult& r, const std::vector<std::size_t>& runs) {
   std::vector<std::string> names;
@@ -236,18 +264,25 @@ std::string speedErrorSvg(const CompareResult& r) {
 
 std::string reportTable(const CompareResult& r) {
   const bool conv = r.hasConverged(), temporal = r.hasTemporal();
-  std::string t = fmt::format("{:<32} {:>9} {:>17} {:>8} {:>9} {:>8} {:>9} {:>10}", "technique", "total ms",
-                              "(min-max)", "MiB", "vis RMSE", "vis max", "img RMSE", "misclass");
+  const bool counted = std::any_of(r.runs.begin(), r.runs.end(), [](const CompareRun& x) { return !x.counts.empty(); });
+  std::string t;
+  // Totals are the technique's time; the harness's readbacks and uploads are the "harness" column.
+  if (!counted && r.info.contains("pipelineStatistics"))
+    t += "pipeline statistics: " + r.info["pipelineStatistics"].get<std::string>() + "\n";
+  t += fmt::format("{:<32} {:>9} {:>17} {:>9} {:>8} {:>9} {:>8} {:>9} {:>10}", "technique", "total ms",
+                   "(min-max)", "harness", "MiB", "vis RMSE", "vis max", "img RMSE", "misclass");
   if (conv) t += fmt::format(" {:>10}", "conv RMSE");
   if (temporal) t += fmt::format(" {:>9}", "flicker");
+  if (counted) t += fmt::format(" {:>9} {:>9} {:>9} {:>9}", "fragments", "geometry", "compute", "prims");
   t += "  stages ms\n";
   for (auto& run : r.runs) {
     if (run.failed) {
       t += fmt::format("{:<32} FAILED: {}\n", runLabel(r, run), run.failure);
       continue;
     }
-    t += fmt::format("{:<32} {:>9.1f} {:>17} {:>8.1f}", runLabel(r, run), run.total.median,
-                     fmt::format("({:.1f}-{:.1f})", run.total.min, run.total.max), double(run.memoryBytes) / 1048576.0);
+    t += fmt::format("{:<32} {:>9.1f} {:>17} {:>9.1f} {:>8.1f}", runLabel(r, run), run.total.median,
+                     fmt::format("({:.1f}-{:.1f})", run.total.min, run.total.max), run.harness.median,
+                     double(run.memoryBytes) / 1048576.0);
     if (run.reference && !run.converged) t += fmt::format(" {:>9} {:>8} {:>9} {:>10}", "-", "-", "-", "-");
     else if (run.reference) t += fmt::format(" {:>9} {:>8} {:>9} {:>10}", "0", "0", "0", "0");
     else
@@ -255,7 +290,14 @@ std::string reportTable(const CompareResult& r) {
                        run.errors.shaded.rmse, run.errors.misclassifiedPixels);
     if (conv) t += run.converged ? fmt::format(" {:>10.4f}", run.converged->visibility.rmse) : fmt::format(" {:>10}", "-");
     if (temporal) t += run.flicker >= 0.0 ? fmt::format(" {:>9.4f}", run.flicker) : fmt::format(" {:>9}", "-");
-    t += "  " + stagesText(run) + "\n";
+    if (counted) {
+      const PipelineCounts c = totalCounts(run);
+      t += fmt::format(" {:>9} {:>9} {:>9} {:>9}", countText(c.fragmentInvocations), countText(c.geometryInvocations),
+                       countText(c.computeInvocations), countText(c.primitivesSubmitted));
+    }
+    t += "  " + stagesText(run);
+    if (!run.harnessStages.empty()) t += " | harness: " + harnessText(run);
+    t += "\n";
   }
   return t;
 }
@@ -265,7 +307,9 @@ std::string reportCsv(const CompareResult& r) {
       "scene,technique,reference,preset,params,samples,width,height,shading,total_ms_median,total_ms_min,total_ms_max,"
       "prepare_ms,stages_ms,memory_bytes,vis_rmse,vis_mean,vis_max,vis_rmse_outside_band,misclassified_pixels,"
       "sample_agreement,img_rmse,img_mean,img_max,conv_vis_rmse,conv_vis_mean,conv_vis_max,conv_img_rmse,flicker,"
-      "reference_motion,mean_frame_rmse,image,status,error\n";
+      "reference_motion,mean_frame_rmse,harness_ms_median,harness_stages_ms,primitives,vertex_invocations,"
+      "geometry_invocations,rasterized_primitives,fragment_invocations,compute_invocations,pipeline_statistics,"
+      "image,status,error\n";
   const std::string scene = r.info.value("sceneName", std::string());
   auto num = [](double v) { return fmt::format("{:.6g}", v); };
   for (auto& run : r.runs) {
@@ -275,7 +319,7 @@ std::string reportCsv(const CompareResult& r) {
       std::vector<std::string> f = {csvField(scene), csvField(run.technique), run.reference ? "1" : "0", csvField(p.label),
                                     csvField(join(run.params, " ")), std::to_string(p.samples), std::to_string(p.width),
                                     std::to_string(p.height), run.shading};
-      f.insert(f.end(), 23, "");
+      f.insert(f.end(), 23 + 9, "");
       f.push_back("failed");
       f.push_back(csvField(run.failure));
       c += join(f, ",") + "\n";
@@ -299,6 +343,16 @@ std::string reportCsv(const CompareResult& r) {
       f.insert(f.end(), 4, "");
     }
     for (double v : {run.flicker, run.referenceMotion, run.meanFrameRmse}) f.push_back(v >= 0.0 ? num(v) : "");
+    std::vector<std::string> harness;
+    for (auto& [k, v] : run.harnessStages) harness.push_back(k + "=" + fmt::format("{:.3f}", v.median));
+    f.push_back(num(run.harness.median));
+    f.push_back(csvField(join(harness, ";")));
+    if (run.counts.empty()) {
+      f.insert(f.end(), 7, "");  // not counted: empty, never 0 (report.json's info says why)
+    } else {
+      for (auto& [k, v] : totalCounts(run).fields()) f.push_back(std::to_string(v));
+      f.push_back(csvField(countsText(run)));
+    }
     f.push_back(csvField(run.image));
     f.push_back("ok");
     f.push_back("");
@@ -321,6 +375,8 @@ std::string reportHtml(const CompareResult& r) {
                    info.value("seed", 0u), escape(info.value("shading", std::string())),
                    escape(info.value("renderer", std::string())), escape(info.value("glVersion", std::string())),
                    info.value("timingFrames", 0), info.value("warmupFrames", 0), escape(info.value("date", std::string())));
+  h += "<p class=\"meta\">total: the technique's stages (G-buffer, visibility, shading); the harness's readbacks and "
+       "uploads apart &middot; pipeline statistics: " + escape(info.value("pipelineStatistics", std::string("-"))) + "</p>\n";
   if (!info.value("params", std::vector<std::string>{}).empty())
     h += "<p class=\"meta\">parameters: <code>" + escape(join(info["params"].get<std::vector<std::string>>(), " ")) + "</code></p>\n";
   if (r.presets.size() > 1) {
@@ -356,7 +412,18 @@ std::string reportHtml(const CompareResult& r) {
     bool front = std::find(frontRuns.begin(), frontRuns.end(), i) != frontRuns.end();
     std::vector<std::string> stageList;
     for (auto& [k, v] : run.stages) stageList.push_back(fmt::format("{}&nbsp;{:.2f}", escape(k), v.median));
-    const std::string stages = join(stageList, " &middot; ");
+    std::string stages = join(stageList, " &middot; ");
+    if (!run.harnessStages.empty()) {  // the harness's readbacks and uploads, not in the total
+      std::vector<std::string> harness;
+      for (auto& [k, v] : run.harnessStages) harness.push_back(fmt::format("{}&nbsp;{:.2f}", escape(k), v.median));
+      stages += fmt::format("<br><i>harness {:.2f}: {}</i>", run.harness.median, join(harness, " &middot; "));
+    }
+    if (!run.counts.empty()) {
+      const PipelineCounts pc = totalCounts(run);
+      stages += fmt::format("<br>fragments {} &middot; geometry {} &middot; compute {} &middot; primitives {}",
+                            countText(pc.fragmentInvocations), countText(pc.geometryInvocations),
+                            countText(pc.computeInvocations), countText(pc.primitivesSubmitted));
+    }
     if (run.failed) {
       const int rest = 12 + (conv ? 2 : 0) + (temporal ? 3 : 0);
       h += fmt::format("<tr class=\"failed\"><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td>"

@@ -3,6 +3,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/osmesa.h>
+#include <dlfcn.h>
 
 #include <atomic>
 #include <cctype>
@@ -105,9 +106,36 @@ class EglContext final : public Context {
   EGLContext context_ = EGL_NO_CONTEXT;
 };
 
+// libOSMesa, loaded when an OSMesa context is asked for rather than linked: the EGL backend
+// (NVIDIA's EGL through glvnd, bench/gpu.sh) then needs neither it nor the LLVM it pulls in.
+struct OSMesaLibrary {
+  decltype(&OSMesaCreateContextAttribs) createContextAttribs = nullptr;
+  decltype(&OSMesaMakeCurrent) makeCurrent = nullptr;
+  decltype(&OSMesaGetProcAddress) getProcAddress = nullptr;
+  decltype(&OSMesaDestroyContext) destroyContext = nullptr;
+};
+
+const OSMesaLibrary& osmesa() {
+  static const OSMesaLibrary lib = [] {
+    OSMesaLibrary l;
+    void* h = nullptr;
+    for (const char* name : {"libOSMesa.so.8", "libOSMesa.so"})
+      if ((h = dlopen(name, RTLD_NOW | RTLD_LOCAL))) break;
+    if (!h) return l;
+    l.createContextAttribs = reinterpret_cast<decltype(l.createContextAttribs)>(dlsym(h, "OSMesaCreateContextAttribs"));
+    l.makeCurrent = reinterpret_cast<decltype(l.makeCurrent)>(dlsym(h, "OSMesaMakeCurrent"));
+    l.getProcAddress = reinterpret_cast<decltype(l.getProcAddress)>(dlsym(h, "OSMesaGetProcAddress"));
+    l.destroyContext = reinterpret_cast<decltype(l.destroyContext)>(dlsym(h, "OSMesaDestroyContext"));
+    return l;
+  }();
+  return lib;
+}
+
 class OSMesaBackend final : public Context {
  public:
   OSMesaBackend() : Context(Backend::OSMesa) {
+    if (!osmesa().createContextAttribs || !osmesa().makeCurrent || !osmesa().getProcAddress || !osmesa().destroyContext)
+      noContext("OSMesa: cannot load libOSMesa.so.8 (Debian libosmesa6) or one of its entry points");
     // OSMesa renders with Mesa's software rasterisers only (llvmpipe, softpipe): Mesa 22.3's
     // OSMesaCreateContextAttribs dereferences a null screen (SIGSEGV) when GALLIUM_DRIVER names
     // another driver (zink, or a typo), so say so instead of calling it.
@@ -119,17 +147,17 @@ class OSMesaBackend final : public Context {
     const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
                            OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 4,
                            OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
-    context_ = OSMesaCreateContextAttribs(attribs, nullptr);
+    context_ = osmesa().createContextAttribs(attribs, nullptr);
     if (!context_) noContext("OSMesa: cannot create a GL 4.5 core context");
     makeCurrent();
   }
   void makeCurrent() override {
     // OSMesa needs a colour buffer to make a context current; all rendering goes to FBOs.
-    if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1))
+    if (!osmesa().makeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1))
       noContext("OSMesa: cannot make the context current");
-    loadEntryPoints([](const char* n) { return reinterpret_cast<void*>(OSMesaGetProcAddress(n)); });
+    loadEntryPoints([](const char* n) { return reinterpret_cast<void*>(osmesa().getProcAddress(n)); });
   }
-  ~OSMesaBackend() override { OSMesaDestroyContext(context_); }
+  ~OSMesaBackend() override { osmesa().destroyContext(context_); }
 
  private:
   OSMesaContext context_ = nullptr;

@@ -271,6 +271,7 @@ Renderer::Renderer(gl::Context& context, const Scene& given, const RenderSetting
   shadeModulate_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"MODULATE"});
   filter_ = gl::Program({"fullscreen.vert", "pipeline_filter.frag"});
   shadePerSample_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"PER_SAMPLE"});
+  if (settings.pipelineStatistics) statistics_ = gl::PipelineStatistics::create();
 }
 
 Renderer::~Renderer() = default;
@@ -311,6 +312,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   FrameResult result;
   result.timer = StageTimer([] { glFinish(); });
   StageTimer& timer = result.timer;
+  timer.setCounter(statistics_.get());
   bool perSample = settings_.shading == ShadingMode::PerSample;
   if (perSample && !technique.providesPerSample())
     throw Error(name.empty() ? "renderer" : name,
@@ -325,7 +327,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   bool haveCpuGBuffer = false;
   auto cpuGBuffer = [&]() -> const CpuGBuffer& {
     if (!haveCpuGBuffer) {
-      timer.time("gbuffer readback", [&] { result.gbuffer = gpu_->readGBuffer(); });
+      timer.harness("gbuffer readback", [&] { result.gbuffer = gpu_->readGBuffer(); });
       haveCpuGBuffer = true;
     }
     return result.gbuffer;
@@ -351,10 +353,10 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     LightResult lr;
     lr.samples = samples.count;
     LightPass pass{scene_, light, int(li), samples, *gpu_, timer, cpuGBuffer, visibility_,
-                   wantSamples ? &perSample_ : nullptr, &lr.perSample};
+                   wantSamples ? &perSample_ : nullptr, &lr.perSample, &lr.visibility};
     gpu_->bindGBuffer();
     technique.renderVisibility(pass);
-    lr.unshadowed = technique.unshadowedPixels();
+    lr.unshadowed = timer.harness("unshadowed readback", [&] { return technique.unshadowedPixels(); });
     gl::Context::checkErrors("visibility");
 
     // Interleaved sampling (DCS paper 5.2, Algorithm 2): the gather filter over the K x K sets.
@@ -417,11 +419,14 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       }
       glDisable(GL_BLEND);
     });
-    timer.time("readback", [&] {
-      Image v4 = vis->read(4);
-      lr.visibility = Image(v4.width, v4.height, 3);
-      for (std::size_t i = 0; i < v4.pixelCount(); ++i)
-        for (int c = 0; c < 3; ++c) lr.visibility.data[i * 3 + c] = v4.data[i * 4 + c];
+    timer.harness("readback", [&] {
+      // A CPU technique's own visibility is the buffer unless the filter changed it.
+      if (filter || lr.visibility.pixelCount() == 0) {
+        Image v4 = vis->read(4);
+        lr.visibility = Image(v4.width, v4.height, 3);
+        for (std::size_t i = 0; i < v4.pixelCount(); ++i)
+          for (int c = 0; c < 3; ++c) lr.visibility.data[i * 3 + c] = v4.data[i * 4 + c];
+      }
       if (wantSamples && settings_.perSampleResults && lr.perSample.empty()) {
         // GPU per-sample results: gather the layers into [pixel * N + k].
         std::size_t n = lr.visibility.pixelCount();
@@ -438,17 +443,19 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       throw Error(name, fmt::format("light '{}': per-sample visibility holds NaN or infinite values", light.name));
     result.lights.push_back(std::move(lr));
   }
-  Image c4 = timer.time("readback", [&] { return color_.read(4); });
+  Image c4 = timer.harness("readback", [&] { return color_.read(4); });
   result.color = Image(c4.width, c4.height, 3);
   for (std::size_t i = 0; i < c4.pixelCount(); ++i)
     for (int c = 0; c < 3; ++c) result.color.data[i * 3 + c] = c4.data[i * 4 + c];
   if (std::size_t bad = nonFinitePixels(result.color))
     throw Error(name, fmt::format("{} of {} pixels of the shaded image are NaN or infinite", bad, result.color.pixelCount()));
-  cpuGBuffer();  // always return the G-buffer: comparisons mask background pixels with it
+  // Comparisons mask background pixels with it (RenderSettings::gbufferResults).
+  if (settings_.gbufferResults) cpuGBuffer();
   result.statistics = technique.statistics();
   result.memoryBytes = gpu_->memoryBytes() + color_.bytes() + visibility_.bytes() +
                        (filtered_ ? filtered_.bytes() : 0) + (lightColor_ ? lightColor_.bytes() : 0) +
                        (perSample_ ? perSample_.bytes() : 0) + technique.memoryBytes();
+  timer.setCounter(nullptr);
   gl::Context::checkErrors("frame");
   return result;
 }

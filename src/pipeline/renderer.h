@@ -19,6 +19,7 @@
 #include "core/timer.h"
 #include "gl/context.h"
 #include "gl/objects.h"
+#include "gl/statistics.h"
 #include "pipeline/technique.h"
 #include "sampling/light_samples.h"
 #include "scene/scene.h"
@@ -45,6 +46,12 @@ struct RenderSettings {
   // llvmpipe's vertex fetch crashed on a 2.1 GiB buffer (issue 14 section 5), so the default
   // stays far below; tests set it small to exercise the split.
   std::size_t maxVertexBufferBytes = std::size_t(256) << 20;
+  // The G-buffer read back into FrameResult::gbuffer every frame (harness time, stage "gbuffer
+  // readback"); off, only a technique that reads it on the CPU (raytrace) pays for it.
+  bool gbufferResults = true;
+  // Per stage, the GL's pipeline statistics (StageTime::counts) where the GL has them
+  // (gl::PipelineStatistics::supported()).
+  bool pipelineStatistics = true;
 };
 
 struct LightResult {
@@ -57,8 +64,8 @@ struct LightResult {
 struct FrameResult {
   Image color;  // RGB linear radiance
   std::vector<LightResult> lights;
-  CpuGBuffer gbuffer;
-  StageTimer timer;
+  CpuGBuffer gbuffer;  // empty unless RenderSettings::gbufferResults or the technique read it
+  StageTimer timer;   // the technique's stages and, apart (StageKind::Harness), the harness's
   std::size_t memoryBytes = 0;  // pipeline + technique render targets
   std::vector<std::pair<std::string, double>> statistics;  // Technique::statistics()
 };
@@ -146,6 +153,7 @@ class Renderer {
   gl::Program shadeModulate_, shadePerSample_, filter_;
   gl::VertexArray emptyVao_;
   std::uint64_t prepared_ = 0;  // Technique::serial() of the technique prepared last
+  std::unique_ptr<gl::PipelineStatistics> statistics_;  // null where the GL has none
 };
 
 // Camera matrices shared by the pipeline and the reference (so both see the same pixels).

@@ -38,8 +38,10 @@ struct LightPass {
   // layer per sample (transmittance, [0,1]).
   const gl::Texture& visibility;
   const gl::Texture* perSample;  // null unless Technique::providesPerSample()
-  // CPU techniques may also hand back their per-sample results directly (avoids a readback).
+  // CPU techniques may also hand back their per-sample results and their RGB visibility
+  // directly (the harness then reads neither back).
   std::vector<float>* cpuPerSample;
+  Image* cpuVisibility;
 };
 
 class Technique {

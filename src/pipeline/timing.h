@@ -1,6 +1,8 @@
 // Timing a technique's frames on one renderer, shared by `compare` and the benchmarks: warm-up
 // frames first, then the median and spread of each stage. Stages are timed with glFinish and
-// a steady clock (StageTimer), as GL timer queries are not meaningful on llvmpipe.
+// a steady clock (StageTimer), as GL timer queries are not meaningful on llvmpipe. A frame's
+// total is the technique's stages (G-buffer, its visibility passes, shading); the harness's
+// readbacks and uploads (StageKind::Harness) are timed apart, as `harness`.
 #pragma once
 
 #include <algorithm>
@@ -26,7 +28,9 @@ inline Spread spread(std::vector<double> v) {
 
 struct Timing {
   std::map<std::string, Spread> stages;  // "prepare" (once per scene) left out
-  Spread total;
+  Spread total;                          // of `stages`
+  std::map<std::string, Spread> harnessStages;
+  Spread harness;                        // of `harnessStages`
   double prepareMs = 0.0;  // the once-per-scene stage (the longest seen)
   FrameResult last;        // the last timed frame
   double stage(const std::string& name) const {
@@ -48,8 +52,8 @@ inline double frameStatistic(const FrameResult& f, const std::string& key) {
 // and reported as the longest seen (renders of a moving scene prepare every frame).
 template <class Render, class OnFrame>
 Timing timeRenders(int frames, int warmup, Render&& render, OnFrame&& onFrame) {
-  std::map<std::string, std::vector<double>> stages;
-  std::vector<double> total;
+  std::map<std::string, std::vector<double>> stages, harnessStages;
+  std::vector<double> total, harness;
   Timing t;
   frames = std::max(frames, 1);
   for (int f = 0; f < warmup + frames; ++f) {
@@ -58,17 +62,21 @@ Timing timeRenders(int frames, int warmup, Render&& render, OnFrame&& onFrame) {
     for (auto& st : t.last.timer.stages())
       if (st.stage == "prepare") t.prepareMs = std::max(t.prepareMs, st.ms);
     if (f < warmup) continue;
-    double sum = 0;
+    double sum = 0, harnessSum = 0;
     for (auto& st : t.last.timer.stages()) {
       if (st.stage == "prepare") continue;
-      stages[st.stage].push_back(st.ms);
-      sum += st.ms;
+      const bool h = st.kind == StageKind::Harness;
+      (h ? harnessStages : stages)[st.stage].push_back(st.ms);
+      (h ? harnessSum : sum) += st.ms;
     }
     total.push_back(sum);
+    harness.push_back(harnessSum);
     onFrame(i, t.last);
   }
   for (auto& [name, v] : stages) t.stages[name] = spread(v);
+  for (auto& [name, v] : harnessStages) t.harnessStages[name] = spread(v);
   t.total = spread(total);
+  t.harness = spread(harness);
   return t;
 }
 

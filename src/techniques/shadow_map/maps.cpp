@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <limits>
 
 #include <fmt/format.h>
@@ -132,30 +134,103 @@ float NearestOccluder::get(const Scene& scene, int lightIndex, const glm::vec3& 
   return cache_.emplace(key, std::isfinite(nearest) ? nearest : 1.0f).first->second;
 }
 
-MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSampleSet& samples,
-                         const CpuGBuffer& g, const MapOptions& options) {
+namespace {
+
+// The views' reach around the light centre c in the frame (axis, right, up): of the samples, or
+// of the light's whole extent (a rect's corners; a disk's rim, its radius times the sine between
+// a direction and the normal; a sphere's ball).
+void setReach(MapFrame& f, const Light& light, const LightSampleSet& samples, MapReach reach) {
+  f.sampleLateral = f.sampleAxialMin = f.sampleAxialMax = 0.0f;
+  auto add = [&](const glm::vec3& r) {
+    f.sampleLateral = std::max({f.sampleLateral, std::abs(glm::dot(r, f.right)), std::abs(glm::dot(r, f.up))});
+    f.sampleAxialMin = std::min(f.sampleAxialMin, glm::dot(r, f.axis));
+    f.sampleAxialMax = std::max(f.sampleAxialMax, glm::dot(r, f.axis));
+  };
+  if (reach == MapReach::Samples) {
+    for (auto& s : samples.positions) add(s - light.position);
+    return;
+  }
+  const glm::vec3 t = light.tangent, b = light.bitangent(), n = glm::normalize(light.normal);
+  switch (light.shape) {
+    case LightShape::Point: break;
+    case LightShape::Rect:
+      for (float u : {-0.5f, 0.5f})
+        for (float v : {-0.5f, 0.5f}) add(u * light.size.x * t + v * light.size.y * b);
+      break;
+    case LightShape::Disk: {
+      auto rim = [&](const glm::vec3& d) { return light.size.x * std::sqrt(std::max(0.0f, 1.0f - glm::dot(d, n) * glm::dot(d, n))); };
+      f.sampleLateral = std::max(rim(f.right), rim(f.up));
+      f.sampleAxialMax = rim(f.axis), f.sampleAxialMin = -f.sampleAxialMax;
+      break;
+    }
+    case LightShape::Sphere:
+      f.sampleLateral = f.sampleAxialMax = light.size.x, f.sampleAxialMin = -light.size.x;
+      break;
+  }
+}
+
+// The largest float epsilon (shared.h penumbraSurfaceEpsilon) of the points the views start from.
+float viewEpsilon(const Light& light, const LightSampleSet& samples, MapReach reach) {
+  const glm::vec3 c = light.position;
+  float eps = shared::penumbraSurfaceEpsilon(c);
+  if (reach == MapReach::Samples) {
+    for (const glm::vec3& s : samples.positions) eps = std::max(eps, shared::penumbraSurfaceEpsilon(s));
+    return eps;
+  }
+  // The corners of the light's bounding box (its radius along every axis bounds a disk and a ball).
+  const float r = light.shape == LightShape::Rect ? 0.5f * glm::length(light.size) : light.isArea() ? light.size.x : 0.0f;
+  for (float x : {-r, r})
+    for (float y : {-r, r})
+      for (float z : {-r, r}) eps = std::max(eps, shared::penumbraSurfaceEpsilon(c + glm::vec3(x, y, z)));
+  return eps;
+}
+
+// The layout of shadow_map_fit.comp's storage block.
+struct FitResult {
+  glm::dvec4 centroid;  // xyz: sum of the surface positions, w: their count
+  std::uint32_t tanHalfBits, outside, pad[6];
+};
+static_assert(sizeof(FitResult) == 64, "shadow_map_fit.comp: rows[] start at 64 bytes");
+
+}  // namespace
+
+MapFrame FrameFit::compute(const GpuScene& gpu, const Light& light, const LightSampleSet& samples,
+                           const MapOptions& options, MapReach reach) {
   MapFrame f;
   f.size = options.size;
   f.layers = samples.setCount * samples.count;
   const glm::vec3 c = light.position;
-  // The maps' near plane: 16 float epsilons of the samples' positions (shared.h
+  // The maps' near plane: 16 float epsilons of the views' positions (shared.h
   // penumbraSurfaceEpsilon), the distance below which a depth from a sample is rounding, not
   // geometry; it used to be 1e-5 of the scene's radius, which clipped occluders near the light in
   // a large scene. Reversed depth near / d keeps its relative precision at any near.
-  float sampleEps = shared::penumbraSurfaceEpsilon(c);
-  for (const glm::vec3& s : samples.positions) sampleEps = std::max(sampleEps, shared::penumbraSurfaceEpsilon(s));
-  f.zNear = 16.0f * sampleEps;
+  f.zNear = 16.0f * viewEpsilon(light, samples, reach);
+
+  const int w = gpu.width(), h = gpu.height();
+  const std::size_t rowsBytes = std::size_t(h) * sizeof(glm::dvec4);
+  if (!program_) program_ = gl::Program({"shadow_map_fit.comp"});
+  if (result_.size() != sizeof(FitResult) + rowsBytes) result_ = gl::Buffer(sizeof(FitResult) + rowsBytes, nullptr);
+  if (mask_.width() != w || mask_.height() != h) mask_ = gl::Texture::make2D(GL_R32UI, w, h);
+  gpu.position().bind(PENUMBRA_UNIT_GBUF_POSITION);
+  result_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_MAP_FIT);
+  program_.use();
+  program_.set("size", glm::ivec2(w, h));
+  FitResult out{};
 
   glm::vec3 hint = light.tangent;
   if (light.shape == LightShape::Rect || light.shape == LightShape::Disk) {
     f.axis = glm::normalize(light.normal);
   } else {
-    // Isotropic lights: towards the receivers' centroid.
-    glm::dvec3 sum(0.0);
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < g.position.size(); ++i)
-      if (g.valid[i]) sum += glm::dvec3(g.position[i]), ++n;
-    glm::vec3 towards = n ? glm::vec3(sum / double(n)) - c : glm::vec3(0.0f);
+    // Isotropic lights: towards the receivers' centroid (a row's sum a thread, then the rows').
+    program_.set("pass", 0);
+    dispatchThreads(std::size_t(h));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    program_.set("pass", 1);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    result_.read(&out.centroid, sizeof(out.centroid));
+    const double n = out.centroid.w;
+    glm::vec3 towards = n > 0.0 ? glm::vec3(glm::dvec3(out.centroid) / n) - c : glm::vec3(0.0f);
     f.axis = glm::length(towards) > f.zNear ? glm::normalize(towards) : glm::vec3(0.0f, -1.0f, 0.0f);
     hint = std::abs(f.axis.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
   }
@@ -165,37 +240,37 @@ MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSamp
   // right x up = -axis: the handedness of a GL camera (x right, y up, looking down -z), so a
   // counter-clockwise front face stays counter-clockwise in every map (vwss culls back faces).
   f.up = glm::cross(f.right, f.axis);
+  setReach(f, light, samples, reach);
 
-  f.sampleAxialMin = f.sampleAxialMax = 0.0f;
-  for (auto& s : samples.positions) {
-    glm::vec3 r = s - c;
-    f.sampleLateral = std::max({f.sampleLateral, std::abs(glm::dot(r, f.right)), std::abs(glm::dot(r, f.up))});
-    f.sampleAxialMin = std::min(f.sampleAxialMin, glm::dot(r, f.axis));
-    f.sampleAxialMax = std::max(f.sampleAxialMax, glm::dot(r, f.axis));
-  }
-  // Every receiver inside every sample's frustum: seen from the sample nearest to it along the
-  // axis and farthest sideways.
-  const float tanMax = std::tan(glm::radians(float(options.maxHalfAngle)));
-  const bool oneSided = light.shape == LightShape::Rect || light.shape == LightShape::Disk;
+  // Every receiver inside every view's frustum: seen from the view nearest to it along the axis
+  // and farthest sideways (a thread a pixel; the widest receiver and the pixels outside).
+  const std::uint32_t zero[2] = {0, 0};
+  result_.write(zero, sizeof(zero), offsetof(FitResult, tanHalfBits));
+  mask_.bindImage(PENUMBRA_IMAGE_MAP_OUTSIDE, GL_WRITE_ONLY);
+  program_.set("pass", 2);
+  program_.set("lightCentre", c);
+  setMapUniforms(program_, f);  // the frame's axes and near plane (its tangent is still to fit)
+  program_.set("reachLateral", f.sampleLateral);
+  program_.set("reachAxialMax", f.sampleAxialMax);
+  program_.set("tanMax", std::tan(glm::radians(float(options.maxHalfAngle))));
+  program_.set("oneSided", light.shape == LightShape::Rect || light.shape == LightShape::Disk ? 1 : 0);
+  dispatchThreads(std::size_t(w) * std::size_t(h));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+  result_.read(&out.tanHalfBits, 2 * sizeof(std::uint32_t), offsetof(FitResult, tanHalfBits));
   float tanHalf = 0.0f;
-  for (std::size_t i = 0; i < g.position.size(); ++i) {
-    if (!g.valid[i]) continue;
-    glm::vec3 r = g.position[i] - c;
-    float depth = glm::dot(r, f.axis) - f.sampleAxialMax;
-    float lateral = std::max(std::abs(glm::dot(r, f.right)), std::abs(glm::dot(r, f.up))) + f.sampleLateral;
-    if (oneSided && depth <= 0.0f) continue;  // behind the light: it emits nothing there
-    if (depth <= f.zNear || lateral > tanMax * depth) {
-      ++f.outsidePixels;
-      if (f.outsideMask.empty()) f.outsideMask.assign(g.position.size(), 0);
-      f.outsideMask[i] = 1;
-      continue;
-    }
-    tanHalf = std::max(tanHalf, lateral / depth);
-  }
+  std::memcpy(&tanHalf, &out.tanHalfBits, sizeof(tanHalf));
+  f.outsidePixels = outside_ = out.outside;
   if (tanHalf <= 0.0f) tanHalf = 1.0f;
   // Two texels of margin: the PCF taps of a receiver on the border stay in the map.
   f.tanHalf = tanHalf * (1.0f + 4.0f / float(f.size));
+  gl::Context::checkErrors("shadow-map frustum fit");
   return f;
+}
+
+std::vector<std::uint8_t> FrameFit::outsideMask() const {
+  if (outside_ == 0) return {};
+  const std::vector<std::uint32_t> mask = mask_.readUint();
+  return std::vector<std::uint8_t>(mask.begin(), mask.end());
 }
 
 void setMapUniforms(const gl::Program& p, const MapFrame& f) {
@@ -305,7 +380,7 @@ const gl::Program& MultiViewTechnique::resolveProgram(bool perSample) {
 
 void MultiViewTechnique::renderVisibility(LightPass& pass) {
   frame_ = pass.timer.time(name_ + " views", [&] {
-    return computeMapFrame(pass.scene, pass.light, pass.samples, pass.cpuGBuffer(), options_);
+    return fit_.compute(pass.gpu, pass.light, pass.samples, options_, MapReach::Samples);
   });
   renderMaps(pass, frame_);
   if (semiOpaque_) pass.timer.time(name_ + " semi-opaque maps", [&] { renderSemiOpaque(pass, frame_); });

@@ -6,7 +6,8 @@
 // in LightSampleSet::positions), all looking along one axis (the light normal of rect and disk
 // lights; for sphere and point lights the direction from the light to the receivers' centroid)
 // with one symmetric square frustum wide enough that every visible surface point the G-buffer
-// holds is inside every sample's frustum (then so is every occluder between it and a sample).
+// holds is inside every sample's frustum (then so is every occluder between it and a sample),
+// fitted on the GPU (FrameFit) so that no technique reads the G-buffer back.
 // Reversed depth z = near / d (shaders/shadow_map_common.glsl).
 #pragma once
 
@@ -46,15 +47,43 @@ struct MapFrame {
   float zNear = 1e-3f;   // near plane of every sample view
   int size = 0;          // map resolution
   int layers = 0;        // sets * N
-  // Lateral and axial reach of the samples around the light centre (frame coordinates).
+  // Lateral and axial reach of the views around the light centre (frame coordinates): of the
+  // light samples (multi-view), or of the whole light (single-view, MapReach::Light).
   float sampleLateral = 0.0f, sampleAxialMin = 0.0f, sampleAxialMax = 0.0f;
   // Surface pixels beyond maxHalfAngle or behind an isotropic light's samples (left unshadowed);
-  // pixels behind a one-sided light, which it does not light, are not counted.
+  // pixels behind a one-sided light, which it does not light, are not counted. Their mask stays
+  // on the GPU (FrameFit::outsideMask).
   std::size_t outsidePixels = 0;
-  std::vector<std::uint8_t> outsideMask;  // per G-buffer pixel: 1 for the outsidePixels
 };
-MapFrame computeMapFrame(const Scene& scene, const Light& light, const LightSampleSet& samples,
-                         const CpuGBuffer& gbuffer, const MapOptions& options);
+
+// What the views must reach: every light sample (multi-view: a map per sample), or the light's
+// whole extent (single-view: one map from the centre, whose frustum then does not depend on
+// --samples or --seed; a rect's corners, a disk's or sphere's radius).
+enum class MapReach { Samples, Light };
+
+// The frustum fitted on the GPU: reductions over the G-buffer (shaders/shadow_map_fit.comp), so
+// no shadow-map technique reads the G-buffer back. Only the results come back to the CPU: the
+// receivers' centroid (isotropic lights' axis, 32 bytes) and the widest receiver and the count of
+// pixels outside (8 bytes).
+class FrameFit {
+ public:
+  // The frame of `light`'s views over the G-buffer of `gpu` (its surface pixels): the axis (rect
+  // and disk lights: their normal; sphere and point lights: towards the receivers' centroid), the
+  // views' reach and near plane, and the narrowest square frustum holding every receiver within
+  // options.maxHalfAngle.
+  MapFrame compute(const GpuScene& gpu, const Light& light, const LightSampleSet& samples, const MapOptions& options,
+                   MapReach reach);
+  // Per G-buffer pixel (top row first), 1 for the last frame's outsidePixels; empty when there
+  // were none. Reads the mask back (harness work: compare's reports, not the technique's).
+  std::vector<std::uint8_t> outsideMask() const;
+
+ private:
+  gl::Program program_;
+  gl::Buffer result_;
+  gl::Texture mask_;
+  std::size_t outside_ = 0;
+};
+
 // The uniforms of shaders/shadow_map_common.glsl.
 void setMapUniforms(const gl::Program& program, const MapFrame& frame);
 // One z-buffered depth map seen from `eye` (the light centre) along the frame's axis, into `fbo`
@@ -120,7 +149,7 @@ class MultiViewTechnique : public Technique {
     return maps_.bytes() + semiCount_.bytes() + semiLayers_.bytes() + extraBytes();
   }
   std::vector<std::pair<std::string, double>> statistics() const override;
-  std::vector<std::uint8_t> unshadowedPixels() const override { return frame_.outsideMask; }
+  std::vector<std::uint8_t> unshadowedPixels() const override { return fit_.outsideMask(); }
 
  protected:
   // Fill the maps for `frame`: ensureMaps() then render into them.
@@ -145,6 +174,7 @@ class MultiViewTechnique : public Technique {
   gl::Texture maps_;
   gl::ProgramCache programs_;
   MapFrame frame_;
+  FrameFit fit_;
   std::size_t semiOpaque_ = 0;
   gl::Texture semiCount_, semiLayers_;
   gl::Framebuffer semiFbo_;

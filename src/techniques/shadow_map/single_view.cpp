@@ -30,7 +30,7 @@ void SingleViewTechnique::prepare(const Scene& scene, GpuScene&) {
 
 void SingleViewTechnique::renderVisibility(LightPass& pass) {
   frame_ = pass.timer.time(name_ + " views", [&] {
-    return computeMapFrame(pass.scene, pass.light, pass.samples, pass.cpuGBuffer(), map_);
+    return fit_.compute(pass.gpu, pass.light, pass.samples, map_, MapReach::Light);
   });
   searchNear_ = nearest_.get(pass.scene, pass.lightIndex, pass.light.position, frame_);
   halfSize_ = halfSizeOf(pass.light);

@@ -1,5 +1,6 @@
 // What the single-view shadow-map techniques share (pcss, vssm): one depth map from the light
-// centre (the frustum and bias of maps.h), the raw and comparison samplers of it, the uniforms of
+// centre (the frustum and bias of maps.h; the frustum holds the whole light, MapReach::Light, so
+// --samples and --seed do not change it), the raw and comparison samplers of it, the uniforms of
 // shaders/pcss_common.glsl, and a cache of programs. Each technique adds its passes in
 // renderShadow().
 #pragma once
@@ -25,7 +26,7 @@ class SingleViewTechnique : public Technique {
   void renderVisibility(LightPass& pass) override;
   std::size_t memoryBytes() const override { return depth_.bytes() + extraBytes(); }
   std::vector<std::pair<std::string, double>> statistics() const override;
-  std::vector<std::uint8_t> unshadowedPixels() const override { return frame_.outsideMask; }
+  std::vector<std::uint8_t> unshadowedPixels() const override { return fit_.outsideMask(); }
 
  protected:
   virtual void renderShadow(LightPass& pass) = 0;
@@ -56,6 +57,7 @@ class SingleViewTechnique : public Technique {
   std::string name_;
   MapOptions map_;
   MapFrame frame_;
+  FrameFit fit_;
   NearestOccluder nearest_;
   gl::Texture depth_;
   gl::Framebuffer depthFbo_;

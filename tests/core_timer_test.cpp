@@ -1,0 +1,81 @@
+// StageTimer: harness stages apart from the technique's total, nested stages counted once, and
+// the stage counter (pipeline statistics) paused and resumed with its stage.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <thread>
+
+#include "core/timer.h"
+
+namespace penumbra {
+namespace {
+
+// Counts one fragment invocation per begin/end pair and records the call order.
+class FakeCounter final : public StageCounter {
+ public:
+  void begin() override {
+    EXPECT_FALSE(active);
+    active = true;
+    ++begins;
+  }
+  PipelineCounts end() override {
+    EXPECT_TRUE(active);
+    active = false;
+    PipelineCounts c;
+    c.fragmentInvocations = 1;
+    return c;
+  }
+  bool active = false;
+  int begins = 0;
+};
+
+void sleepMs(int ms) { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); }
+
+TEST(StageTimer, HarnessStagesStayOutOfTheTotal) {
+  StageTimer t;
+  t.time("draw", [] { sleepMs(2); });
+  t.harness("readback", [] { sleepMs(2); });
+  ASSERT_EQ(t.stages().size(), 2u);
+  EXPECT_EQ(t.stages()[0].kind, StageKind::Technique);
+  EXPECT_EQ(t.stages()[1].kind, StageKind::Harness);
+  EXPECT_DOUBLE_EQ(t.total(), t.stages()[0].ms);
+  EXPECT_DOUBLE_EQ(t.harnessTotal(), t.stages()[1].ms);
+  EXPECT_FALSE(t.stages()[0].counted);  // no counter given
+}
+
+TEST(StageTimer, NestedStageIsTakenOutOfTheOuterOne) {
+  StageTimer t;
+  FakeCounter counter;
+  t.setCounter(&counter);
+  const int r = t.time("views", [&] {
+    sleepMs(3);
+    t.harness("readback", [] { sleepMs(20); });
+    return 7;
+  });
+  EXPECT_EQ(r, 7);
+  ASSERT_EQ(t.stages().size(), 2u);
+  const StageTime &views = t.stages()[0], &readback = t.stages()[1];
+  EXPECT_GE(readback.ms, 20.0);
+  EXPECT_LT(views.ms, 20.0);  // the inner 20 ms count once, in the inner stage
+  EXPECT_GE(views.ms, 3.0);
+  // views: started, paused for the readback, resumed: two intervals; the readback one.
+  EXPECT_EQ(views.counts.fragmentInvocations, 2u);
+  EXPECT_EQ(readback.counts.fragmentInvocations, 1u);
+  EXPECT_TRUE(views.counted && readback.counted);
+  EXPECT_EQ(counter.begins, 3);
+  EXPECT_FALSE(counter.active);
+}
+
+TEST(StageTimer, AStageThatThrowsRecordsNothingAndStopsTheCounter) {
+  StageTimer t;
+  FakeCounter counter;
+  t.setCounter(&counter);
+  EXPECT_THROW(t.time("bad", []() -> int { throw std::runtime_error("x"); }), std::runtime_error);
+  EXPECT_FALSE(counter.active);
+  t.time("good", [] {});
+  ASSERT_EQ(t.stages().size(), 1u);
+  EXPECT_EQ(t.stages()[0].stage, "good");
+}
+
+}  // namespace
+}  // namespace penumbra
