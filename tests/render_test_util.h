@@ -53,8 +53,8 @@ inline Comparison renderAndCompare(const Scene& scene, const std::string& techni
   auto tech = makeTechnique(technique, params);
   auto ref = makeTechnique("raytrace");
   Comparison c;
-  c.frame = renderer.render(*tech);
-  c.reference = renderer.render(*ref);
+  c.frame = renderer.render(*tech, technique);
+  c.reference = renderer.render(*ref, "raytrace");
   c.errors = measureErrors(c.frame, c.reference);
   EXPECT_EQ(gl::Context::takeErrorCount(), 0) << "GL errors while rendering " << technique;
   return c;

@@ -350,6 +350,10 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     if (wantSamples && (perSample_.width() != settings_.width || perSample_.layers() != samples.count))
       perSample_ = gl::Texture::make2DArray(GL_R32F, settings_.width, settings_.height, samples.count);
     visibility_.clear(glm::vec4(0.0f));
+    // Pixels without a surface get no per-sample value from a technique: cleared like the
+    // visibility, else they hold whatever the memory held (zink over lavapipe hands out freed
+    // memory: an earlier texture's uint bits read as NaN, MultiView.SemiOpaque... flaked).
+    if (wantSamples) perSample_.clear(glm::vec4(0.0f));
     LightResult lr;
     lr.samples = samples.count;
     LightPass pass{scene_, light, int(li), samples, *gpu_, timer, cpuGBuffer, visibility_,
