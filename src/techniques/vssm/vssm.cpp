@@ -33,9 +33,14 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
     // would occlude nothing.
     depthMin_ = std::min(nearestSurface(pass), far);
     depthMax_ = std::max(far, depthMin_ * 1.001f + 1e-6f);
-    // Threshold = 1e-4 r (section 6), r the scene's bounding radius, as a variance of the
-    // normalised depth; the contact fallback's epsilon = 0.01 r.
-    const float radius = 0.5f * glm::length(hi - lo);
+    // Threshold = 1e-4 r (section 6.5), as a variance of the normalised depth; the contact
+    // fallback's epsilon = 0.01 r (section 5.3). The paper's r is the scene's bounding radius;
+    // ours is at most the radius of the part of the scene the map sees (its frustum between
+    // depthMin and depthMax), so that geometry far outside the map (a 1e5-unit floor, hard case
+    // 25) does not turn every blocker into a contact.
+    const float lateral = f.tanHalf * depthMax_;
+    const float viewRadius = 0.5f * std::sqrt(8.0f * lateral * lateral + (depthMax_ - depthMin_) * (depthMax_ - depthMin_));
+    const float radius = std::min(0.5f * glm::length(hi - lo), viewRadius);
     threshold_ = float(std::pow(1e-4 * radius / (depthMax_ - depthMin_), 2.0));
     contactEpsilon_ = 0.01f * radius;
     if (f.size & (f.size - 1))
