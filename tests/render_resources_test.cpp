@@ -61,9 +61,11 @@ constexpr long kRssBoundKiB = 8 * 1024;
 // +8.8 MiB with MESA_SHADER_CACHE_DISABLE=true (it scales with the shader compilation work),
 // while every GL object penumbra made is deleted (the live counts below return to 0) and the
 // same renders on llvmpipe grow by 8 KiB. The driver's own, not ours: on zink the dcs renders'
-// growth is bounded per render (with a margin over the 3.6 MiB), the other techniques' renders
-// keep kRssBoundKiB together.
-constexpr long kZinkDcsRenderBoundKiB = 5 * 1024;
+// growth is bounded per render (with a margin over what it measures), the other techniques'
+// renders keep kRssBoundKiB together. Since issue 15 (shader headers inlined wherever included,
+// so more text a program) it measures 4.5-5.1 MiB a render (4 runs, 2026-12-02), against the
+// 5 MiB bound it had: 8 MiB now.
+constexpr long kZinkDcsRenderBoundKiB = 8 * 1024;
 constexpr int kSize = 128, kSamples = 8;
 constexpr int kWarmupRounds = 3, kRounds = 14;  // 6 x 17 = 102 renders
 
