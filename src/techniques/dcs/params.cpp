@@ -1,0 +1,86 @@
+// dcs's parameters (dcs.h): their one declaration (ParamSpec, the `--param` keys, defaults,
+// ranges and meanings that `penumbra list --params` and README's table show) and their reading
+// into DcsOptions.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "sampling/shared.hpp"
+#include "techniques/dcs/dcs.h"
+#include "techniques/dcs/packing.h"
+
+namespace penumbra {
+
+namespace {
+const std::vector<std::string> kSilhouetteChoices = {"accurate", "standard"};
+const std::vector<std::string> kCoverageChoices = {"exact", "naive", "lut"};  // PENUMBRA_DCS_COVERAGE_*
+const std::vector<std::string> kOpacityChoices = {"sum", "product"};          // dcs::OpacityMode
+std::vector<std::string> baseChoices() {
+  std::vector<std::string> out;
+  for (const auto& l : dcs::kLayouts) out.push_back(std::to_string(l.base));
+  return out;
+}
+}  // namespace
+
+std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
+  return {
+      ParamSpec::choice("silhouettes", kSilhouetteChoices[o.silhouettes == SilhouetteMode::Accurate ? 0 : 1],
+                        kSilhouetteChoices,
+                        "potential silhouette edges: accurate (a silhouette from some point of the light, exact) or "
+                        "standard (from the light centre, DCS paper Fig. 4; misses edges)"),
+      ParamSpec::boolean("gpu-silhouettes", o.gpuSilhouettes,
+                         "accurate silhouettes by a compute shader (shaders/dcs_silhouette.comp) instead of the CPU"),
+      ParamSpec::choice("coverage", kCoverageChoices[std::size_t(o.coverage)], kCoverageChoices,
+                        "covered-sample test: exact (3D, per sample), naive (the paper's loop over 8-bit packed "
+                        "positions, 7.1) or lut (the paper's edge LUT, 7.3); the 2D modes serve rect and disk lights, "
+                        "others use exact"),
+      ParamSpec::choice("opacity", kOpacityChoices[o.opacity == dcs::OpacityMode::Sum ? 0 : 1], kOpacityChoices,
+                        "semi-opaque occluders: the product of transmittances or the paper's saturated sum of opacities"),
+      ParamSpec::number("opacity-tolerance", o.opacityTolerance, 1e-6, 0.25,
+                        "the largest single-layer transmittance error the unit coding may make (dcs/opacity.h)")
+          .shown("1/1024"),
+      ParamSpec::integer("targets", o.maxTargets, 1, PENUMBRA_DCS_MAX_TARGETS,
+                         "packed RGBA32F counter targets per pass (the paper's 4)"),
+      ParamSpec::choice("min-base", std::to_string(o.minBase), baseChoices(),
+                        "narrowest counter base the packing may use (5.3: more counters per channel, fewer passes)"),
+      ParamSpec::integer("first-bound", o.firstFrameBound, 0, int(dcs::kLayouts[dcs::kLayoutCount - 1].base) - 1,
+                         "a light's first frame plans its counters from this bound instead of running the bound pass "
+                         "(the check after the pass and the re-render still apply; tests force them with it)")
+          .shown("bound pass"),
+      ParamSpec::path("lut-file", "the edge LUT file (refused unless built for the light's sample pattern); empty: "
+                                  "`<lut-dir>/edge_<shape>_<strategy>_<pattern>_n<N>_seed<S>.lut` if it exists, else "
+                                  "built in memory"),
+      ParamSpec::path("lut-dir", "where dcs looks for edge LUTs; empty: `$PENUMBRA_LUT_DIR`, else the source tree's `luts/`"),
+      ParamSpec::integer("lut-cube", o.lutSize.cube, 1, 1024, "sector table size of an edge LUT built in memory (texels "
+                                                              "per cube face side)"),
+      ParamSpec::integer("lut-line", o.lutSize.line, 2, 4096, "line table size of an edge LUT built in memory (even)"),
+      ParamSpec::boolean("profile", o.profile,
+                         "count where the wedge pass's fragments go (statistics `profile*`; slower). A debugging aid, "
+                         "also on with the environment variable `PENUMBRA_DCS_PROFILE=1`"),
+  };
+}
+
+DcsOptions readDcsOptions(const TechniqueArgs& args) {
+  auto index = [](const std::vector<std::string>& choices, const std::string& v) {
+    return int(std::find(choices.begin(), choices.end(), v) - choices.begin());
+  };
+  DcsOptions o;
+  o.silhouettes = args.text("silhouettes") == "accurate" ? SilhouetteMode::Accurate : SilhouetteMode::Standard;
+  o.gpuSilhouettes = args.boolean("gpu-silhouettes");
+  o.coverage = index(kCoverageChoices, args.text("coverage"));
+  o.opacity = args.text("opacity") == "sum" ? dcs::OpacityMode::Sum : dcs::OpacityMode::Product;
+  o.opacityTolerance = args.number("opacity-tolerance");
+  o.maxTargets = args.integer("targets");
+  o.minBase = std::uint32_t(std::stoul(args.text("min-base")));
+  o.firstFrameBound = args.integer("first-bound");
+  o.lutFile = args.text("lut-file");
+  o.lutDirectory = args.text("lut-dir");
+  o.lutSize.cube = args.integer("lut-cube");
+  o.lutSize.line = args.integer("lut-line");
+  if (o.lutSize.line % 2) throw Error("--param", "lut-line: must be even, got " + std::to_string(o.lutSize.line), ExitCode::Usage);
+  o.profile = args.boolean("profile");
+  return o;
+}
+
+}  // namespace penumbra
