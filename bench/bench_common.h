@@ -9,7 +9,7 @@
 namespace penumbra::bench {
 using penumbra::Spread;
 using penumbra::spread;
-inline double statistic(const FrameResult& f, const std::string& key) { return frameStatistic(f, key); }
+using penumbra::frameStatistic;
 using penumbra::Timing;
 using penumbra::timeFrames;
 }  // namespace penumbra::bench

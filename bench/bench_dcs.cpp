@@ -21,7 +21,7 @@
 #include "scene/scene.h"
 
 using namespace penumbra;
-using bench::statistic;
+using bench::frameStatistic;
 
 namespace {
 
@@ -111,9 +111,9 @@ int dcsStudies(const DcsStudyOptions& o, std::FILE* out) {
       bench::Timing to = run(opaque, settingsFor(n), "dcs"), tp = run(semi, settingsFor(n), "dcs"),
                     ts = run(semi, settingsFor(n), "dcs-sum");
       std::fprintf(out, "  N=%-3d opaque %8.1f ms (base %g)  product %8.1f ms (base %g, %+.1f%%)  sum %8.1f ms (base %g, %+.1f%%)\n",
-                  n, to.total.median, statistic(to.last, "counterBase"), tp.total.median,
-                  statistic(tp.last, "counterBase"), 100.0 * (tp.total.median / to.total.median - 1.0), ts.total.median,
-                  statistic(ts.last, "counterBase"), 100.0 * (ts.total.median / to.total.median - 1.0));
+                  n, to.total.median, frameStatistic(to.last, "counterBase"), tp.total.median,
+                  frameStatistic(tp.last, "counterBase"), 100.0 * (tp.total.median / to.total.median - 1.0), ts.total.median,
+                  frameStatistic(ts.last, "counterBase"), 100.0 * (ts.total.median / to.total.median - 1.0));
       results["semiOpaque"][std::to_string(n)] = {{"opaqueMs", to.total.median}, {"productMs", tp.total.median},
                                               {"sumMs", ts.total.median}};
     }
@@ -126,7 +126,7 @@ int dcsStudies(const DcsStudyOptions& o, std::FILE* out) {
       Renderer r(*ctx, scene, s);
       auto t = makeTechnique("dcs-lut");
       FrameResult f = r.render(*t);
-      double px = 1024.0 * 1024.0, targets = statistic(f, "targets");
+      double px = 1024.0 * 1024.0, targets = frameStatistic(f, "targets");
       double sets = double(s.sampling.interleaveK * s.sampling.interleaveK);
       struct Row {
         const char* what;
@@ -148,7 +148,7 @@ int dcsStudies(const DcsStudyOptions& o, std::FILE* out) {
           {"(k) DC-buffers", std::to_string(int(targets)) + " x RGBA32F", mib(16 * px * targets),
            n == 16 ? "16 MB (1 x RGBA32F)" : "32 MB (2 x RGBA32F)"},
           {"    D(c), checksum, bound", "R32F + RG32F + R32F", mib(16 * px), "(in the stencil)"}};
-      std::fprintf(out, "  N=%d (counter base %g, %g targets): measured total %.1f MiB\n", n, statistic(f, "counterBase"),
+      std::fprintf(out, "  N=%d (counter base %g, %g targets): measured total %.1f MiB\n", n, frameStatistic(f, "counterBase"),
                   targets, mib(double(f.memoryBytes)));
       std::fprintf(out, "    %-26s %-44s %10s   %s\n", "buffer", "here", "MiB", "paper");
       for (auto& row : rows) {

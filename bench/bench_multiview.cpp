@@ -29,7 +29,7 @@
 #include "scene/scene.h"
 
 using namespace penumbra;
-using bench::statistic;
+using bench::frameStatistic;
 
 namespace {
 
@@ -140,10 +140,10 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
             if (name == "mvr") mvrMaps = maps, mvrTotal = t.total.median;
             depthTimes[name].push_back(maps);
             std::fprintf(out, "%-9zu %8.0f %-12s %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %7.2f %7.4f %8.0f %9.1f\n",
-                        scene.triangleCount(), statistic(t.last, "points"), name.c_str(), t.stage("gbuffer"), points,
+                        scene.triangleCount(), frameStatistic(t.last, "points"), name.c_str(), t.stage("gbuffer"), points,
                         t.stage(stage + " depth maps") + t.stage(stage + " shadow map"), lighting, t.total.median, t.total.max - t.total.min,
                         mvrMaps / std::max(maps, 1e-9), mvrTotal / std::max(t.total.median, 1e-9), r.rmse,
-                        mib(statistic(t.last, "map bytes")), mib(statistic(t.last, "point buffer bytes")));
+                        mib(frameStatistic(t.last, "map bytes")), mib(frameStatistic(t.last, "point buffer bytes")));
             std::fflush(out);
           }
         }
@@ -181,7 +181,7 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
         Run partial = b.run(two, s, "vwss", {mapParam, "k=8"}, nullptr);
         Run full = b.run(two, s, "vwss", {mapParam, "k=0"}, nullptr);
         Run graphics = b.run(two, s, "vwss-graphics", {mapParam}, nullptr);
-        std::fprintf(out, "%6d %10.0f %10.2f %10.2f %10.2f %10.2f\n", n, statistic(serial.timing.last, "points"),
+        std::fprintf(out, "%6d %10.0f %10.2f %10.2f %10.2f %10.2f\n", n, frameStatistic(serial.timing.last, "points"),
                     serial.timing.stage("vwss depth maps"), partial.timing.stage("vwss depth maps"),
                     full.timing.stage("vwss depth maps"), graphics.timing.stage("vwss-graphics depth maps"));
         std::fflush(out);
@@ -231,7 +231,7 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
           if (count[i] > 0) std::fprintf(out, " %8.4f", differ[i] / count[i]);
           else std::fprintf(out, " %8s", "-");
         }
-        std::fprintf(out, " %8.2f\n", statistic(vwss.timing.last, "source resolution") / double(map));
+        std::fprintf(out, " %8.2f\n", frameStatistic(vwss.timing.last, "source resolution") / double(map));
         std::fflush(out);
       }
       std::fprintf(out, "(vwss-mvr: RMSE between the two visibility buffers over all pixels; scale: vwss's eq. 3 factor)\n\n");

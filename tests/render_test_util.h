@@ -64,8 +64,7 @@ inline TechniqueParams params(const std::vector<std::string>& keyValues) { retur
 
 // A Technique::statistics() value of a frame (fails the test if absent).
 inline double statistic(const FrameResult& f, const std::string& key) {
-  for (auto& [k, v] : f.statistics)
-    if (k == key) return v;
+  if (auto v = findStatistic(f, key)) return *v;
   ADD_FAILURE() << "no statistic " << key;
   return 0.0;
 }

@@ -6,7 +6,6 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <thread>
 #include <cstdio>
 #include <filesystem>
@@ -351,13 +350,6 @@ std::string machineName(const std::string& renderer) {
   }
   while (!out.empty() && out.back() == '-') out.pop_back();
   return out.empty() ? "unknown-gpu" : out;
-}
-
-std::string utcNow() {
-  std::time_t now = std::time(nullptr);
-  char date[32];
-  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
-  return date;
 }
 
 }  // namespace

@@ -1,13 +1,10 @@
 // Comparing techniques with the Embree reference on the same light samples: the same code for
-// the CLI's `compare` and the tests. Errors are measured on the visibility buffer (per light) and
-// on the shaded image, over pixels with a surface, with and without the 1-pixel band around
-// the reference's shadow edges.
-//
-// A comparison run covers presets (the cartesian product of --sweep axes: samples, resolution,
-// technique parameters), each with its own same-sample reference (and, with `converged`, the
-// converged reference of its resolution); every technique is timed (warm-up, then the median
-// and spread of each stage) and measured at each preset that changes what it renders.
-// src/compare/report.h writes the result as JSON, CSV, a table, an SVG plot and an HTML page.
+// the CLI's `compare` and the tests. A comparison run covers presets (compare/presets.h: the
+// cartesian product of the sweep axes), each with its own same-sample reference (and, with
+// `converged`, the converged reference of its resolution); every technique is timed (warm-up,
+// then the median and spread of each stage) and measured (compare/measure.h) at each preset that
+// changes what it renders, its images written as it goes (compare/output.h).
+// compare/report.h writes the result as JSON, CSV, a table, an SVG plot and an HTML page.
 #pragma once
 
 #include <optional>
@@ -17,61 +14,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/metrics.h"
+#include "compare/insets.h"
+#include "compare/measure.h"
+#include "compare/output.h"
+#include "compare/presets.h"
 #include "gl/context.h"
 #include "pipeline/renderer.h"
 #include "pipeline/timing.h"
 
 namespace penumbra {
-
-struct TechniqueErrors {
-  ErrorStats visibility;             // all lights' visibility buffers, surface pixels
-  ErrorStats visibilityOutsideBand;  // ... outside the 1-pixel edge band
-  ErrorStats shaded;
-  ErrorStats shadedOutsideBand;
-  // Per-(pixel, sample) agreement outside the band (both results per-sample), else -1.
-  double sampleAgreement = -1.0;
-  std::int64_t samplePairs = 0;
-  // Pixels whose visibility decision differs (|dV| > 0.5 / N) outside the band.
-  std::int64_t misclassifiedPixels = 0;
-  // Pixels the technique left unshadowed by design (LightResult::unshadowed: shadow-map
-  // receivers beyond max-angle), summed over lights, and the visibility error over the other
-  // surface pixels (equal to `visibility` when there are none).
-  std::int64_t unshadowedPixels = 0;
-  ErrorStats visibilityExceptUnshadowed;
-};
-
-// Errors of `frame` against `reference` (same scene, settings and samples).
-TechniqueErrors measureErrors(const FrameResult& frame, const FrameResult& reference);
-
-// Writes .exr (layers: RGB colour, "visibility" for light 0, "visibility1".. for the others)
-// or .png (colour, sRGB). Other extensions: penumbra::Error.
-void writeFrame(const std::string& path, const FrameResult& frame, float exposure = 0.0f);
-
-nlohmann::json frameSummary(const FrameResult& frame);
-// {"primitives": .., "vertex": .., "geometry": .., "rasterized": .., "fragment": .., "compute": ..}
-nlohmann::json countsJson(const PipelineCounts& c);
-
-nlohmann::json errorsJson(const TechniqueErrors& e);
-
-// One --sweep axis (cli/options.h parses "key=v1,v2,..."). Keys: `samples`, `resolution` (the
-// image width; the height keeps the scene's aspect) or a technique parameter (--param key).
-struct SweepAxis {
-  std::string key;
-  std::vector<std::string> values;  // as given: labels, file names, --param values
-  std::vector<int> integers;        // `samples` and `resolution`: the values as numbers
-  // An axis of numbers (`samples` or `resolution`).
-  static SweepAxis of(const std::string& key, const std::vector<int>& values);
-};
-
-// A zoomed region of the first preset's images, in its pixels (x, y from the top left).
-struct Inset {
-  int x = 0, y = 0, w = 0, h = 0;
-};
-
-// Two square regions where the reference has the most penumbra pixels (visibility strictly
-// between 0 and 1), not overlapping: where techniques differ most.
-std::vector<Inset> chooseInsets(const FrameResult& reference, int count = 2);
 
 struct CompareOptions {
   // What is compared, and the references it is compared with (techniques/registry.h hands them
@@ -93,14 +44,6 @@ struct CompareOptions {
   bool writeImages = true;  // PNG images, heat maps and insets
   bool writeExr = true;     // float images with the visibility layers
   int progress = -1;   // Progress's `interactive`: -1 from isatty
-};
-
-struct ComparePreset {
-  std::string label;  // "samples=32 map=512"; empty without sweeps
-  std::vector<std::pair<std::string, std::string>> values;
-  int width = 0, height = 0, samples = 0;
-  std::vector<std::string> params;  // --param with this preset's technique parameters
-  std::string fileSuffix() const;   // "" or "__samples-32_map-512"
 };
 
 // One technique (or a reference) at one preset.

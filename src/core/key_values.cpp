@@ -21,15 +21,15 @@ void KeyPlace::fail(const std::string& problem) const {
   throw Error(where, at.empty() ? problem : at + ": " + problem, code);
 }
 
-namespace {
-// The one text-to-number parser: the whole text must be a number (strtod reads a prefix); one
-// beyond a double's range reads as infinite (refused as not finite).
+// strtod reads a prefix: the whole text must be read.
 bool parseNumber(const std::string& text, double& x) {
   if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return false;
   char* end = nullptr;
   x = std::strtod(text.c_str(), &end);
   return end == text.c_str() + text.size();
 }
+
+namespace {
 
 double finiteNumber(const KeyValue& v, const KeyPlace& place) {
   double x = v.number;

@@ -35,6 +35,10 @@ struct KeyPlace {
   [[noreturn]] void fail(const std::string& problem) const;
 };
 
+// The one text-to-number parser: true when the whole text is a number (strtod's syntax, no
+// leading space); one beyond a double's range reads as infinite (callers refuse non-finite).
+bool parseNumber(const std::string& text, double& x);
+
 // A finite number in [lo, hi].
 double readNumber(const KeyValue& v, const KeyPlace& place, double lo, double hi);
 // An integer in [lo, hi] (a JSON integer, or text that parses to a whole number).

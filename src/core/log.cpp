@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <ctime>
+
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 namespace penumbra {
@@ -17,6 +19,13 @@ void setLogLevel(const std::string& level) {
   }();
   (void)once;
   spdlog::set_level(spdlog::level::from_str(level));
+}
+
+std::string utcNow() {
+  std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  return date;
 }
 
 }  // namespace penumbra

@@ -6,6 +6,8 @@
 namespace penumbra {
 // Sets the level from "trace|debug|info|warn|error|off"; default "info".
 void setLogLevel(const std::string& level);
+// The date and time now, "YYYY-MM-DD HH:MM UTC": the stamp of reports and benchmark results.
+std::string utcNow();
 }  // namespace penumbra
 
 #define PLOG_TRACE(...) ::spdlog::trace(__VA_ARGS__)

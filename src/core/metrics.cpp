@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "core/color.h"
 #include "core/error.h"
 
 namespace penumbra {
@@ -58,10 +59,6 @@ constexpr std::array<std::array<float, 3>, 9> kInferno = {{
     {0.955f, 0.469f, 0.100f},
     {0.988f, 0.998f, 0.645f},
 }};
-
-float srgbToLinear(float s) {
-  return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f);
-}
 
 }  // namespace
 

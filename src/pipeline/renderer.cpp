@@ -426,10 +426,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     timer.harness("readback", [&] {
       // A CPU technique's own visibility is the buffer unless the filter changed it.
       if (filter || lr.visibility.pixelCount() == 0) {
-        Image v4 = vis->read(4);
-        lr.visibility = Image(v4.width, v4.height, 3);
-        for (std::size_t i = 0; i < v4.pixelCount(); ++i)
-          for (int c = 0; c < 3; ++c) lr.visibility.data[i * 3 + c] = v4.data[i * 4 + c];
+        lr.visibility = vis->read(3);
       }
       if (wantSamples && settings_.perSampleResults && lr.perSample.empty()) {
         // GPU per-sample results: gather the layers into [pixel * N + k].
@@ -447,10 +444,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       throw Error(name, fmt::format("light '{}': per-sample visibility holds NaN or infinite values", light.name));
     result.lights.push_back(std::move(lr));
   }
-  Image c4 = timer.harness("readback", [&] { return color_.read(4); });
-  result.color = Image(c4.width, c4.height, 3);
-  for (std::size_t i = 0; i < c4.pixelCount(); ++i)
-    for (int c = 0; c < 3; ++c) result.color.data[i * 3 + c] = c4.data[i * 4 + c];
+  result.color = timer.harness("readback", [&] { return color_.read(3); });
   if (std::size_t bad = nonFinitePixels(result.color))
     throw Error(name, fmt::format("{} of {} pixels of the shaded image are NaN or infinite", bad, result.color.pixelCount()));
   // Comparisons mask background pixels with it (RenderSettings::gbufferResults).

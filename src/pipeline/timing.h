@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,12 +40,14 @@ struct Timing {
   }
 };
 
-// A Technique::statistics() value of a frame, 0 if the technique does not report it.
-inline double frameStatistic(const FrameResult& f, const std::string& key) {
+// A Technique::statistics() value of a frame, if the technique reports it.
+inline std::optional<double> findStatistic(const FrameResult& f, const std::string& key) {
   for (auto& [k, v] : f.statistics)
     if (k == key) return v;
-  return 0.0;
+  return std::nullopt;
 }
+// ... 0 if the technique does not report it.
+inline double frameStatistic(const FrameResult& f, const std::string& key) { return findStatistic(f, key).value_or(0.0); }
 
 // Calls render(0) `warmup` times, then render(i) for i = 0..frames-1 (at least one), and
 // gives each timed frame to onFrame(i, frame) before it is kept as Timing::last. Stage spreads

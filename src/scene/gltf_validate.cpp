@@ -11,6 +11,7 @@
 #include <limits>
 #include <sstream>
 
+#include "core/color.h"
 #include "core/error.h"
 #include "scene/loaders.h"
 
@@ -497,9 +498,6 @@ bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std:
     why = "decoder returned too little data";
     return false;
   }
-  auto srgbToLinear = [](float c) {
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-  };
   out = Image(decoded.width, decoded.height, 4, 1.0f);
   const float scale = bytesPer == 2 ? 1.0f / 65535.0f : 1.0f / 255.0f;
   for (std::size_t t = 0; t < texels; ++t) {

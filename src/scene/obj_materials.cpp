@@ -14,7 +14,6 @@
 // exporter's absolute path ("C:\textures\wood.png"): the mesh still loads, nothing outside the
 // folder is read.
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +21,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/key_values.h"
 #include "scene/loaders.h"
 
 namespace penumbra::detail {
@@ -44,11 +44,12 @@ std::vector<std::string> tokens(const std::string& s) {
   return out;
 }
 
-bool parseNumber(const std::string& token, float& value) {
-  const char* begin = token.data() + (token.size() > 1 && token[0] == '+' ? 1 : 0);
-  const char* end = token.data() + token.size();
-  const auto [ptr, ec] = std::from_chars(begin, end, value);
-  return ec == std::errc() && ptr == end && std::isfinite(value);
+// A finite float (core/key_values.h's parser).
+bool parseFloat(const std::string& token, float& value) {
+  double x = 0.0;
+  if (!parseNumber(token, x)) return false;
+  value = float(x);
+  return std::isfinite(value);
 }
 
 // "a, b, c" with at most five names, then "and N more".
@@ -164,7 +165,7 @@ struct MtlReader {
       if (key == "Kd") {
         float c[3] = {0.0f, 0.0f, 0.0f};
         bool ok = t.size() == 1 || t.size() == 3;
-        for (std::size_t i = 0; ok && i < t.size(); ++i) ok = parseNumber(t[i], c[i]);
+        for (std::size_t i = 0; ok && i < t.size(); ++i) ok = parseFloat(t[i], c[i]);
         if (t.size() == 1) c[1] = c[2] = c[0];  // "Kd r": g and b default to r
         if (!ok || c[0] < 0.0f || c[1] < 0.0f || c[2] < 0.0f) {
           model.warnings.push_back(mtl + ": " + context + ": Kd '" + rest +
@@ -177,7 +178,7 @@ struct MtlReader {
         // "d -halo 0.5": the halo form (opacity by view angle) is read as plain d, warned.
         float value = 0.0f;
         const bool halo = key == "d" && t.size() == 2 && t[0] == "-halo";
-        if (t.empty() || t.size() > 2 || (t.size() == 2 && !halo) || !parseNumber(t.back(), value) ||
+        if (t.empty() || t.size() > 2 || (t.size() == 2 && !halo) || !parseFloat(t.back(), value) ||
             value < 0.0f || value > 1.0f) {
           model.warnings.push_back(mtl + ": " + context + ": " + key + " '" + rest +
                                    "' is not a number in [0, 1]; ignored");
