@@ -705,11 +705,7 @@ class DepthComplexitySampling final : public Technique {
     if (it != luts_.end()) return it->second;
     std::string path = options_.lutFile;
     if (path.empty()) {
-      std::string dir = options_.lutDirectory;
-      if (dir.empty()) {
-        const char* env = std::getenv("PENUMBRA_LUT_DIR");
-        dir = env ? env : PENUMBRA_DEFAULT_LUT_DIR;
-      }
+      const std::string dir = options_.lutDirectory.empty() ? PENUMBRA_DEFAULT_LUT_DIR : options_.lutDirectory;
       std::string candidate = dir + "/" + dcs::edgeLutFileName(s);
       if (std::filesystem::exists(candidate)) path = candidate;
     }

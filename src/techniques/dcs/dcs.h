@@ -34,8 +34,8 @@ struct DcsOptions {
   // serve rect and disk lights; other lights use exact.
   int coverage = PENUMBRA_DCS_COVERAGE_EXACT;
   // The edge LUT: this file if set (refused unless built for the light's sample pattern), else
-  // <lutDirectory>/edge_lut.h edgeLutFileName() if it exists (lutDirectory empty: the
-  // environment's PENUMBRA_LUT_DIR, else the source tree's luts/), else built in memory.
+  // <lutDirectory>/edge_lut.h edgeLutFileName() if it exists (lutDirectory empty: the source
+  // tree's luts/), else built in memory.
   std::string lutFile, lutDirectory;
   dcs::EdgeLutSize lutSize;
 };

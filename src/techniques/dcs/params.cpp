@@ -51,7 +51,7 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
       ParamSpec::path("lut-file", "the edge LUT file (refused unless built for the light's sample pattern); empty: "
                                   "`<lut-dir>/edge_<shape>_<strategy>_<pattern>_n<N>_seed<S>.lut` if it exists, else "
                                   "built in memory"),
-      ParamSpec::path("lut-dir", "where dcs looks for edge LUTs; empty: `$PENUMBRA_LUT_DIR`, else the source tree's `luts/`"),
+      ParamSpec::path("lut-dir", "where dcs looks for edge LUTs; empty: the source tree's `luts/`"),
       ParamSpec::integer("lut-cube", o.lutSize.cube, 1, 1024, "sector table size of an edge LUT built in memory (texels "
                                                               "per cube face side)"),
       ParamSpec::integer("lut-line", o.lutSize.line, 2, 4096, "line table size of an edge LUT built in memory (even)"),
