@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -42,7 +43,7 @@ struct HalfEdgeMesh {
 // stays). Refused faces are added after all others, each on three fresh copies of its
 // vertices, as OpenMesh's importer does (ImporterT::finish). Deterministic; linear apart from
 // the sorts within a vertex's fan.
-HalfEdgeMesh buildHalfEdgeMesh(const std::vector<glm::vec3>& weldedPositions,
-                               const std::vector<glm::uvec3>& weldedTriangles);
+std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& weldedPositions,
+                                                const std::vector<glm::uvec3>& weldedTriangles);
 
 }  // namespace penumbra::geo

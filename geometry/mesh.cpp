@@ -101,19 +101,25 @@ EdgeTopology buildTopology(const TriangleMesh& mesh, Welding w) {
                    "buildEdgeTopology needs in-range indices (run cleanMesh first)");
     topo.weldedTriangles.emplace_back(id[tri.x], id[tri.y], id[tri.z]);
   }
-  auto halfEdges = std::make_shared<HalfEdgeMesh>(buildHalfEdgeMesh(topo.weldedPositions, topo.weldedTriangles));
+  std::shared_ptr<const HalfEdgeMesh> halfEdges = buildHalfEdgeMesh(topo.weldedPositions, topo.weldedTriangles);
   const HalfEdgeMesh& hem = *halfEdges;
   const SilhouetteTriMesh& m = hem.mesh;
   topo.duplicatedVertices = hem.duplicatedVertices();
 
-  // cross(p1 - p0, p2 - p0) = cross(edge p0 -> p1, -(edge p2 -> p0)): the same doubles as from
-  // the positions directly (negation is exact).
+  // cross(edge p0 -> p1, -(edge p2 -> p0)) = cross(p1 - p0, p2 - p0) over the mesh's double
+  // points, read at the triangle's welded vertices rather than by walking the face's halfedges
+  // (scattered reads): a refused face's copies hold the same points. The second edge is
+  // negated as the halfedge walk gave it, so even the signs of zero components are unchanged.
   topo.faceNormals.assign(topo.weldedTriangles.size(), glm::dvec3(0.0));
+  const auto point = [&](std::uint32_t v) {
+    const OpenMesh::Vec3d& p = m.point(OpenMesh::VertexHandle(int(v)));
+    return glm::dvec3(p[0], p[1], p[2]);
+  };
   for (std::size_t t = 0; t < topo.weldedTriangles.size(); ++t) {
     if (hem.faceOf[t] < 0) continue;
-    const OpenMesh::HalfedgeHandle h = hem.cornerHalfedge(OpenMesh::FaceHandle(hem.faceOf[t]), topo.weldedTriangles[t], 0);
-    const OpenMesh::Vec3d a = m.calc_edge_vector(h), b = -m.calc_edge_vector(m.prev_halfedge_handle(h));
-    topo.faceNormals[t] = glm::cross(glm::dvec3(a[0], a[1], a[2]), glm::dvec3(b[0], b[1], b[2]));
+    const glm::uvec3& tri = topo.weldedTriangles[t];
+    const glm::dvec3 p0 = point(tri.x);
+    topo.faceNormals[t] = glm::cross(point(tri.y) - p0, -(p0 - point(tri.z)));
   }
 
   // Welded edge g is the OpenMesh edges of group g; its incidences are their halfedges' faces.
