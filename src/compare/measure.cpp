@@ -10,6 +10,7 @@ namespace {
 
 // Every light's visibility buffer stacked vertically (all the same size).
 Image stackedVisibility(const FrameResult& f) {
+  if (f.lights.empty()) return {};
   Image out(f.lights.front().visibility.width, 0, f.lights.front().visibility.channels);
   for (auto& l : f.lights) {
     out.height += l.visibility.height;
