@@ -35,30 +35,48 @@ OpenMesh::HalfedgeHandle HalfEdgeMesh::cornerHalfedge(OpenMesh::FaceHandle f, co
 std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& weldedPositions,
                                                 const std::vector<glm::uvec3>& tris) {
   const std::size_t vertexCount = weldedPositions.size(), triangleCount = tris.size();
-  // Directed edge (t, k) runs from corner k to corner k + 1 of triangle t; grouped by welded
-  // end points, sorted by (lo, hi, triangle, corner). `direction` (0: lo -> hi) rides along so
-  // the loops over sorted halves need not read the triangle again (a cache miss each).
+  // Directed edge d = 3t + k runs from corner k to corner k + 1 of triangle t; grouped by
+  // welded end points, sorted by (lo, hi, triangle, corner). Made straight into place by a
+  // counting sort on lo (bucket[lo] is where lo's halves start, so a half need not hold lo):
+  // a bucket then holds its halves in (triangle, corner) order, and a stable insertion sort on
+  // hi (a vertex's few edges) finishes the order. The direction (0: lo -> hi) rides along so
+  // the loops over sorted halves need not read the triangle again (a cache miss each). Eight
+  // bytes a half: most of this function's time is the first touch of its memory.
+  PENUMBRA_CHECK(triangleCount < (std::size_t(1) << 31) / 3, "buildHalfEdgeMesh: more than 715 million triangles");
   struct Half {
-    std::uint32_t lo, hi, triangle;
-    std::uint16_t corner, direction;
-    bool operator<(const Half& o) const { return std::tie(hi, triangle, corner) < std::tie(o.hi, o.triangle, o.corner); }
+    std::uint32_t hi;
+    std::uint32_t code;  // 2d + direction
+    std::uint32_t directed() const { return code >> 1; }
+    std::uint32_t triangle() const { return (code >> 1) / 3; }
+    std::uint32_t corner() const { return (code >> 1) % 3; }
+    int direction() const { return int(code & 1u); }
   };
-  std::vector<Half> halves;
-  halves.reserve(3 * triangleCount);
-  for (std::size_t t = 0; t < triangleCount; ++t) {
-    if (collapsed(tris[t])) continue;
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      const std::uint32_t a = tris[t][k], b = tris[t][(k + 1) % 3];
-      halves.push_back({std::min(a, b), std::max(a, b), std::uint32_t(t), std::uint16_t(k), std::uint16_t(a < b ? 0 : 1)});
+  std::vector<std::uint32_t> bucket(vertexCount + 1, 0);
+  for (std::size_t t = 0; t < triangleCount; ++t)
+    if (!collapsed(tris[t]))
+      for (std::uint32_t k = 0; k < 3; ++k) ++bucket[std::min(tris[t][k], tris[t][(k + 1) % 3]) + 1];
+  std::partial_sum(bucket.begin(), bucket.end(), bucket.begin());
+  std::vector<Half> halves(bucket[vertexCount]);
+  {
+    std::vector<std::uint32_t> next(bucket.begin(), bucket.end() - 1);
+    for (std::size_t t = 0; t < triangleCount; ++t) {
+      if (collapsed(tris[t])) continue;
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const std::uint32_t a = tris[t][k], b = tris[t][(k + 1) % 3], lo = std::min(a, b);
+        halves[next[lo]++] = {std::max(a, b), std::uint32_t(2 * (3 * t + k) + (a < b ? 0 : 1))};
+      }
     }
   }
-  halves = bucketSort(halves, vertexCount, [](const Half& h) { return h.lo; });
+  for (std::size_t v = 0; v < vertexCount; ++v)
+    for (std::uint32_t i = bucket[v] + 1; i < bucket[v + 1]; ++i)
+      for (std::uint32_t j = i; j > bucket[v] && halves[j].hi < halves[j - 1].hi; --j) std::swap(halves[j], halves[j - 1]);
   std::vector<std::uint32_t> groupOf(3 * triangleCount, kNone);  // directed edge 3t + k -> its group
   std::vector<std::uint32_t> groupStart;                          // group -> first sorted half
-  for (std::size_t i = 0; i < halves.size(); ++i) {
-    if (i == 0 || halves[i].lo != halves[i - 1].lo || halves[i].hi != halves[i - 1].hi) groupStart.push_back(std::uint32_t(i));
-    groupOf[3 * halves[i].triangle + halves[i].corner] = std::uint32_t(groupStart.size() - 1);
-  }
+  for (std::size_t v = 0; v < vertexCount; ++v)
+    for (std::uint32_t i = bucket[v]; i < bucket[v + 1]; ++i) {
+      if (i == bucket[v] || halves[i].hi != halves[i - 1].hi) groupStart.push_back(i);
+      groupOf[halves[i].directed()] = std::uint32_t(groupStart.size() - 1);
+    }
   const std::size_t groupCount = groupStart.size();
   groupStart.push_back(std::uint32_t(halves.size()));
   const auto direction = [&](std::size_t t, std::uint32_t k) { return tris[t][k] < tris[t][(k + 1) % 3] ? 0u : 1u; };
@@ -176,7 +194,7 @@ std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& we
   for (std::size_t g = 0; g < groupCount; ++g) {
     bool shared = false;
     for (std::uint32_t i = groupStart[g]; i < groupStart[g + 1]; ++i) {
-      const bool k = kept[halves[i].triangle];
+      const bool k = kept[halves[i].triangle()];
       shared = shared || k;
       edgeCount += !k;
     }
@@ -188,27 +206,30 @@ std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& we
   m.resize(out.weldedOf.size(), edgeCount, faceCount);
   std::vector<OpenMesh::Vec3d>& points = m.property(m.points_pph()).data_vector();
   for (std::size_t v = 0; v < out.weldedOf.size(); ++v) points[v] = toOpenMesh(weldedPositions[out.weldedOf[v]]);
-  std::vector<OpenMesh::HalfedgeHandle> halfedgeOf(3 * triangleCount);  // directed edge -> OpenMesh halfedge
+  // Directed edge -> OpenMesh halfedge, in the memory of groupOf (no longer needed).
+  std::vector<std::uint32_t>& halfedgeOf = groupOf;
   out.edgeGroups.reserve(groupCount + 1);
   int edge = 0;
+  std::uint32_t lo = 0;  // the group's lower end point: the bucket its first half lies in
   for (std::size_t g = 0; g < groupCount; ++g) {
+    while (bucket[lo + 1] <= groupStart[g]) ++lo;
     out.edgeGroups.push_back(std::uint32_t(edge));
     OpenMesh::EdgeHandle sharedEdge;
     for (std::uint32_t i = groupStart[g]; i < groupStart[g + 1]; ++i) {
       const Half& h = halves[i];
-      const std::size_t d = 3 * h.triangle + h.corner;
-      if (kept[h.triangle]) {
+      const std::uint32_t t = h.triangle();
+      if (kept[t]) {
         if (!sharedEdge.is_valid()) {  // halfedge 0 runs lo -> hi
           sharedEdge = OpenMesh::EdgeHandle(edge++);
           m.set_vertex_handle(m.halfedge_handle(sharedEdge, 0), OpenMesh::VertexHandle(int(h.hi)));
-          m.set_vertex_handle(m.halfedge_handle(sharedEdge, 1), OpenMesh::VertexHandle(int(h.lo)));
+          m.set_vertex_handle(m.halfedge_handle(sharedEdge, 1), OpenMesh::VertexHandle(int(lo)));
         }
-        halfedgeOf[d] = m.halfedge_handle(sharedEdge, int(h.direction));
+        halfedgeOf[h.directed()] = std::uint32_t(m.halfedge_handle(sharedEdge, h.direction()).idx());
       } else {  // halfedge 0 runs the refused triangle's way between its copies
         const OpenMesh::EdgeHandle e(edge++);
-        m.set_vertex_handle(m.halfedge_handle(e, 0), OpenMesh::VertexHandle(int(copyOf[h.triangle] + (h.corner + 1) % 3)));
-        m.set_vertex_handle(m.halfedge_handle(e, 1), OpenMesh::VertexHandle(int(copyOf[h.triangle] + h.corner)));
-        halfedgeOf[d] = m.halfedge_handle(e, 0);
+        m.set_vertex_handle(m.halfedge_handle(e, 0), OpenMesh::VertexHandle(int(copyOf[t] + (h.corner() + 1) % 3)));
+        m.set_vertex_handle(m.halfedge_handle(e, 1), OpenMesh::VertexHandle(int(copyOf[t] + h.corner())));
+        halfedgeOf[h.directed()] = std::uint32_t(m.halfedge_handle(e, 0).idx());
       }
     }
   }
@@ -217,14 +238,15 @@ std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& we
   out.triangleOf.reserve(faceCount);
   const auto addFace = [&](std::uint32_t t) {
     const OpenMesh::FaceHandle f(int(out.triangleOf.size()));
+    const auto halfedge = [&](std::uint32_t k) { return OpenMesh::HalfedgeHandle(int(halfedgeOf[3 * t + k])); };
     out.faceOf[t] = f.idx();
     out.triangleOf.push_back(t);
-    m.set_halfedge_handle(f, halfedgeOf[3 * t]);
+    m.set_halfedge_handle(f, halfedge(0));
     for (std::uint32_t k = 0; k < 3; ++k) {
-      const OpenMesh::HalfedgeHandle h = halfedgeOf[3 * t + k];
+      const OpenMesh::HalfedgeHandle h = halfedge(k);
       m.set_face_handle(h, f);
-      m.set_next_halfedge_handle(h, halfedgeOf[3 * t + (k + 1) % 3]);
-      m.set_halfedge_handle(m.from_vertex_handle(h), h);
+      m.set_next_halfedge_handle(h, halfedge((k + 1) % 3));
+      m.set_halfedge_handle(OpenMesh::VertexHandle(int(copyOf[t] == kNone ? tris[t][k] : copyOf[t] + k)), h);
     }
   };
   for (std::uint32_t t = 0; t < triangleCount; ++t)

@@ -141,11 +141,13 @@ EdgeTopology buildTopology(const TriangleMesh& mesh, Welding w) {
       }
     }
     const auto count = static_cast<std::uint32_t>(topo.incidences.size() - first);
-    if (count > 1)
-      std::sort(topo.incidences.begin() + first, topo.incidences.end(),
-                [](const EdgeTopology::Incidence& a, const EdgeTopology::Incidence& b) {
-                  return std::tie(a.triangle, a.orientation) < std::tie(b.triangle, b.orientation);
-                });
+    const auto before = [](const EdgeTopology::Incidence& a, const EdgeTopology::Incidence& b) {
+      return std::tie(a.triangle, a.orientation) < std::tie(b.triangle, b.orientation);
+    };
+    if (count == 2 && before(topo.incidences[first + 1], topo.incidences[first]))
+      std::swap(topo.incidences[first], topo.incidences[first + 1]);
+    else if (count > 2)
+      std::sort(topo.incidences.begin() + first, topo.incidences.end(), before);
     const OpenMesh::HalfedgeHandle h = m.halfedge_handle(OpenMesh::EdgeHandle(int(hem.edgeGroups[g])), 0);
     const std::uint32_t a = hem.welded(m.from_vertex_handle(h)), b = hem.welded(m.to_vertex_handle(h));
     topo.edges.push_back({std::min(a, b), std::max(a, b), first, count});
