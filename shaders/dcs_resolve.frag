@@ -20,6 +20,7 @@ layout(std430, binding = PENUMBRA_SSBO_DCS_STATUS) buffer DcsStatus {
   uint negativePixels;   // a count above the horizon ended in [-bias, -1] (dcs_init.frag): treated
                          // as 0, reported
   uint boundMax;         // largest D(c) + bias + positive updates (dcs_wedge.frag)
+  uint firstNegative;    // the first pixel (y * width + x, rows from the top) with a negative count
 };
 
 uniform uint passFirst;
@@ -71,7 +72,10 @@ void main() {
   // Clamped below 2^32 (uint() of a larger float is undefined): still past 2^24, still refused.
   atomicMax(boundMax, uint(min(sums.g, 4294967040.0)));
   if (bad || abs(digitTotal - expected) > 0.5) atomicAdd(overflowPixels, 1u);
-  if (negative) atomicAdd(negativePixels, 1u);
+  if (negative) {
+    atomicAdd(negativePixels, 1u);
+    atomicMin(firstNegative, uint(px.y * textureSize(gPosition, 0).x + px.x));
+  }
   if (!bad) atomicMax(maxCount, maxD);  // a wrapped digit is reported, not a count
   outVisibility = vec4(v / float(sampleCount), 1.0);
 }

@@ -71,6 +71,7 @@ glm::vec4 trianglePlane(const std::vector<glm::vec3>& P, const glm::uvec3& tri) 
 struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
   std::uint32_t boundMax = 0;  // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
+  std::uint32_t firstNegative = 0xffffffffu;  // y * width + x of the first pixel with a negative count
 };
 
 // Bias of every counter digit (shaders/dcs_init.frag).
@@ -580,9 +581,13 @@ class DepthComplexitySampling final : public Technique {
     const bool exact = f.coverage == PENUMBRA_DCS_COVERAGE_EXACT && options_.silhouettes == SilhouetteMode::Accurate;
     if ((status.overflowPixels > 0 || status.negativePixels > 0) && exact)
       throw Error("dcs", fmt::format("light '{}': {} pixels with inconsistent counts (a counter left its digit) and {} "
-                                     "with negative counts: the shadow-volume count and the wedges disagree, the image "
+                                     "with negative counts{}: the shadow-volume count and the wedges disagree, the image "
                                      "would be wrong there",
-                                     light.name, status.overflowPixels, status.negativePixels));
+                                     light.name, status.overflowPixels, status.negativePixels,
+                                     status.negativePixels == 0 ? std::string()
+                                                                : fmt::format(" (the first at pixel {}, {})",
+                                                                              status.firstNegative % std::uint32_t(pass.gpu.width()),
+                                                                              status.firstNegative / std::uint32_t(pass.gpu.width()))));
     if (status.overflowPixels > pixels / 1000)
       PLOG_WARN("dcs: {} pixels with inconsistent counts (shadow-volume count vs wedges at a volume side)",
                 status.overflowPixels);
