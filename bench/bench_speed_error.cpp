@@ -46,13 +46,18 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
                  "(glFinish + steady clock), visibility RMSE against raytrace-converged (1024 spp); renderer %s\n\n",
                  scenes.size(), width, samples.c_str(), frames, warmup, ctx->renderer().c_str());
 
+    // Per (technique, samples): sums of logs over the scenes it ran on, and the scenes where it
+    // failed (its row in that scene's report says why). The ratio to raytrace is taken per scene,
+    // so a technique that failed somewhere is compared with raytrace on the same scenes.
     struct Acc {
-      double logMs = 0, logErr = 0;
+      double logMs = 0, logErr = 0, logRatio = 0;
       int n = 0, front = 0;
+      std::vector<std::string> failedOn;
     };
     std::map<std::pair<std::string, int>, Acc> acc;  // (technique, samples)
     std::vector<std::string> order;
     std::vector<int> sampleCounts;
+    int failures = 0;
     for (const std::string& path : scenes) {
       Scene scene = path == "default" ? defaultScene() : loadScene(path);
       RenderSettings s;
@@ -75,9 +80,16 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
       writeReport(r, c.outDir);
       std::fprintf(out, "== %s (%s, %zu triangles, %dx%d)\n%s", scene.name.c_str(), path.c_str(), scene.triangleCount(),
                    s.width, s.height, reportTable(r).c_str());
-      // A failed run (its row says why) would silently drop out of the headline's means.
+      // A failed run is its row's error in the scene's report; the headline names the scene
+      // beside the technique's means (never a mean silently over fewer scenes), and the study
+      // exits 1.
       for (auto& run : r.runs)
-        if (run.failed) throw Error(scene.name, run.technique + " failed: " + run.failure);
+        if (run.failed) {
+          PLOG_ERROR("speed-error: {}: {} @ {} failed: {}", scene.name, run.technique, r.presets[run.preset].label, run.failure);
+          acc[{run.technique, r.presets[run.preset].samples}].failedOn.push_back(scene.name);
+          if (std::find(order.begin(), order.end(), run.technique) == order.end()) order.push_back(run.technique);
+          ++failures;
+        }
 
       auto plotted = plottedRuns(r);
       std::vector<std::pair<double, double>> pts;
@@ -96,6 +108,11 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
         if (std::find(sampleCounts.begin(), sampleCounts.end(), n) == sampleCounts.end()) sampleCounts.push_back(n);
         if (std::find(order.begin(), order.end(), run.technique) == order.end()) order.push_back(run.technique);
         Acc& a = acc[{run.technique, n}];
+        const auto raytrace = std::find_if(r.runs.begin(), r.runs.end(), [&](const CompareRun& x) {
+          return x.technique == "raytrace" && x.preset == run.preset && !x.failed;
+        });
+        if (raytrace == r.runs.end()) throw Error(scene.name, "no raytrace run at " + r.presets[run.preset].label);
+        a.logRatio += std::log(run.total.median / raytrace->total.median);
         a.logMs += std::log(run.total.median);
         a.logErr += std::log(std::max(run.plotError(), 1e-6));
         a.n += 1;
@@ -113,20 +130,25 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
       p.samples = n, p.label = fmt::format("samples={}", n), p.values = {{"samples", std::to_string(n)}};
       headline.presets.push_back(p);
     }
-    std::string md = fmt::format("| technique | samples | ms (geo. mean) | x raytrace time | visibility RMSE vs converged (geo. mean) | on the Pareto front |\n|---|---|---|---|---|---|\n");
-    std::fprintf(out, "Headline: geometric mean over %zu scenes\n%-14s %7s %12s %12s %14s %8s\n", scenes.size(), "technique",
-                 "samples", "ms", "x raytrace", "RMSE vs conv", "front");
+    std::string md = fmt::format("| technique | samples | ms (geo. mean) | x raytrace time | visibility RMSE vs converged (geo. mean) | on the Pareto front | scenes |\n|---|---|---|---|---|---|---|\n");
+    std::fprintf(out, "Headline: geometric mean over %zu scenes (or those named)\n%-14s %7s %12s %12s %14s %8s  %s\n", scenes.size(),
+                 "technique", "samples", "ms", "x raytrace", "RMSE vs conv", "front", "scenes");
     for (auto& t : order)
       for (std::size_t pi = 0; pi < headline.presets.size(); ++pi) {
         int n = headline.presets[pi].samples;
         auto it = acc.find({t, n});
-        if (it == acc.end() || it->second.n == 0) continue;
+        if (it == acc.end()) continue;
         const Acc& a = it->second;
-        double ms = std::exp(a.logMs / a.n), err = std::exp(a.logErr / a.n);
-        auto ref = acc.find({"raytrace", n});
-        double ratio = ref != acc.end() && ref->second.n ? ms / std::exp(ref->second.logMs / ref->second.n) : 0.0;
-        std::fprintf(out, "%-14s %7d %12.1f %12.2f %14.4f %5d/%zu\n", t.c_str(), n, ms, ratio, err, a.front, scenes.size());
-        md += fmt::format("| {} | {} | {:.1f} | {:.2f} | {:.4f} | {}/{} |\n", t, n, ms, ratio, err, a.front, scenes.size());
+        std::string ran = fmt::format("{} of {}", a.n, scenes.size());
+        if (!a.failedOn.empty()) ran += fmt::format(" (failed on {})", fmt::join(a.failedOn, ", "));
+        if (a.n == 0) {
+          std::fprintf(out, "%-14s %7d %12s %12s %14s %8s  %s\n", t.c_str(), n, "-", "-", "-", "-", ran.c_str());
+          md += fmt::format("| {} | {} | - | - | - | - | {} |\n", t, n, ran);
+          continue;
+        }
+        double ms = std::exp(a.logMs / a.n), err = std::exp(a.logErr / a.n), ratio = std::exp(a.logRatio / a.n);
+        std::fprintf(out, "%-14s %7d %12.1f %12.2f %14.4f %5d/%d  %s\n", t.c_str(), n, ms, ratio, err, a.front, a.n, ran.c_str());
+        md += fmt::format("| {} | {} | {:.1f} | {:.2f} | {:.4f} | {}/{} | {} |\n", t, n, ms, ratio, err, a.front, a.n, ran);
         CompareRun run;
         run.technique = t, run.preset = pi, run.reference = t == "raytrace";
         run.total = {ms, ms, ms};
@@ -137,7 +159,8 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
       }
     std::ofstream(fs::path(outDir) / "headline.md") << md;
     std::ofstream(fs::path(outDir) / "headline.svg") << speedErrorSvg(headline);
-    return 0;
+    if (failures > 0) std::fprintf(out, "\n%d technique runs failed (named above and in their scenes' reports)\n", failures);
+    return failures > 0 ? 1 : 0;
   } catch (const Error& e) {
     std::fprintf(stderr, "penumbra_bench_speed_error: %s\n", e.what());
     return 1;
