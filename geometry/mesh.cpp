@@ -269,4 +269,42 @@ std::string MeshReport::summary() const {
   return s;
 }
 
+void ensureShadingNormals(TriangleMesh& mesh, double creaseAngle) {
+  if (!mesh.normals.empty() && mesh.normals.size() == mesh.positions.size()) return;
+  const std::vector<glm::vec3> corner = cornerNormals(buildEdgeTopology(mesh), creaseAngle);
+  constexpr std::uint32_t kNone = 0xffffffffu;
+  const bool hasUv = mesh.uvs.size() == mesh.positions.size();
+  const std::size_t original = mesh.positions.size();
+  mesh.normals.assign(original, glm::vec3(0.0f));
+  std::vector<std::uint8_t> assigned(original, 0);
+  std::vector<std::uint32_t> nextCopy(original, kNone);  // vertex -> its next copy (a list per original)
+  const auto same = [](const glm::vec3& a, const glm::vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t& index = mesh.triangles[t][k];
+      const glm::vec3& n = corner[3 * t + std::size_t(k)];
+      if (!assigned[index]) {
+        assigned[index] = 1;
+        mesh.normals[index] = n;
+        continue;
+      }
+      std::uint32_t v = index, last = index;
+      while (v != kNone && !same(mesh.normals[v], n)) last = v, v = nextCopy[v];
+      if (v == kNone) {  // a new normal at this position: a copy of the vertex
+        v = std::uint32_t(mesh.positions.size());
+        const glm::vec3 p = mesh.positions[index];
+        mesh.positions.push_back(p);
+        if (hasUv) {
+          const glm::vec2 uv = mesh.uvs[index];
+          mesh.uvs.push_back(uv);
+        }
+        mesh.normals.push_back(n);
+        nextCopy.push_back(kNone);
+        nextCopy[last] = v;
+      }
+      index = v;
+    }
+  }
+}
+
 }  // namespace penumbra::geo

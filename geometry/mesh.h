@@ -92,6 +92,20 @@ EdgeTopology buildEdgeTopology(const TriangleMesh& mesh);
 // triangle that collapses under welding gets zero normals.
 std::vector<glm::vec3> cornerNormals(const EdgeTopology& topology, double creaseAngle);
 
+// The crease angle of computed shading normals: 45 degrees (edges whose faces' normals differ by
+// more stay sharp: a cube's edges, a cylinder's rim; a cylinder of 16 segments, 22.5 degrees a
+// step, is smooth round its side).
+constexpr double kDefaultCreaseAngle = 0.78539816339744831;
+
+// Shading normals for the G-buffer (issue 16 section 1): leaves a mesh that has one normal per
+// position (from its file: glTF NORMAL, OBJ vn, PLY nx/ny/nz; or from a primitive) as it is;
+// otherwise sets mesh.normals to cornerNormals(buildEdgeTopology(mesh), creaseAngle), splitting
+// a vertex where its corners get different normals (the copy takes the position and uv; the
+// first corner's normal stays with the original index), so that a crease keeps each side's
+// normal. Welding by position (buildEdgeTopology) joins the copies again: silhouettes, volumes
+// and the reference are unchanged. Unused vertices get a zero normal. Deterministic.
+void ensureShadingNormals(TriangleMesh& mesh, double creaseAngle = kDefaultCreaseAngle);
+
 // Loads OBJ, PLY (ASCII and binary), OFF or STL (ASCII and binary) with penumbra's own parsers,
 // which keep every face or count why it was dropped, then cleans the mesh. We do not use
 // OpenMesh 9.0's readers here: measured, an ASCII PLY with one `nan` loads 0 faces and zeroes

@@ -1,6 +1,9 @@
 // Writes the G-buffer. The normal is the geometric normal turned towards the camera, so
 // surfaces are two-sided and the horizon rule (README "Conventions") is the same for every
-// technique and the reference.
+// technique and the reference. The shading normal (the BRDF's, issue 16 section 1) is the
+// interpolated vertex normal, normalised, turned to the geometric normal's side: a back face
+// seen by the camera is shaded as its own front (two-sided, as the geometric normal), and a
+// file whose normals point against its winding is shaded as if they did not.
 // The position is where the ray through the pixel centre meets the triangle's plane, not the
 // interpolated vertex positions: interpolation errs by a few ULPs of the triangle's vertices
 // (0.01 units near the camera on a 1e5-unit floor, off its own plane too when it is tilted),
@@ -10,6 +13,7 @@
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
+in vec3 vShading;
 flat in float vPlane;
 
 uniform vec3 cameraPosition;
@@ -24,6 +28,7 @@ layout(binding = PENUMBRA_UNIT_MATERIAL_TEX) uniform sampler2D baseColorTexture;
 layout(location = PENUMBRA_GBUF_POSITION) out vec4 outPosition;
 layout(location = PENUMBRA_GBUF_NORMAL) out vec4 outNormal;
 layout(location = PENUMBRA_GBUF_ALBEDO) out vec4 outAlbedo;
+layout(location = PENUMBRA_GBUF_SHADING) out vec4 outShading;
 
 vec3 pixelRayPoint(vec3 face) {
   // glClipControl(GL_UPPER_LEFT): window y grows downwards in NDC (context.cpp).
@@ -46,4 +51,8 @@ void main() {
   outPosition = vec4(position, 1.0);
   outNormal = vec4(n, float(materialId));
   outAlbedo = vec4(albedo, opacity);
+  // Interpolation can shrink the normal to nothing between opposite vertex normals: then the face's.
+  float len = length(vShading);
+  vec3 s = len > 1e-6 ? vShading / len : n;
+  outShading = vec4(dot(s, n) < 0.0 ? -s : s, 0.0);
 }

@@ -20,6 +20,8 @@
 #define PENUMBRA_GBUF_POSITION 0   // RGBA32F: world position, w = 1 where a surface was hit
 #define PENUMBRA_GBUF_NORMAL 1     // RGBA32F: world normal facing the camera, w = material id
 #define PENUMBRA_GBUF_ALBEDO 2     // RGBA16F: base colour, a = opacity
+#define PENUMBRA_GBUF_SHADING 3    // RGBA32F: shading normal (interpolated vertex normal), unit, on
+                                   // the side of the normal above; a = 0
 
 // ---- texture units -------------------------------------------------------------------------
 // Those every technique shares. A technique's own binding points are in its header beside its
@@ -33,6 +35,7 @@
 #define PENUMBRA_UNIT_MATERIAL_TEX 5
 #define PENUMBRA_UNIT_COUNTER 6         // R32F: shadow-volume count (hard-sv, dcs)
 #define PENUMBRA_UNIT_FILTER_SOURCE 11  // RGBA32F: input of the interleaved-sampling filter
+#define PENUMBRA_UNIT_GBUF_SHADING 20
 #define PENUMBRA_IMAGE_SAMPLE_VIS 0     // image unit of the per-sample visibility array
 
 // ---- shader storage / uniform buffer bindings ----------------------------------------------

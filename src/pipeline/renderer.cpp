@@ -71,6 +71,7 @@ struct GVertex {
   glm::vec3 normal;
   glm::vec2 uv;
   float plane;  // dot(normal, a vertex): the plane the G-buffer intersects with the pixel's ray
+  glm::vec3 shading;  // the corner's shading normal (geo::ensureShadingNormals), or the face's
 };
 }  // namespace
 
@@ -103,7 +104,8 @@ GpuScene::GpuScene(const Scene& scene, int width, int height, std::size_t maxVer
         .attribute(0, 3, offsetof(GVertex, position))
         .attribute(1, 3, offsetof(GVertex, normal))
         .attribute(2, 2, offsetof(GVertex, uv))
-        .attribute(3, 1, offsetof(GVertex, plane));
+        .attribute(3, 1, offsetof(GVertex, plane))
+        .attribute(4, 3, offsetof(GVertex, shading));
     c.count = GLsizei(verts.size());
     chunks_.push_back(std::move(c));
     verts.clear();
@@ -112,6 +114,7 @@ GpuScene::GpuScene(const Scene& scene, int width, int height, std::size_t maxVer
     Draw d{int(chunks_.size()), GLint(verts.size()), 0, m.material};
     const auto& mesh = m.mesh;
     bool hasUv = mesh.uvs.size() == mesh.positions.size();
+    bool hasNormals = mesh.normals.size() == mesh.positions.size();
     for (auto& t : mesh.triangles) {
       glm::vec3 p[3] = {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
       // In double: a float cross product of long edges loses the normal of a small triangle.
@@ -121,8 +124,13 @@ GpuScene::GpuScene(const Scene& scene, int width, int height, std::size_t maxVer
       // The plane through the triangle's vertices with the float normal n: their mean offset.
       float plane = float((glm::dot(glm::dvec3(n), glm::dvec3(p[0])) + glm::dot(glm::dvec3(n), glm::dvec3(p[1])) +
                            glm::dot(glm::dvec3(n), glm::dvec3(p[2]))) / 3.0);
-      for (int i = 0; i < 3; ++i)
-        verts.push_back({p[i], n, hasUv ? mesh.uvs[t[i]] : glm::vec2(0.0f), plane});
+      for (int i = 0; i < 3; ++i) {
+        // A missing, zero or non-finite vertex normal shades with the face's.
+        glm::vec3 s = hasNormals ? mesh.normals[t[i]] : n;
+        const float len = glm::length(s);
+        s = len > 0.0f && std::isfinite(len) ? s / len : n;
+        verts.push_back({p[i], n, hasUv ? mesh.uvs[t[i]] : glm::vec2(0.0f), plane, s});
+      }
       if (verts.size() == chunkVertices) {  // the chunk is full: the mesh goes on in the next
         d.count = GLsizei(verts.size()) - d.first;
         if (d.count > 0) draws_.push_back(d);
@@ -155,8 +163,9 @@ GpuScene::GpuScene(const Scene& scene, int width, int height, std::size_t maxVer
   position_ = gl::Texture::make2D(GL_RGBA32F, width, height);
   normal_ = gl::Texture::make2D(GL_RGBA32F, width, height);
   albedo_ = gl::Texture::make2D(GL_RGBA16F, width, height);
+  shading_ = gl::Texture::make2D(GL_RGBA32F, width, height);
   depth_ = gl::Texture::make2D(GL_DEPTH_COMPONENT32F, width, height);
-  fbo_ = gl::Framebuffer({&position_, &normal_, &albedo_}, &depth_);
+  fbo_ = gl::Framebuffer({&position_, &normal_, &albedo_, &shading_}, &depth_);
   program_ = gl::Program({"gbuffer.vert", "gbuffer.frag"});
   gl::Context::checkErrors("GpuScene upload");
 }
@@ -198,7 +207,7 @@ void GpuScene::drawTriangles(GLsizei instances, Occluders which, const gl::Progr
 void GpuScene::renderGBuffer() {
   fbo_.bind();
   const float zero[4] = {0, 0, 0, 0};
-  for (int i = 0; i < 3; ++i) glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, i, zero);
+  for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, i, zero);
   const float depthClear = 0.0f;  // reversed Z: 0 is infinitely far
   glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &depthClear);
   glEnable(GL_DEPTH_TEST);
@@ -219,6 +228,7 @@ void GpuScene::bindGBuffer() const {
   position_.bind(PENUMBRA_UNIT_GBUF_POSITION);
   normal_.bind(PENUMBRA_UNIT_GBUF_NORMAL);
   albedo_.bind(PENUMBRA_UNIT_GBUF_ALBEDO);
+  shading_.bind(PENUMBRA_UNIT_GBUF_SHADING);
 }
 
 CpuGBuffer GpuScene::readGBuffer() const {
@@ -238,7 +248,7 @@ CpuGBuffer GpuScene::readGBuffer() const {
 }
 
 std::size_t GpuScene::memoryBytes() const {
-  std::size_t bytes = position_.bytes() + normal_.bytes() + albedo_.bytes() + depth_.bytes();
+  std::size_t bytes = position_.bytes() + normal_.bytes() + albedo_.bytes() + shading_.bytes() + depth_.bytes();
   for (auto& c : chunks_) bytes += c.vertices.size();
   return bytes;
 }
@@ -339,6 +349,11 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   for (std::size_t li = 0; li < scene_.lights.size(); ++li) {
     const Light& light = scene_.lights[li];
     LightSampleSet samples = makeLightSamples(scene_, light, settings_.sampling, settings_.time);
+    // A NaN pose (or light) would make every sample fail the horizon test: a finite, wrongly
+    // dark image. Refused here, before any technique sees it.
+    const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    if (!finite(light.position) || !std::all_of(samples.positions.begin(), samples.positions.end(), finite))
+      throw Error(name, fmt::format("light '{}': its position or light samples are NaN or infinite", light.name));
     std::vector<glm::vec4> pos(samples.positions.size()), lum(samples.luminance.size());
     for (std::size_t i = 0; i < pos.size(); ++i) pos[i] = glm::vec4(samples.positions[i], 1.0f);
     for (std::size_t i = 0; i < lum.size(); ++i) lum[i] = glm::vec4(samples.luminance[i], 1.0f);

@@ -83,7 +83,8 @@ class GpuScene {
   const glm::mat4& clipFromWorld() const { return clipFromWorld_; }
   const glm::vec3& cameraPosition() const { return cameraPos_; }
 
-  // Draws every triangle of the scene (G-buffer layout: position, face normal, uv).
+  // Draws every triangle of the scene (G-buffer layout: position, face normal, uv, plane
+  // offset, shading normal).
   void drawGBuffer(const gl::Program& program) const;
   void renderGBuffer();  // fills the G-buffer textures below
   // Draws triangles (attribute 0: position) `instances` times: for passes that only need
@@ -95,6 +96,7 @@ class GpuScene {
   const gl::Texture& position() const { return position_; }
   const gl::Texture& normal() const { return normal_; }
   const gl::Texture& albedo() const { return albedo_; }
+  const gl::Texture& shadingNormal() const { return shading_; }
   const gl::Texture& depth() const { return depth_; }
   void bindGBuffer() const;  // to the PENUMBRA_UNIT_GBUF_* units
   CpuGBuffer readGBuffer() const;
@@ -122,7 +124,7 @@ class GpuScene {
   std::vector<Draw> draws_;
   bool allOpaque_ = true;  // every material of opacity 1: one draw covers every (opaque) occluder
   std::vector<gl::Texture> materialTextures_;  // parallel to scene.textures
-  gl::Texture position_, normal_, albedo_, depth_;
+  gl::Texture position_, normal_, albedo_, shading_, depth_;
   gl::Framebuffer fbo_;
   gl::Program program_;
 };

@@ -350,6 +350,7 @@ int withOpacity(Context& ctx, int material, float opacity) {
 const Context::Placed& placeModel(Context& ctx, const std::string& path) {
   if (const auto it = ctx.models.find(path); it != ctx.models.end()) return it->second;
   auto model = std::make_shared<Model>(loadGeometryFile(path));
+  for (SceneMesh& m : model->meshes) geo::ensureShadingNormals(m.mesh);  // once per file, not per instance
   Context::Placed placed;
   placed.model = model;
   placed.materialBase = int(ctx.scene.materials.size());
@@ -420,6 +421,7 @@ void readObject(Context& ctx, const Json& item, int index) {
     m.report.inputVertices = m.mesh.positions.size();
     m.report.inputFaces = m.mesh.triangles.size();
     geo::cleanMesh(m.mesh, m.report);
+    geo::ensureShadingNormals(m.mesh);
     m.material = material >= 0 ? material : 0;
     placed.push_back(std::move(m));
   } else {
