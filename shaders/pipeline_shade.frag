@@ -1,6 +1,10 @@
 // Direct illumination of one light, added into the HDR target (DCS paper section 6).
 // MODULATE: eq. 3, the light as a point at its centre carrying the whole light's power, times
 // the RGB visibility of eq. 2. PER_SAMPLE: eq. 6, the sum over the pixel's light samples.
+// RATIO: Heitz, Hill and McGuire 2018: the unshadowed term (exact for untextured rect lights,
+// shared.h penumbraRectIrradiance; else the unshadowed sample sum) times the shadow ratio
+// sum_k w_k T_k / sum_k w_k from the per-sample results, or V over its unshadowed value for a
+// technique with V only. A pixel whose samples all miss (sum_k w_k = 0) gets ratio 0, as eq. 6.
 // BRDF: Lambertian, albedo / pi; its cosine with the shading normal (the G-buffer's interpolated
 // vertex normal), the horizon rule with the geometric one (README "Conventions").
 #include "common_light.glsl"
@@ -9,10 +13,14 @@ layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 layout(binding = PENUMBRA_UNIT_GBUF_ALBEDO) uniform sampler2D gAlbedo;
 layout(binding = PENUMBRA_UNIT_GBUF_SHADING) uniform sampler2D gShading;
-#ifdef MODULATE
+#if defined(MODULATE) || defined(RATIO)
 layout(binding = PENUMBRA_UNIT_VISIBILITY) uniform sampler2D visibility;
-#else
+#endif
+#if defined(PER_SAMPLE) || defined(RATIO)
 layout(binding = PENUMBRA_UNIT_SAMPLE_VIS) uniform sampler2DArray sampleVisibility;
+#endif
+#ifdef RATIO
+uniform int ratioFromSamples;  // 1: the technique's per-sample results are bound
 #endif
 
 out vec4 outColor;
@@ -34,6 +42,36 @@ void main() {
   float g = aboveHorizon(p.xyz, n, lightPosition) ? max(dot(ns, l), 0.0) * emitterCosine(-l) / r2 : 0.0;
   vec3 v = texelFetch(visibility, px, 0).rgb;
   outColor = vec4(brdf * lightEmission * lightScale * v * g, 1.0);
+#elif defined(RATIO)
+  uint base = pixelSampleBase(px);
+  vec3 weights = vec3(0.0), shadowed = vec3(0.0), unshadowedV = vec3(0.0);
+  for (uint k = 0u; k < sampleCount; ++k) {
+    vec3 x = samplePositions[base + k].xyz;
+    if (!aboveHorizon(p.xyz, n, x)) continue;
+    vec3 d = x - p.xyz;
+    float r2 = dot(d, d);
+    vec3 l = d * inversesqrt(r2);
+    vec3 w = sampleLuminance[base + k].rgb * (max(dot(ns, l), 0.0) * emitterCosine(-l) / r2);
+    weights += w;
+    unshadowedV += sampleLuminance[base + k].rgb;
+    if (ratioFromSamples != 0) shadowed += w * texelFetch(sampleVisibility, ivec3(px, int(k)), 0).r;
+  }
+  vec3 unshadowed = weights * sampleWeight;
+  if (lightShape == PENUMBRA_LIGHT_RECT && lightTextured == 0)
+    unshadowed = dot(lightNormal, p.xyz - lightPosition) > 0.0
+                     ? vec3(penumbraRectIrradiance(p.xyz, n, ns, lightPosition, lightTangent,
+                                                   cross(lightNormal, lightTangent), lightHalfExtent))
+                     : vec3(0.0);
+  vec3 ratio;
+  if (ratioFromSamples != 0) {
+    ratio = vec3(weights.r > 0.0 ? shadowed.r / weights.r : 0.0, weights.g > 0.0 ? shadowed.g / weights.g : 0.0,
+                 weights.b > 0.0 ? shadowed.b / weights.b : 0.0);
+  } else {
+    vec3 v = texelFetch(visibility, px, 0).rgb * float(sampleCount);
+    ratio = vec3(unshadowedV.r > 0.0 ? v.r / unshadowedV.r : 0.0, unshadowedV.g > 0.0 ? v.g / unshadowedV.g : 0.0,
+                 unshadowedV.b > 0.0 ? v.b / unshadowedV.b : 0.0);
+  }
+  outColor = vec4(brdf * lightEmission * unshadowed * ratio, 1.0);
 #else
   uint base = pixelSampleBase(px);
   vec3 sum = vec3(0.0);

@@ -41,4 +41,19 @@ inline double discHiddenFraction(double x, double z, double occluderHeight, doub
   return area / (pi * r1 * r1);
 }
 
+// Form factor from a receiver at the origin facing +y to the rectangle [x0, x1] x [z0, z1] at
+// height h above it, parallel to it (Howell's catalogue of configuration factors, B-1: a
+// differential area and a parallel rectangle with one corner above it, here summed with signs
+// over the four corners). The receiver's irradiance from a Lambertian emitter of radiance L is
+// pi L F, its outgoing radiance albedo L F. An oracle independent of shared.h's polygon formula.
+inline double parallelRectFormFactor(double x0, double x1, double z0, double z1, double h) {
+  const auto corner = [h](double a, double b) {
+    const double A = std::abs(a) / h, B = std::abs(b) / h;
+    const double sa = std::sqrt(1.0 + A * A), sb = std::sqrt(1.0 + B * B);
+    const double f = (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2.0 * std::numbers::pi);
+    return (a < 0 ? -1.0 : 1.0) * (b < 0 ? -1.0 : 1.0) * f;
+  };
+  return corner(x1, z1) - corner(x0, z1) - corner(x1, z0) + corner(x0, z0);
+}
+
 }  // namespace penumbra::test

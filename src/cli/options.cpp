@@ -16,7 +16,8 @@ gl::Backend parseBackend(const std::string& name) {
 ShadingMode parseShadingMode(const std::string& s) {
   if (s == "modulate") return ShadingMode::Modulate;
   if (s == "per-sample") return ShadingMode::PerSample;
-  throw Error("--shading", "unknown shading mode '" + s + "' (modulate, per-sample)", ExitCode::Usage);
+  if (s == "ratio") return ShadingMode::Ratio;
+  throw Error("--shading", "unknown shading mode '" + s + "' (modulate, per-sample, ratio)", ExitCode::Usage);
 }
 
 SampleStrategy parseSampleStrategy(const std::string& s) {

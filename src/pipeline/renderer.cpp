@@ -13,7 +13,14 @@
 
 namespace penumbra {
 
-const char* toString(ShadingMode m) { return m == ShadingMode::Modulate ? "modulate" : "per-sample"; }
+const char* toString(ShadingMode m) {
+  switch (m) {
+    case ShadingMode::Modulate: return "modulate";
+    case ShadingMode::PerSample: return "per-sample";
+    case ShadingMode::Ratio: return "ratio";
+  }
+  return "?";
+}
 
 glm::mat4 viewFromWorld(const Camera& camera) {
   return glm::lookAt(camera.position, camera.target, camera.up);
@@ -37,6 +44,9 @@ void setLightUniforms(const gl::Program& prog, const Light& light, const LightSa
   prog.set("lightShape", int(light.shape));
   prog.set("lightPosition", light.position);
   prog.set("lightNormal", s.lightNormal);
+  prog.set("lightTangent", light.tangent);
+  prog.set("lightHalfExtent", 0.5f * light.size);
+  prog.set("lightTextured", light.emissionFrames.empty() ? 0 : 1);
   prog.set("lightEmission", light.color * light.intensity);
   float scale = 1.0f;
   if (light.shape == LightShape::Rect || light.shape == LightShape::Disk) scale = light.area();
@@ -281,6 +291,7 @@ Renderer::Renderer(gl::Context& context, const Scene& given, const RenderSetting
   shadeModulate_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"MODULATE"});
   filter_ = gl::Program({"fullscreen.vert", "pipeline_filter.frag"});
   shadePerSample_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"PER_SAMPLE"});
+  shadeRatio_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"RATIO"});
   if (settings.pipelineStatistics) statistics_ = gl::PipelineStatistics::create();
 }
 
@@ -324,6 +335,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   StageTimer& timer = result.timer;
   timer.setCounter(statistics_.get());
   bool perSample = settings_.shading == ShadingMode::PerSample;
+  const bool ratio = settings_.shading == ShadingMode::Ratio;
   if (perSample && !technique.providesPerSample())
     throw Error(name.empty() ? "renderer" : name,
                 "per-sample shading (eq. 6) needs a technique with per-sample visibility", ExitCode::Usage);
@@ -361,7 +373,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
     lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
 
-    bool wantSamples = technique.providesPerSample() && (settings_.perSampleResults || perSample);
+    bool wantSamples = technique.providesPerSample() && (settings_.perSampleResults || perSample || ratio);
     if (wantSamples && (perSample_.width() != settings_.width || perSample_.layers() != samples.count))
       perSample_ = gl::Texture::make2DArray(GL_R32F, settings_.width, settings_.height, samples.count);
     visibility_.clear(glm::vec4(0.0f));
@@ -395,7 +407,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       filtered_ = gl::Texture::make2D(GL_RGBA32F, settings_.width, settings_.height);
       filteredFbo_ = gl::Framebuffer({&filtered_}, nullptr);
     }
-    if (filter && perSample && !lightColor_) {
+    if (filter && (perSample || ratio) && !lightColor_) {
       lightColor_ = gl::Texture::make2D(GL_RGBA32F, settings_.width, settings_.height);
       lightColorFbo_ = gl::Framebuffer({&lightColor_}, nullptr);
     }
@@ -409,9 +421,12 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     }
 
     timer.time("shading", [&] {
-      const gl::Program& prog = perSample ? shadePerSample_ : shadeModulate_;
-      // Eq. 6 with interleaving: the light's term is shaded apart, then filtered into the image.
-      const bool separate = perSample && filter;
+      const gl::Program& prog = perSample ? shadePerSample_ : ratio ? shadeRatio_ : shadeModulate_;
+      // Eq. 6 and the ratio estimator with interleaving: the light's term is shaded apart (from
+      // the unfiltered per-sample results), then filtered into the image. Divergence from
+      // Heitz et al. 2018, who filter the ratio: the unshadowed factor is smooth, so filtering
+      // the product differs from it only where U varies within the K x K gather.
+      const bool separate = (perSample || ratio) && filter;
       if (separate) {
         lightColorFbo_.bind();
         const float zero[4] = {0, 0, 0, 0};
@@ -426,10 +441,11 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       gpu_->bindGBuffer();
       posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
       lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
-      if (perSample) perSample_.bind(PENUMBRA_UNIT_SAMPLE_VIS);
-      else vis->bind(PENUMBRA_UNIT_VISIBILITY);
+      if (wantSamples) perSample_.bind(PENUMBRA_UNIT_SAMPLE_VIS);
+      (ratio ? visibility_ : *vis).bind(PENUMBRA_UNIT_VISIBILITY);
       prog.use();
       setLightUniforms(prog, light, samples);
+      if (ratio) prog.set("ratioFromSamples", wantSamples ? 1 : 0);
       emptyVao_.bind();
       glDrawArrays(GL_TRIANGLES, 0, 3);
       if (separate) {

@@ -6,7 +6,13 @@
 //    power, multiplied by the RGB visibility buffer of eq. 2.
 //  * PerSample (eq. 6): the sum over light samples of the direct illumination of each sample,
 //    with each sample's transmittance; needs a technique that provides per-sample results.
-// Both use a Lambertian BRDF (albedo / pi), the same one the reference uses.
+//  * Ratio (Heitz, Hill and McGuire 2018, "Combining analytic direct illumination and
+//    stochastic shadows"): the unshadowed term U, exact where a closed form is in (untextured
+//    rect lights: Lambert's polygon irradiance, shared.h penumbraRectIrradiance), else the
+//    unshadowed sum over the pixel's samples; times the shadow ratio sum_k w_k T_k / sum_k w_k,
+//    w_k = L_k cos cos / r^2 of sample k, from the per-sample results, or V / V_unshadowed
+//    (eq. 2 over its unshadowed value) for techniques that give only V.
+// All use a Lambertian BRDF (albedo / pi), the same one the reference uses.
 #pragma once
 
 #include <memory>
@@ -26,7 +32,7 @@
 
 namespace penumbra {
 
-enum class ShadingMode { Modulate, PerSample };
+enum class ShadingMode { Modulate, PerSample, Ratio };
 const char* toString(ShadingMode m);
 
 struct RenderSettings {
@@ -152,7 +158,7 @@ class Renderer {
   gl::Texture color_, visibility_, perSample_;
   gl::Texture filtered_, lightColor_;  // interleaved sampling: filtered visibility, eq. 6 light term
   gl::Framebuffer colorFbo_, filteredFbo_, lightColorFbo_;
-  gl::Program shadeModulate_, shadePerSample_, filter_;
+  gl::Program shadeModulate_, shadePerSample_, shadeRatio_, filter_;
   gl::VertexArray emptyVao_;
   std::uint64_t prepared_ = 0;  // Technique::serial() of the technique prepared last
   std::unique_ptr<gl::PipelineStatistics> statistics_;  // null where the GL has none

@@ -7,9 +7,12 @@
 
 namespace penumbra::shared {
 using uint = std::uint32_t;
+using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using glm::abs;
+using glm::cross;
 using glm::dot;
+using glm::length;
 using glm::exp;
 using glm::max;
 using glm::normalize;
