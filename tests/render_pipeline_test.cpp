@@ -303,4 +303,24 @@ TEST(Pipeline, RatioShadingOfAnUnoccludedRectIsLambertsFormula) {
   }
 }
 
+// Where no closed form is in (here the default scene's textured light) the unshadowed term is
+// the unshadowed sample sum, so `ratio` is eq. 6 again for a technique with per-sample results.
+TEST(Pipeline, RatioShadingIsPerSampleWithoutAClosedForm) {
+  Scene scene = defaultScene();
+  ASSERT_FALSE(scene.lights[0].emissionFrames.empty()) << "the default scene's light is textured";
+  FrameResult img[2];
+  const ShadingMode modes[2] = {ShadingMode::Ratio, ShadingMode::PerSample};
+  for (int i = 0; i < 2; ++i) {
+    RenderSettings s = settings(64, 16);
+    s.shading = modes[i];
+    Renderer renderer(context(), scene, s);
+    auto dcs = makeTechnique("dcs");
+    img[i] = renderer.render(*dcs, "dcs");
+  }
+  ErrorStats e = compareImages(img[0].color, img[1].color);
+  double peak = 0.0;
+  for (float v : img[1].color.data) peak = std::max(peak, double(v));
+  EXPECT_LE(e.maxAbs, 1e-5 * peak) << "ratio and per-sample differ by more than rounding";
+}
+
 }  // namespace penumbra::test
