@@ -4,6 +4,7 @@ uniform vec3 lightPosition;     // centre
 uniform vec3 lightNormal;       // emission normal of one-sided lights, 0 for isotropic ones
 uniform vec3 lightTangent;      // rect and disk: the frame's tangent (bitangent = normal x tangent)
 uniform vec2 lightHalfExtent;     // rect: half width and height along tangent and bitangent
+uniform float lightShapeRadius; // disk and sphere: the radius
 uniform int lightTextured;      // 1: an emission texture modulates the light
 uniform vec3 lightEmission;     // colour * intensity
 uniform float lightScale;       // area (rect, disk), pi R^2 (sphere), 1 (point): eq. 3 power

@@ -2,7 +2,8 @@
 // MODULATE: eq. 3, the light as a point at its centre carrying the whole light's power, times
 // the RGB visibility of eq. 2. PER_SAMPLE: eq. 6, the sum over the pixel's light samples.
 // RATIO: Heitz, Hill and McGuire 2018: the unshadowed term (exact for untextured rect lights,
-// shared.h penumbraRectIrradiance; else the unshadowed sample sum) times the shadow ratio
+// shared.h penumbraRectIrradiance, and for untextured sphere lights wholly above the horizon,
+// penumbraBallIrradiance; else the unshadowed sample sum) times the shadow ratio
 // sum_k w_k T_k / sum_k w_k from the per-sample results, or V over its unshadowed value for a
 // technique with V only. A pixel whose samples all miss (sum_k w_k = 0) gets ratio 0, as eq. 6.
 // BRDF: Lambertian, albedo / pi; its cosine with the shading normal (the G-buffer's interpolated
@@ -62,6 +63,10 @@ void main() {
                      ? vec3(penumbraRectIrradiance(p.xyz, n, ns, lightPosition, lightTangent,
                                                    cross(lightNormal, lightTangent), lightHalfExtent))
                      : vec3(0.0);
+  if (lightShape == PENUMBRA_LIGHT_SPHERE && lightTextured == 0) {
+    float e = penumbraBallIrradiance(p.xyz, n, ns, lightPosition, lightShapeRadius);
+    if (e >= 0.0) unshadowed = vec3(e);
+  }
   vec3 ratio;
   if (ratioFromSamples != 0) {
     ratio = vec3(weights.r > 0.0 ? shadowed.r / weights.r : 0.0, weights.g > 0.0 ? shadowed.g / weights.g : 0.0,

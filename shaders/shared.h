@@ -195,6 +195,22 @@ PENUMBRA_FN float penumbraRectIrradiance(vec3 p, vec3 ng, vec3 ns, vec3 centre, 
   return 0.5f * abs(sum);
 }
 
+// The same integral for a sphere light as penumbra models it (README "Lighting pipeline": a
+// ball of isotropic points, sampled in its volume, of total intensity L pi R^2): while the ball
+// lies wholly above both the geometric and the shading normal's planes through p, the cosines
+// need no clamping and the integral is the normal component of an inverse-square field, which
+// for a uniform ball is that of its centre (Newton's shell theorem): pi R^2 cos(theta_s) / d^2.
+// That is also the irradiance of a Lambertian sphere of radiance L seen fully above the
+// horizon. Returns -1 where the ball touches or crosses either plane (the horizon-crossing
+// case has no closed form for this model yet: the caller sums the samples).
+PENUMBRA_FN float penumbraBallIrradiance(vec3 p, vec3 ng, vec3 ns, vec3 centre, float radius) {
+  vec3 d = centre - p;
+  float above = min(dot(ng, d), dot(ns, d));
+  if (!(above > radius)) return -1.0f;
+  float d2 = dot(d, d);
+  return 3.1415926536f * radius * radius * dot(ns, d) / (d2 * sqrt(d2));
+}
+
 #define PENUMBRA_ORIGIN_MAX_STRETCH 16.0f
 PENUMBRA_FN vec3 penumbraShadowOrigin(vec3 p, vec3 n, vec3 eye) {
   PENUMBRA_PRECISE vec3 v = normalize(eye - p);

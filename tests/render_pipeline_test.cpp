@@ -323,4 +323,37 @@ TEST(Pipeline, RatioShadingIsPerSampleWithoutAClosedForm) {
   EXPECT_LE(e.maxAbs, 1e-5 * peak) << "ratio and per-sample differ by more than rounding";
 }
 
+// The same for a sphere light wholly above the floor: Newton's theorem for the ball of isotropic
+// points penumbra samples (shared.h penumbraBallIrradiance), albedo L R^2 cos(theta) / d^2.
+TEST(Pipeline, RatioShadingOfAnUnoccludedSphereLightIsItsClosedForm) {
+  Scene scene = litFloor(1.0f);
+  scene.materials[0].baseColor = glm::vec3(0.5f);
+  Light& light = scene.lights[0];
+  light.shape = LightShape::Sphere;
+  light.position = {0.5f, 1.2f, 0.25f};
+  light.size = {0.3f, 0.3f};
+  RenderSettings s = settings(96, 16);
+  s.shading = ShadingMode::Ratio;
+  Renderer renderer(context(), scene, s);
+  for (const char* name : {"none", "raytrace"}) {
+    auto tech = makeTechnique(name);
+    FrameResult f = renderer.render(*tech, name);
+    const CpuGBuffer& g = f.gbuffer;
+    double worst = 0.0;
+    std::size_t pixels = 0;
+    for (std::size_t i = 0; i < f.color.pixelCount(); ++i) {
+      if (!g.valid[i]) continue;
+      const glm::dvec3 d = glm::dvec3(light.position) - (glm::dvec3(g.position[i]) + g.origin);
+      const double r = glm::length(d), R = light.size.x;
+      const double expected = 0.5 * double(light.intensity) * R * R * d.y / (r * r * r);
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(f.color.data[i * 3 + std::size_t(c)] - expected) / expected);
+      ++pixels;
+    }
+    RecordProperty(std::string(name) + "_worst_relative", std::to_string(worst));
+    std::printf("%s: %zu floor pixels, worst relative error %.3g against the closed form\n", name, pixels, worst);
+    EXPECT_GT(pixels, 4000u);
+    EXPECT_LE(worst, 1e-4) << name;
+  }
+}
+
 }  // namespace penumbra::test

@@ -46,6 +46,7 @@ void setLightUniforms(const gl::Program& prog, const Light& light, const LightSa
   prog.set("lightNormal", s.lightNormal);
   prog.set("lightTangent", light.tangent);
   prog.set("lightHalfExtent", 0.5f * light.size);
+  prog.set("lightShapeRadius", light.size.x);
   prog.set("lightTextured", light.emissionFrames.empty() ? 0 : 1);
   prog.set("lightEmission", light.color * light.intensity);
   float scale = 1.0f;

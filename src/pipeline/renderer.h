@@ -8,8 +8,9 @@
 //    with each sample's transmittance; needs a technique that provides per-sample results.
 //  * Ratio (Heitz, Hill and McGuire 2018, "Combining analytic direct illumination and
 //    stochastic shadows"): the unshadowed term U, exact where a closed form is in (untextured
-//    rect lights: Lambert's polygon irradiance, shared.h penumbraRectIrradiance), else the
-//    unshadowed sum over the pixel's samples; times the shadow ratio sum_k w_k T_k / sum_k w_k,
+//    rect lights: Lambert's polygon irradiance, shared.h penumbraRectIrradiance; untextured
+//    sphere lights wholly above the horizon: penumbraBallIrradiance), else the unshadowed sum
+//    over the pixel's samples; times the shadow ratio sum_k w_k T_k / sum_k w_k,
 //    w_k = L_k cos cos / r^2 of sample k, from the per-sample results, or V / V_unshadowed
 //    (eq. 2 over its unshadowed value) for techniques that give only V.
 // All use a Lambertian BRDF (albedo / pi), the same one the reference uses.

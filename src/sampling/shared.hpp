@@ -15,6 +15,8 @@ using glm::dot;
 using glm::length;
 using glm::exp;
 using glm::max;
+using glm::min;
+using glm::sqrt;
 using glm::normalize;
 #include "shared.h"  // NOLINT: shared with GLSL, see shaders/shared.h
 }  // namespace penumbra::shared
