@@ -28,6 +28,35 @@ out vec4 outColor;
 
 const float kInvPi = 0.31830988618379067;
 
+// Sample i's share of the unshadowed integral, L_i cos(theta_s) [cos(theta_l)] / r^2: 0 below
+// the geometric horizon, the cosine with the shading normal. Eq. 6 and the ratio sum it.
+vec3 sampleTerm(vec3 p, vec3 n, vec3 ns, uint i) {
+  vec3 x = samplePositions[i].xyz;
+  if (!aboveHorizon(p, n, x)) return vec3(0.0);
+  vec3 d = x - p;
+  float r2 = dot(d, d);
+  vec3 l = d * inversesqrt(r2);
+  return sampleLuminance[i].rgb * (max(dot(ns, l), 0.0) * emitterCosine(-l) / r2);
+}
+
+#ifdef RATIO
+// The unshadowed integral in closed form where penumbra has one for this light and point, else -1.
+float closedFormIrradiance(vec3 p, vec3 n, vec3 ns) {
+  if (lightTextured != 0) return -1.0;
+  if (lightShape == PENUMBRA_LIGHT_RECT)
+    return dot(lightNormal, p - lightPosition) > 0.0
+               ? penumbraRectIrradiance(p, n, ns, lightPosition, lightTangent, cross(lightNormal, lightTangent),
+                                        lightHalfExtent)
+               : 0.0;
+  if (lightShape == PENUMBRA_LIGHT_SPHERE) return penumbraBallIrradiance(p, n, ns, lightPosition, lightShapeRadius);
+  return -1.0;
+}
+
+vec3 ratioOf(vec3 a, vec3 b) {
+  return vec3(b.r > 0.0 ? a.r / b.r : 0.0, b.g > 0.0 ? a.g / b.g : 0.0, b.b > 0.0 ? a.b / b.b : 0.0);
+}
+#endif
+
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 p = texelFetch(gPosition, px, 0);
@@ -47,48 +76,21 @@ void main() {
   uint base = pixelSampleBase(px);
   vec3 weights = vec3(0.0), shadowed = vec3(0.0), unshadowedV = vec3(0.0);
   for (uint k = 0u; k < sampleCount; ++k) {
-    vec3 x = samplePositions[base + k].xyz;
-    if (!aboveHorizon(p.xyz, n, x)) continue;
-    vec3 d = x - p.xyz;
-    float r2 = dot(d, d);
-    vec3 l = d * inversesqrt(r2);
-    vec3 w = sampleLuminance[base + k].rgb * (max(dot(ns, l), 0.0) * emitterCosine(-l) / r2);
+    vec3 w = sampleTerm(p.xyz, n, ns, base + k);
     weights += w;
-    unshadowedV += sampleLuminance[base + k].rgb;
+    if (aboveHorizon(p.xyz, n, samplePositions[base + k].xyz)) unshadowedV += sampleLuminance[base + k].rgb;
     if (ratioFromSamples != 0) shadowed += w * texelFetch(sampleVisibility, ivec3(px, int(k)), 0).r;
   }
-  vec3 unshadowed = weights * sampleWeight;
-  if (lightShape == PENUMBRA_LIGHT_RECT && lightTextured == 0)
-    unshadowed = dot(lightNormal, p.xyz - lightPosition) > 0.0
-                     ? vec3(penumbraRectIrradiance(p.xyz, n, ns, lightPosition, lightTangent,
-                                                   cross(lightNormal, lightTangent), lightHalfExtent))
-                     : vec3(0.0);
-  if (lightShape == PENUMBRA_LIGHT_SPHERE && lightTextured == 0) {
-    float e = penumbraBallIrradiance(p.xyz, n, ns, lightPosition, lightShapeRadius);
-    if (e >= 0.0) unshadowed = vec3(e);
-  }
-  vec3 ratio;
-  if (ratioFromSamples != 0) {
-    ratio = vec3(weights.r > 0.0 ? shadowed.r / weights.r : 0.0, weights.g > 0.0 ? shadowed.g / weights.g : 0.0,
-                 weights.b > 0.0 ? shadowed.b / weights.b : 0.0);
-  } else {
-    vec3 v = texelFetch(visibility, px, 0).rgb * float(sampleCount);
-    ratio = vec3(unshadowedV.r > 0.0 ? v.r / unshadowedV.r : 0.0, unshadowedV.g > 0.0 ? v.g / unshadowedV.g : 0.0,
-                 unshadowedV.b > 0.0 ? v.b / unshadowedV.b : 0.0);
-  }
+  float closed = closedFormIrradiance(p.xyz, n, ns);
+  vec3 unshadowed = closed >= 0.0 ? vec3(closed) : weights * sampleWeight;
+  vec3 ratio = ratioFromSamples != 0 ? ratioOf(shadowed, weights)
+                                     : ratioOf(texelFetch(visibility, px, 0).rgb * float(sampleCount), unshadowedV);
   outColor = vec4(brdf * lightEmission * unshadowed * ratio, 1.0);
 #else
   uint base = pixelSampleBase(px);
   vec3 sum = vec3(0.0);
-  for (uint k = 0u; k < sampleCount; ++k) {
-    vec3 x = samplePositions[base + k].xyz;
-    if (!aboveHorizon(p.xyz, n, x)) continue;
-    vec3 d = x - p.xyz;
-    float r2 = dot(d, d);
-    vec3 l = d * inversesqrt(r2);
-    float t = texelFetch(sampleVisibility, ivec3(px, int(k)), 0).r;
-    sum += sampleLuminance[base + k].rgb * (t * max(dot(ns, l), 0.0) * emitterCosine(-l) / r2);
-  }
+  for (uint k = 0u; k < sampleCount; ++k)
+    sum += sampleTerm(p.xyz, n, ns, base + k) * texelFetch(sampleVisibility, ivec3(px, int(k)), 0).r;
   outColor = vec4(brdf * lightEmission * sampleWeight * sum, 1.0);
 #endif
 }

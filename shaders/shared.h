@@ -128,17 +128,15 @@ PENUMBRA_FN float penumbraSurfaceEpsilon(vec3 p) {
 // origin moved along the normal instead left a pixel of hard case 19 off by one, where the ray
 // passes within 1e-5 of the box's bottom edge). Without a camera (CPU-only G-buffers),
 // eye = p + n.
+#define PENUMBRA_ORIGIN_MAX_STRETCH 16.0f
+PENUMBRA_FN vec3 penumbraShadowOrigin(vec3 p, vec3 n, vec3 eye) {
+  PENUMBRA_PRECISE vec3 v = normalize(eye - p);
+  PENUMBRA_PRECISE float along = penumbraSurfaceEpsilon(p) / max(dot(n, v), 1.0f / PENUMBRA_ORIGIN_MAX_STRETCH);
+  PENUMBRA_PRECISE vec3 o = p + v * along;
+  return o;
+}
+
 // ---- the unshadowed term of the ratio estimator (issue 16 sections 2-3) ----------------------
-// Lambert's polygon irradiance (Lambert 1760; in vector form Arvo 1995, "Applications of
-// irradiance tensors to the simulation of non-Lambertian phenomena", eq. 8): for a polygon of
-// constant radiance seen from p, the integral over it of cos(theta_p) cos(theta_l) / r^2 dA is
-// 1/2 sum_i Theta_i (gamma_i . n), Theta_i the angle between the unit vectors to consecutive
-// vertices and gamma_i the unit normal of the plane through p and that edge. That holds for a
-// polygon in n's hemisphere, so the rectangle is first clipped to the half-spaces above the
-// geometric normal ng (the horizon rule every technique and the reference apply per sample,
-// README "Conventions") and above the shading normal ns (the cosine's max(., 0)). Angles by
-// atan2 (acos loses small ones). The emitter's one-sidedness is the caller's (a point behind
-// the light's plane sees none of it). Returns the integral (m^2 / m^2: a form factor times pi).
 // atan2(y, x) for y >= 0, in [0, pi], to about 1e-7 relative: Cephes' atanf (S. Moshier), its
 // range reduction by tan(pi/8) and tan(3 pi/8) and its polynomial. GLSL only asks atan for an
 // absolute error of about 2^-11 and llvmpipe's gave the polygon formula 3e-4 relative errors
@@ -161,6 +159,16 @@ PENUMBRA_FN float penumbraAtan2(float y, float x) {
   return x < 0.0f ? 3.1415926536f - a : a;
 }
 
+// Lambert's polygon irradiance (Lambert 1760; in vector form Arvo 1995, "Applications of
+// irradiance tensors to the simulation of non-Lambertian phenomena", eq. 8): for a polygon of
+// constant radiance seen from p, the integral over it of cos(theta_p) cos(theta_l) / r^2 dA is
+// 1/2 sum_i Theta_i (gamma_i . n), Theta_i the angle between the unit vectors to consecutive
+// vertices and gamma_i the unit normal of the plane through p and that edge. That holds for a
+// polygon in n's hemisphere, so the rectangle is first clipped to the half-spaces above the
+// geometric normal ng (the horizon rule every technique and the reference apply per sample,
+// README "Conventions") and above the shading normal ns (the cosine's max(., 0)). Angles by
+// atan2 (acos loses small ones). The emitter's one-sidedness is the caller's (a point behind
+// the light's plane sees none of it). Returns the integral (m^2 / m^2: a form factor times pi).
 PENUMBRA_FN float penumbraRectIrradiance(vec3 p, vec3 ng, vec3 ns, vec3 centre, vec3 tangent, vec3 bitangent,
                                          vec2 halfSize) {
   vec3 a[8];
@@ -209,14 +217,6 @@ PENUMBRA_FN float penumbraBallIrradiance(vec3 p, vec3 ng, vec3 ns, vec3 centre, 
   if (!(above > radius)) return -1.0f;
   float d2 = dot(d, d);
   return 3.1415926536f * radius * radius * dot(ns, d) / (d2 * sqrt(d2));
-}
-
-#define PENUMBRA_ORIGIN_MAX_STRETCH 16.0f
-PENUMBRA_FN vec3 penumbraShadowOrigin(vec3 p, vec3 n, vec3 eye) {
-  PENUMBRA_PRECISE vec3 v = normalize(eye - p);
-  PENUMBRA_PRECISE float along = penumbraSurfaceEpsilon(p) / max(dot(n, v), 1.0f / PENUMBRA_ORIGIN_MAX_STRETCH);
-  PENUMBRA_PRECISE vec3 o = p + v * along;
-  return o;
 }
 
 #endif

@@ -289,10 +289,12 @@ Renderer::Renderer(gl::Context& context, const Scene& given, const RenderSetting
 
   colorFbo_ = gl::Framebuffer({&color_}, nullptr);
   emptyVao_ = gl::VertexArray::create();
-  shadeModulate_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"MODULATE"});
+  // The one shading program this renderer's mode needs (the mode is fixed per renderer).
+  const char* mode = settings.shading == ShadingMode::PerSample ? "PER_SAMPLE"
+                     : settings.shading == ShadingMode::Ratio   ? "RATIO"
+                                                                : "MODULATE";
+  shade_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {mode});
   filter_ = gl::Program({"fullscreen.vert", "pipeline_filter.frag"});
-  shadePerSample_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"PER_SAMPLE"});
-  shadeRatio_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {"RATIO"});
   if (settings.pipelineStatistics) statistics_ = gl::PipelineStatistics::create();
 }
 
@@ -337,6 +339,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   timer.setCounter(statistics_.get());
   bool perSample = settings_.shading == ShadingMode::PerSample;
   const bool ratio = settings_.shading == ShadingMode::Ratio;
+  const bool sumsSamples = perSample || ratio;  // shading reads every sample (eq. 6, the ratio), not V alone
   if (perSample && !technique.providesPerSample())
     throw Error(name.empty() ? "renderer" : name,
                 "per-sample shading (eq. 6) needs a technique with per-sample visibility", ExitCode::Usage);
@@ -374,7 +377,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
     lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
 
-    bool wantSamples = technique.providesPerSample() && (settings_.perSampleResults || perSample || ratio);
+    bool wantSamples = technique.providesPerSample() && (settings_.perSampleResults || sumsSamples);
     if (wantSamples && (perSample_.width() != settings_.width || perSample_.layers() != samples.count))
       perSample_ = gl::Texture::make2DArray(GL_R32F, settings_.width, settings_.height, samples.count);
     visibility_.clear(glm::vec4(0.0f));
@@ -408,7 +411,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       filtered_ = gl::Texture::make2D(GL_RGBA32F, settings_.width, settings_.height);
       filteredFbo_ = gl::Framebuffer({&filtered_}, nullptr);
     }
-    if (filter && (perSample || ratio) && !lightColor_) {
+    if (filter && sumsSamples && !lightColor_) {
       lightColor_ = gl::Texture::make2D(GL_RGBA32F, settings_.width, settings_.height);
       lightColorFbo_ = gl::Framebuffer({&lightColor_}, nullptr);
     }
@@ -422,12 +425,12 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     }
 
     timer.time("shading", [&] {
-      const gl::Program& prog = perSample ? shadePerSample_ : ratio ? shadeRatio_ : shadeModulate_;
+      const gl::Program& prog = shade_;
       // Eq. 6 and the ratio estimator with interleaving: the light's term is shaded apart (from
       // the unfiltered per-sample results), then filtered into the image. Divergence from
       // Heitz et al. 2018, who filter the ratio: the unshadowed factor is smooth, so filtering
       // the product differs from it only where U varies within the K x K gather.
-      const bool separate = (perSample || ratio) && filter;
+      const bool separate = sumsSamples && filter;
       if (separate) {
         lightColorFbo_.bind();
         const float zero[4] = {0, 0, 0, 0};

@@ -159,7 +159,7 @@ class Renderer {
   gl::Texture color_, visibility_, perSample_;
   gl::Texture filtered_, lightColor_;  // interleaved sampling: filtered visibility, eq. 6 light term
   gl::Framebuffer colorFbo_, filteredFbo_, lightColorFbo_;
-  gl::Program shadeModulate_, shadePerSample_, shadeRatio_, filter_;
+  gl::Program shade_, filter_;  // shade_: pipeline_shade.frag for settings.shading
   gl::VertexArray emptyVao_;
   std::uint64_t prepared_ = 0;  // Technique::serial() of the technique prepared last
   std::unique_ptr<gl::PipelineStatistics> statistics_;  // null where the GL has none
