@@ -30,10 +30,3 @@ uint pixelSampleBase(ivec2 pixel) {
 // Horizon rule shared with the reference: a sample below the surface's tangent plane is not
 // seen (README "Conventions").
 bool aboveHorizon(vec3 p, vec3 n, vec3 x) { return dot(n, x - p) > 0.0; }
-
-// One-sided emitters only light the half-space in front of them.
-float emitterCosine(vec3 towardsSurface) {
-  return lightShape == PENUMBRA_LIGHT_RECT || lightShape == PENUMBRA_LIGHT_DISK
-             ? max(dot(lightNormal, towardsSurface), 0.0)
-             : 1.0;
-}

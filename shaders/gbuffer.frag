@@ -3,7 +3,8 @@
 // technique and the reference. The shading normal (the BRDF's, issue 16 section 1) is the
 // interpolated vertex normal, normalised, turned to the geometric normal's side: a back face
 // seen by the camera is shaded as its own front (two-sided, as the geometric normal), and a
-// file whose normals point against its winding is shaded as if they did not.
+// file whose normals point against its winding is shaded as if they did not. The material
+// target holds the BRDF's parameters (shared.h penumbraBrdf).
 // The position is where the ray through the pixel centre meets the triangle's plane, not the
 // interpolated vertex positions: interpolation errs by a few ULPs of the triangle's vertices
 // (0.01 units near the camera on a 1e5-unit floor, off its own plane too when it is tilted),
@@ -23,12 +24,18 @@ uniform vec3 baseColor;
 uniform float opacity;
 uniform int hasTexture;
 uniform int materialId;
+uniform int brdfModel;  // PENUMBRA_BRDF_*
+uniform float metallic;
+uniform float roughness;
+uniform int hasMetallicRoughnessTexture;
 layout(binding = PENUMBRA_UNIT_MATERIAL_TEX) uniform sampler2D baseColorTexture;
+layout(binding = PENUMBRA_UNIT_MATERIAL_MR_TEX) uniform sampler2D metallicRoughnessTexture;
 
 layout(location = PENUMBRA_GBUF_POSITION) out vec4 outPosition;
 layout(location = PENUMBRA_GBUF_NORMAL) out vec4 outNormal;
 layout(location = PENUMBRA_GBUF_ALBEDO) out vec4 outAlbedo;
 layout(location = PENUMBRA_GBUF_SHADING) out vec4 outShading;
+layout(location = PENUMBRA_GBUF_MATERIAL) out vec4 outMaterial;
 
 vec3 pixelRayPoint(vec3 face) {
   // glClipControl(GL_UPPER_LEFT): window y grows downwards in NDC (context.cpp).
@@ -55,4 +62,8 @@ void main() {
   float len = length(vShading);
   vec3 s = len > 1e-6 ? vShading / len : n;
   outShading = vec4(dot(s, n) < 0.0 ? -s : s, 0.0);
+  // glTF: the texture's B channel scales metallic, G roughness (linear data).
+  vec2 mr = vec2(metallic, roughness);
+  if (hasMetallicRoughnessTexture != 0) mr *= texture(metallicRoughnessTexture, vUv).bg;
+  outMaterial = vec4(clamp(mr, 0.0, 1.0), float(brdfModel), 0.0);
 }

@@ -6,14 +6,19 @@
 // penumbraBallIrradiance; else the unshadowed sample sum) times the shadow ratio
 // sum_k w_k T_k / sum_k w_k from the per-sample results, or V over its unshadowed value for a
 // technique with V only. A pixel whose samples all miss (sum_k w_k = 0) gets ratio 0, as eq. 6.
-// BRDF: Lambertian, albedo / pi; its cosine with the shading normal (the G-buffer's interpolated
-// vertex normal), the horizon rule with the geometric one (README "Conventions").
+// BRDF: shared.h penumbraBrdf (Lambertian or the glTF metallic-roughness BRDF, from the
+// G-buffer's material target), its cosine with the shading normal (the G-buffer's interpolated
+// vertex normal), the horizon rule with the geometric one (README "Conventions"). In the ratio
+// mode the diffuse part's unshadowed term is Lambert's formula times the samples' mean of the
+// diffuse BRDF (1 - F varies over the light; exact for LAMBERT), the specular part's the sample
+// sum.
 #include "common_light.glsl"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 layout(binding = PENUMBRA_UNIT_GBUF_ALBEDO) uniform sampler2D gAlbedo;
 layout(binding = PENUMBRA_UNIT_GBUF_SHADING) uniform sampler2D gShading;
+layout(binding = PENUMBRA_UNIT_GBUF_MATERIAL) uniform sampler2D gMaterial;
 #if defined(MODULATE) || defined(RATIO)
 layout(binding = PENUMBRA_UNIT_VISIBILITY) uniform sampler2D visibility;
 #endif
@@ -23,32 +28,49 @@ layout(binding = PENUMBRA_UNIT_SAMPLE_VIS) uniform sampler2DArray sampleVisibili
 #ifdef RATIO
 uniform int ratioFromSamples;  // 1: the technique's per-sample results are bound
 #endif
+uniform vec3 eyePosition;
 
 out vec4 outColor;
 
-const float kInvPi = 0.31830988618379067;
+// The G-buffer's surface at a pixel: point, geometric and shading normal, the unit direction
+// to the eye and the BRDF's parameters.
+struct Surface {
+  vec3 p, n, ns, v, base;
+  float metallic, roughness;
+  int model;
+};
 
-// Sample i's share of the unshadowed integral, L_i cos(theta_s) [cos(theta_l)] / r^2: 0 below
-// the geometric horizon, the cosine with the shading normal. Eq. 6 and the ratio sum it.
-vec3 sampleTerm(vec3 p, vec3 n, vec3 ns, uint i) {
-  vec3 x = samplePositions[i].xyz;
-  if (!aboveHorizon(p, n, x)) return vec3(0.0);
-  vec3 d = x - p;
-  float r2 = dot(d, d);
-  vec3 l = d * inversesqrt(r2);
-  return sampleLuminance[i].rgb * (max(dot(ns, l), 0.0) * emitterCosine(-l) / r2);
+// The light's geometric term towards x, L_i cos(theta_s) [cos(theta_l)] / r^2 (0 below the
+// geometric horizon), and the unit direction l to x.
+vec3 geometricTerm(Surface s, vec3 x, vec3 luminance, out vec3 l) {
+  l = normalize(x - s.p);
+  return luminance * penumbraSampleGeometry(s.p, s.n, s.ns, x, lightNormal);
+}
+
+vec3 diffuseOf(Surface s, vec3 l) { return penumbraBrdfDiffuse(s.v, l, s.base, s.metallic, s.model); }
+vec3 specularOf(Surface s, vec3 l) {
+  return penumbraBrdfSpecular(s.ns, s.v, l, s.base, s.metallic, s.roughness, s.model);
+}
+
+// Sample i's share of the unshadowed integral, f L_i cos(theta_s) [cos(theta_l)] / r^2. Eq. 6
+// and the ratio sum it.
+vec3 sampleTerm(Surface s, uint i) {
+  vec3 l;
+  vec3 g = geometricTerm(s, samplePositions[i].xyz, sampleLuminance[i].rgb, l);
+  return g * (diffuseOf(s, l) + specularOf(s, l));
 }
 
 #ifdef RATIO
-// The unshadowed integral in closed form where penumbra has one for this light and point, else -1.
-float closedFormIrradiance(vec3 p, vec3 n, vec3 ns) {
+// The unshadowed integral of cos(theta_s) [cos(theta_l)] / r^2 over the light in closed form
+// where penumbra has one for this light and point, else -1.
+float closedFormIrradiance(Surface s) {
   if (lightTextured != 0) return -1.0;
   if (lightShape == PENUMBRA_LIGHT_RECT)
-    return dot(lightNormal, p - lightPosition) > 0.0
-               ? penumbraRectIrradiance(p, n, ns, lightPosition, lightTangent, cross(lightNormal, lightTangent),
+    return dot(lightNormal, s.p - lightPosition) > 0.0
+               ? penumbraRectIrradiance(s.p, s.n, s.ns, lightPosition, lightTangent, cross(lightNormal, lightTangent),
                                         lightHalfExtent)
                : 0.0;
-  if (lightShape == PENUMBRA_LIGHT_SPHERE) return penumbraBallIrradiance(p, n, ns, lightPosition, lightShapeRadius);
+  if (lightShape == PENUMBRA_LIGHT_SPHERE) return penumbraBallIrradiance(s.p, s.n, s.ns, lightPosition, lightShapeRadius);
   return -1.0;
 }
 
@@ -61,36 +83,45 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 p = texelFetch(gPosition, px, 0);
   if (p.w == 0.0) discard;
-  vec3 n = texelFetch(gNormal, px, 0).xyz;
-  vec3 ns = texelFetch(gShading, px, 0).xyz;
-  vec3 brdf = texelFetch(gAlbedo, px, 0).rgb * kInvPi;
+  vec4 m = texelFetch(gMaterial, px, 0);
+  Surface s = Surface(p.xyz, texelFetch(gNormal, px, 0).xyz, texelFetch(gShading, px, 0).xyz,
+                      normalize(eyePosition - p.xyz), texelFetch(gAlbedo, px, 0).rgb, m.r, m.g, int(m.b + 0.5));
 #ifdef MODULATE
-  vec3 d = lightPosition - p.xyz;
-  float r2 = dot(d, d);
-  vec3 l = d * inversesqrt(r2);
   // The centre's horizon as the samples' (eq. 3 treats the light as a point at its centre).
-  float g = aboveHorizon(p.xyz, n, lightPosition) ? max(dot(ns, l), 0.0) * emitterCosine(-l) / r2 : 0.0;
+  vec3 l;
+  vec3 g = geometricTerm(s, lightPosition, vec3(1.0), l);
   vec3 v = texelFetch(visibility, px, 0).rgb;
-  outColor = vec4(brdf * lightEmission * lightScale * v * g, 1.0);
+  outColor = vec4((diffuseOf(s, l) + specularOf(s, l)) * lightEmission * lightScale * v * g, 1.0);
 #elif defined(RATIO)
   uint base = pixelSampleBase(px);
   vec3 weights = vec3(0.0), shadowed = vec3(0.0), unshadowedV = vec3(0.0);
+  vec3 diffuse = vec3(0.0), geometric = vec3(0.0), specular = vec3(0.0);
   for (uint k = 0u; k < sampleCount; ++k) {
-    vec3 w = sampleTerm(p.xyz, n, ns, base + k);
-    weights += w;
-    if (aboveHorizon(p.xyz, n, samplePositions[base + k].xyz)) unshadowedV += sampleLuminance[base + k].rgb;
-    if (ratioFromSamples != 0) shadowed += w * texelFetch(sampleVisibility, ivec3(px, int(k)), 0).r;
+    vec3 l;
+    vec3 g = geometricTerm(s, samplePositions[base + k].xyz, sampleLuminance[base + k].rgb, l);
+    vec3 fd = g * diffuseOf(s, l), fs = g * specularOf(s, l);
+    weights += fd + fs;
+    diffuse += fd;
+    specular += fs;
+    geometric += g;
+    if (aboveHorizon(s.p, s.n, samplePositions[base + k].xyz)) unshadowedV += sampleLuminance[base + k].rgb;
+    if (ratioFromSamples != 0) shadowed += (fd + fs) * texelFetch(sampleVisibility, ivec3(px, int(k)), 0).r;
   }
-  float closed = closedFormIrradiance(p.xyz, n, ns);
-  vec3 unshadowed = closed >= 0.0 ? vec3(closed) : weights * sampleWeight;
+  float closed = closedFormIrradiance(s);
+  vec3 centre;
+  geometricTerm(s, lightPosition, vec3(1.0), centre);
+  // The diffuse BRDF's mean over the samples, weighted by their geometric terms (its value at
+  // the light's centre where no sample is above the horizon).
+  vec3 diffuseMean = dot(geometric, vec3(1.0)) > 0.0 ? ratioOf(diffuse, geometric) : diffuseOf(s, centre);
+  vec3 unshadowed = (closed >= 0.0 ? closed * diffuseMean : diffuse * sampleWeight) + specular * sampleWeight;
   vec3 ratio = ratioFromSamples != 0 ? ratioOf(shadowed, weights)
                                      : ratioOf(texelFetch(visibility, px, 0).rgb * float(sampleCount), unshadowedV);
-  outColor = vec4(brdf * lightEmission * unshadowed * ratio, 1.0);
+  outColor = vec4(lightEmission * unshadowed * ratio, 1.0);
 #else
   uint base = pixelSampleBase(px);
   vec3 sum = vec3(0.0);
   for (uint k = 0u; k < sampleCount; ++k)
-    sum += sampleTerm(p.xyz, n, ns, base + k) * texelFetch(sampleVisibility, ivec3(px, int(k)), 0).r;
-  outColor = vec4(brdf * lightEmission * sampleWeight * sum, 1.0);
+    sum += sampleTerm(s, base + k) * texelFetch(sampleVisibility, ivec3(px, int(k)), 0).r;
+  outColor = vec4(lightEmission * sampleWeight * sum, 1.0);
 #endif
 }

@@ -22,6 +22,7 @@
 #define PENUMBRA_GBUF_ALBEDO 2     // RGBA16F: base colour, a = opacity
 #define PENUMBRA_GBUF_SHADING 3    // RGBA32F: shading normal (interpolated vertex normal), unit, on
                                    // the side of the normal above; a = 0
+#define PENUMBRA_GBUF_MATERIAL 4   // RGBA16F: metallic, roughness, BRDF model (PENUMBRA_BRDF_*), 0
 
 // ---- texture units -------------------------------------------------------------------------
 // Those every technique shares. A technique's own binding points are in its header beside its
@@ -36,6 +37,9 @@
 #define PENUMBRA_UNIT_COUNTER 6         // R32F: shadow-volume count (hard-sv, dcs)
 #define PENUMBRA_UNIT_FILTER_SOURCE 11  // RGBA32F: input of the interleaved-sampling filter
 #define PENUMBRA_UNIT_GBUF_SHADING 20
+#define PENUMBRA_UNIT_GBUF_MATERIAL 21
+#define PENUMBRA_UNIT_MATERIAL_MR_TEX 22 // glTF metallicRoughnessTexture (G roughness, B metallic)
+#define PENUMBRA_UNIT_LTC 23            // RGBA32F 2D array: the LTC GGX table (luts/ltc_ggx.lut)
 #define PENUMBRA_IMAGE_SAMPLE_VIS 0     // image unit of the per-sample visibility array
 
 // ---- shader storage / uniform buffer bindings ----------------------------------------------
@@ -217,6 +221,102 @@ PENUMBRA_FN float penumbraBallIrradiance(vec3 p, vec3 ng, vec3 ns, vec3 centre, 
   if (!(above > radius)) return -1.0f;
   float d2 = dot(d, d);
   return 3.1415926536f * radius * radius * dot(ns, d) / (d2 * sqrt(d2));
+}
+
+// ---- a light sample's geometric term -----------------------------------------------------
+// cos(theta_s) [cos(theta_l)] / r^2 of the light point x seen from p: 0 below the geometric
+// normal ng's horizon (the horizon rule, README "Conventions"), the cosine with the shading
+// normal ns clamped at 0, [cos(theta_l)] only for a one-sided emitter (lightNormal its emission
+// normal; 0 for isotropic lights, LightSampleSet::lightNormal). The pipeline's shading and the
+// reference's shaded image both weight each sample by it.
+PENUMBRA_FN float penumbraSampleGeometry(vec3 p, vec3 ng, vec3 ns, vec3 x, vec3 lightNormal) {
+  vec3 d = x - p;
+  if (!(dot(ng, d) > 0.0f)) return 0.0f;
+  float r2 = dot(d, d);
+  vec3 l = d / sqrt(r2);
+  float emitter = dot(lightNormal, lightNormal) > 0.0f ? max(-dot(lightNormal, l), 0.0f) : 1.0f;
+  return max(dot(ns, l), 0.0f) * emitter / r2;
+}
+
+// ---- BRDF (issue 16 section 4) -------------------------------------------------------------
+// LAMBERT: albedo / pi (scene-file materials without "metallic"/"roughness", OBJ without Ks).
+// METALLIC_ROUGHNESS: the glTF 2.0 specification's BRDF (Appendix B, "BRDF Implementation"):
+//   c_diff = mix(baseColor, 0, metallic), f0 = mix(0.04, baseColor, metallic), alpha = roughness^2,
+//   F = f0 + (1 - f0) (1 - |v.h|)^5 (Schlick), f = (1 - F) c_diff / pi + F D V,
+//   D the GGX (Trowbridge-Reitz) distribution, V = G / (4 |n.l| |n.v|) with G the separable
+//   Smith-GGX masking-shadowing (spec eq. for V_GGX).
+// Divergence: roughness is clamped to >= PENUMBRA_MIN_ROUGHNESS (a mirror's D is a delta no
+// light sample can hit; Filament clamps at the same value), and n.v to >= 1e-4 (a shading normal
+// turned from the viewer: the lobe's limit, not a division by zero).
+#define PENUMBRA_BRDF_LAMBERT 0
+#define PENUMBRA_BRDF_METALLIC_ROUGHNESS 1
+#define PENUMBRA_MIN_ROUGHNESS 0.045f
+
+// GGX D(h) for alpha^2 = a2, nh = n.h (> 0).
+PENUMBRA_FN float penumbraGgxD(float nh, float a2) {
+  float d = nh * nh * (a2 - 1.0f) + 1.0f;
+  return a2 / (3.1415926536f * d * d);
+}
+
+// The visibility term V = G / (4 n.l n.v) of the separable Smith-GGX G (glTF 2.0 Appendix B).
+PENUMBRA_FN float penumbraGgxVisibility(float nl, float nv, float a2) {
+  return 1.0f / ((nl + sqrt(a2 + (1.0f - a2) * nl * nl)) * (nv + sqrt(a2 + (1.0f - a2) * nv * nv)));
+}
+
+// The specular lobe without Fresnel, times the cosine: D V (n.l), for unit n, v, l. 0 below
+// the horizon of n. What the LTC table fits (Heitz et al. 2016, section 4: BRDF * cos with F = 1).
+PENUMBRA_FN float penumbraGgxCosine(vec3 n, vec3 v, vec3 l, float alpha) {
+  float nl = dot(n, l);
+  if (!(nl > 0.0f)) return 0.0f;
+  float nv = max(dot(n, v), 1e-4f);
+  vec3 h = v + l;
+  float hl = length(h);
+  if (!(hl > 0.0f)) return 0.0f;
+  float nh = dot(n, h) / hl;
+  if (!(nh > 0.0f)) return 0.0f;
+  float a2 = alpha * alpha;
+  return penumbraGgxD(nh, a2) * penumbraGgxVisibility(nl, nv, a2) * nl;
+}
+
+PENUMBRA_FN float penumbraAlpha(float roughness) {
+  float r = max(roughness, PENUMBRA_MIN_ROUGHNESS);
+  return r * r;
+}
+
+// Schlick's Fresnel for f0 at v.h.
+PENUMBRA_FN vec3 penumbraSchlick(vec3 f0, float vh) {
+  float m = 1.0f - max(vh, 0.0f);
+  float m5 = m * m * m * m * m;
+  return f0 + (vec3(1.0f) - f0) * m5;
+}
+
+// The BRDF f(v, l) = diffuse + specular (1/sr, rgb; the cosine not included) with shading
+// normal n, unit v towards the viewer and l towards the light, in two parts: the ratio
+// estimator gives each its own unshadowed term (Lambert's formula, LTC). Below n's horizon the
+// specular part is 0 and the diffuse part keeps its value (the callers' cosine, clamped at 0,
+// removes it).
+PENUMBRA_FN vec3 penumbraFresnel(vec3 v, vec3 l, vec3 baseColor, float metallic) {
+  vec3 f0 = vec3(0.04f) * (1.0f - metallic) + baseColor * metallic;
+  vec3 h = v + l;
+  float hl = length(h);
+  return penumbraSchlick(f0, hl > 0.0f ? dot(v, h) / hl : 0.0f);
+}
+
+PENUMBRA_FN vec3 penumbraBrdfDiffuse(vec3 v, vec3 l, vec3 baseColor, float metallic, int model) {
+  if (model != PENUMBRA_BRDF_METALLIC_ROUGHNESS) return baseColor * 0.31830988618f;
+  return (vec3(1.0f) - penumbraFresnel(v, l, baseColor, metallic)) * baseColor * ((1.0f - metallic) * 0.31830988618f);
+}
+
+PENUMBRA_FN vec3 penumbraBrdfSpecular(vec3 n, vec3 v, vec3 l, vec3 baseColor, float metallic, float roughness,
+                                      int model) {
+  float nl = dot(n, l);
+  if (model != PENUMBRA_BRDF_METALLIC_ROUGHNESS || !(nl > 0.0f)) return vec3(0.0f);
+  return penumbraFresnel(v, l, baseColor, metallic) * (penumbraGgxCosine(n, v, l, penumbraAlpha(roughness)) / nl);
+}
+
+PENUMBRA_FN vec3 penumbraBrdf(vec3 n, vec3 v, vec3 l, vec3 baseColor, float metallic, float roughness, int model) {
+  return penumbraBrdfDiffuse(v, l, baseColor, metallic, model) +
+         penumbraBrdfSpecular(n, v, l, baseColor, metallic, roughness, model);
 }
 
 #endif

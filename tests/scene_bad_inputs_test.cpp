@@ -664,9 +664,17 @@ TEST(SceneBadInputs, ObjMaterialsGiveEachFaceItsKdOpacityAndTexture) {
   // The unknown name keeps its faces, with the default material, and says so.
   EXPECT_EQ(meshNamed(s, "m.obj#nosuch")->material, 0);
   EXPECT_TRUE(hasWarning(s, obj + ": usemtl 'nosuch': no such material in "));
-  EXPECT_TRUE(hasWarning(s, "m.mtl: 'Ks' not used (penumbra reads Kd, map_Kd, d and Tr), in 2 "
-                            "materials (red, half)"));
-  EXPECT_TRUE(hasWarning(s, "m.mtl: 'Ns' not used"));
+  // Ks/Ns map onto the metallic-roughness BRDF: a dielectric lobe, roughness (2 / (Ns + 2))^(1/4).
+  EXPECT_TRUE(hasWarning(s, "m.mtl: Ks is read as a dielectric specular lobe (F0 0.04, roughness from Ns); "
+                            "its strength and colour are not used, in 2 materials (red, half)"));
+  EXPECT_FALSE(hasWarning(s, "'Ks' not used"));
+  EXPECT_FALSE(hasWarning(s, "'Ns' not used"));
+  const Material& redMaterial = materialOf(s, "m.obj#red");
+  EXPECT_EQ(redMaterial.brdf, BrdfModel::MetallicRoughness);
+  EXPECT_NEAR(redMaterial.roughness, std::pow(2.0f / 12.0f, 0.25f), 1e-6f);
+  EXPECT_EQ(redMaterial.metallic, 0.0f);
+  EXPECT_EQ(materialOf(s, "m.obj#half").roughness, 1.0f);  // no Ns
+  EXPECT_EQ(materialOf(s, "m.obj#tr").brdf, BrdfModel::Lambert);  // no Ks
   EXPECT_TRUE(hasWarning(s, "m.mtl: 'map_Bump' not used"));
   EXPECT_FALSE(hasWarning(s, "'Kd' not used"));
   EXPECT_FALSE(hasWarning(s, "'d' not used"));

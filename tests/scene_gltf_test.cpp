@@ -145,7 +145,7 @@ TEST(SceneGltf, Materials) {
   EXPECT_EQ(m.materials[2].alphaMode, AlphaMode::Blend);
   EXPECT_NEAR(m.materials[2].opacity, 0.4f, 1e-6f);
   ASSERT_EQ(m.materials[3].baseColorTexture, 0);
-  ASSERT_EQ(m.textures.size(), 1u);
+  ASSERT_EQ(m.textures.size(), 2u);
   const Image& img = m.textures[0].image;
   ASSERT_EQ(img.width, 2);
   ASSERT_EQ(img.channels, 4);
@@ -156,6 +156,14 @@ TEST(SceneGltf, Materials) {
   EXPECT_NEAR(img.at(1, 1, 3), 128.0f / 255.0f, 1e-6f);  // alpha stays linear
   ASSERT_EQ(m.meshes.size(), 4u);
   for (int i = 0; i < 4; ++i) EXPECT_EQ(m.meshes[std::size_t(i)].material, i);
+  // The specification's BRDF, its factors (default 1) and the metallic-roughness texture, which
+  // is linear data: the same image decoded a second time, without the sRGB curve.
+  for (const Material& mat : m.materials) EXPECT_EQ(mat.brdf, BrdfModel::MetallicRoughness);
+  EXPECT_EQ(m.materials[0].metallic, 0.25f);
+  EXPECT_EQ(m.materials[0].roughness, 0.5f);
+  EXPECT_EQ(m.materials[1].metallic, 1.0f);
+  EXPECT_EQ(m.materials[1].roughness, 1.0f);
+  EXPECT_EQ(m.materials[3].metallicRoughnessTexture, 1);
 }
 
 TEST(SceneGltf, Lights) {

@@ -175,8 +175,9 @@ GpuScene::GpuScene(const Scene& scene, int width, int height, std::size_t maxVer
   normal_ = gl::Texture::make2D(GL_RGBA32F, width, height);
   albedo_ = gl::Texture::make2D(GL_RGBA16F, width, height);
   shading_ = gl::Texture::make2D(GL_RGBA32F, width, height);
+  material_ = gl::Texture::make2D(GL_RGBA16F, width, height);
   depth_ = gl::Texture::make2D(GL_DEPTH_COMPONENT32F, width, height);
-  fbo_ = gl::Framebuffer({&position_, &normal_, &albedo_, &shading_}, &depth_);
+  fbo_ = gl::Framebuffer({&position_, &normal_, &albedo_, &shading_, &material_}, &depth_);
   program_ = gl::Program({"gbuffer.vert", "gbuffer.frag"});
   gl::Context::checkErrors("GpuScene upload");
 }
@@ -189,9 +190,17 @@ void GpuScene::drawGBuffer(const gl::Program& program) const {
     program.set("baseColor", mat.baseColor);
     program.set("opacity", mat.opacity);
     program.set("materialId", d.material);
-    bool tex = mat.baseColorTexture >= 0 && std::size_t(mat.baseColorTexture) < materialTextures_.size();
-    program.set("hasTexture", tex ? 1 : 0);
-    if (tex) materialTextures_[std::size_t(mat.baseColorTexture)].bind(PENUMBRA_UNIT_MATERIAL_TEX);
+    program.set("brdfModel", int(mat.brdf));
+    program.set("metallic", mat.metallic);
+    program.set("roughness", mat.roughness);
+    // Loaders only make indices into Scene::textures; one out of range binds nothing.
+    auto bindTexture = [&](int index, int unit, const char* flag) {
+      const bool tex = index >= 0 && std::size_t(index) < materialTextures_.size();
+      program.set(flag, tex ? 1 : 0);
+      if (tex) materialTextures_[std::size_t(index)].bind(unit);
+    };
+    bindTexture(mat.baseColorTexture, PENUMBRA_UNIT_MATERIAL_TEX, "hasTexture");
+    bindTexture(mat.metallicRoughnessTexture, PENUMBRA_UNIT_MATERIAL_MR_TEX, "hasMetallicRoughnessTexture");
     glDrawArrays(GL_TRIANGLES, d.first, d.count);
   }
 }
@@ -218,7 +227,7 @@ void GpuScene::drawTriangles(GLsizei instances, Occluders which, const gl::Progr
 void GpuScene::renderGBuffer() {
   fbo_.bind();
   const float zero[4] = {0, 0, 0, 0};
-  for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, i, zero);
+  for (int i = 0; i < 5; ++i) glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, i, zero);
   const float depthClear = 0.0f;  // reversed Z: 0 is infinitely far
   glClearNamedFramebufferfv(fbo_.id(), GL_DEPTH, 0, &depthClear);
   glEnable(GL_DEPTH_TEST);
@@ -240,26 +249,33 @@ void GpuScene::bindGBuffer() const {
   normal_.bind(PENUMBRA_UNIT_GBUF_NORMAL);
   albedo_.bind(PENUMBRA_UNIT_GBUF_ALBEDO);
   shading_.bind(PENUMBRA_UNIT_GBUF_SHADING);
+  material_.bind(PENUMBRA_UNIT_GBUF_MATERIAL);
 }
 
 CpuGBuffer GpuScene::readGBuffer() const {
-  Image pos = position_.read(4), nrm = normal_.read(4);
+  Image pos = position_.read(4), nrm = normal_.read(4), shading = shading_.read(4), albedo = albedo_.read(4),
+        material = material_.read(4);
   CpuGBuffer g;
   g.width = width_, g.height = height_;
   g.camera = cameraPos_;
   g.origin = scene_.origin;
   std::size_t n = pos.pixelCount();
   g.position.resize(n), g.normal.resize(n), g.valid.resize(n);
+  g.shadingNormal.resize(n), g.baseColor.resize(n), g.material.resize(n);
+  auto vec3At = [](const Image& im, std::size_t i) { return glm::vec3(im.data[i * 4], im.data[i * 4 + 1], im.data[i * 4 + 2]); };
   for (std::size_t i = 0; i < n; ++i) {
-    g.position[i] = {pos.data[i * 4], pos.data[i * 4 + 1], pos.data[i * 4 + 2]};
-    g.normal[i] = {nrm.data[i * 4], nrm.data[i * 4 + 1], nrm.data[i * 4 + 2]};
+    g.position[i] = vec3At(pos, i);
+    g.normal[i] = vec3At(nrm, i);
     g.valid[i] = pos.data[i * 4 + 3] > 0.5f;
+    g.shadingNormal[i] = vec3At(shading, i);
+    g.baseColor[i] = vec3At(albedo, i);
+    g.material[i] = vec3At(material, i);
   }
   return g;
 }
 
 std::size_t GpuScene::memoryBytes() const {
-  std::size_t bytes = position_.bytes() + normal_.bytes() + albedo_.bytes() + shading_.bytes() + depth_.bytes();
+  std::size_t bytes = position_.bytes() + normal_.bytes() + albedo_.bytes() + shading_.bytes() + material_.bytes() + depth_.bytes();
   for (auto& c : chunks_) bytes += c.vertices.size();
   return bytes;
 }
@@ -340,7 +356,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   bool perSample = settings_.shading == ShadingMode::PerSample;
   const bool ratio = settings_.shading == ShadingMode::Ratio;
   const bool sumsSamples = perSample || ratio;  // shading reads every sample (eq. 6, the ratio), not V alone
-  if (perSample && !technique.providesPerSample())
+  if (perSample && !technique.providesPerSample() && !technique.shadesLights())
     throw Error(name.empty() ? "renderer" : name,
                 "per-sample shading (eq. 6) needs a technique with per-sample visibility", ExitCode::Usage);
 
@@ -362,6 +378,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   const float background[4] = {scene_.background.r, scene_.background.g, scene_.background.b, 0};
   glClearNamedFramebufferfv(colorFbo_.id(), GL_COLOR, 0, background);
 
+  Image cpuRadiance;  // the lights a technique shaded itself (LightPass::cpuRadiance)
   for (std::size_t li = 0; li < scene_.lights.size(); ++li) {
     const Light& light = scene_.lights[li];
     LightSampleSet samples = makeLightSamples(scene_, light, settings_.sampling, settings_.time);
@@ -387,8 +404,9 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     if (wantSamples) perSample_.clear(glm::vec4(0.0f));
     LightResult lr;
     lr.samples = samples.count;
+    Image lightRadiance;
     LightPass pass{scene_, light, int(li), samples, *gpu_, timer, cpuGBuffer, visibility_,
-                   wantSamples ? &perSample_ : nullptr, &lr.perSample, &lr.visibility};
+                   wantSamples ? &perSample_ : nullptr, &lr.perSample, &lr.visibility, &lightRadiance};
     gpu_->bindGBuffer();
     technique.renderVisibility(pass);
     lr.unshadowed = timer.harness("unshadowed readback", [&] { return technique.unshadowedPixels(); });
@@ -424,7 +442,16 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       vis = &filtered_;
     }
 
-    timer.time("shading", [&] {
+    // The technique shaded the light itself: its radiance is added to the image read back.
+    if (technique.shadesLights() && lightRadiance.pixelCount() == 0)
+      throw Error(name, fmt::format("light '{}': the technique shades its lights but gave no shaded image", light.name));
+    if (technique.shadesLights()) {
+      if (lightRadiance.width != settings_.width || lightRadiance.height != settings_.height || lightRadiance.channels != 3)
+        throw Error(name, fmt::format("light '{}': the technique's shaded image is not {}x{} RGB", light.name,
+                                      settings_.width, settings_.height));
+      if (cpuRadiance.pixelCount() == 0) cpuRadiance = Image(settings_.width, settings_.height, 3, 0.0f);
+      for (std::size_t i = 0; i < cpuRadiance.data.size(); ++i) cpuRadiance.data[i] += lightRadiance.data[i];
+    } else timer.time("shading", [&] {
       const gl::Program& prog = shade_;
       // Eq. 6 and the ratio estimator with interleaving: the light's term is shaded apart (from
       // the unfiltered per-sample results), then filtered into the image. Divergence from
@@ -449,6 +476,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       (ratio ? visibility_ : *vis).bind(PENUMBRA_UNIT_VISIBILITY);
       prog.use();
       setLightUniforms(prog, light, samples);
+      prog.set("eyePosition", gpu_->cameraPosition());
       if (ratio) prog.set("ratioFromSamples", wantSamples ? 1 : 0);
       emptyVao_.bind();
       glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -480,6 +508,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     result.lights.push_back(std::move(lr));
   }
   result.color = timer.harness("readback", [&] { return color_.read(3); });
+  for (std::size_t i = 0; i < cpuRadiance.data.size(); ++i) result.color.data[i] += cpuRadiance.data[i];
   if (std::size_t bad = nonFinitePixels(result.color))
     throw Error(name, fmt::format("{} of {} pixels of the shaded image are NaN or infinite", bad, result.color.pixelCount()));
   // Comparisons mask background pixels with it (RenderSettings::gbufferResults).

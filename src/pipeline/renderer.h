@@ -131,7 +131,7 @@ class GpuScene {
   std::vector<Draw> draws_;
   bool allOpaque_ = true;  // every material of opacity 1: one draw covers every (opaque) occluder
   std::vector<gl::Texture> materialTextures_;  // parallel to scene.textures
-  gl::Texture position_, normal_, albedo_, shading_, depth_;
+  gl::Texture position_, normal_, albedo_, shading_, material_, depth_;
   gl::Framebuffer fbo_;
   gl::Program program_;
 };

@@ -42,6 +42,10 @@ struct LightPass {
   // directly (the harness then reads neither back).
   std::vector<float>* cpuPerSample;
   Image* cpuVisibility;
+  // A technique that shades the light itself (the converged reference: its own samples, not the
+  // set above) puts the light's outgoing radiance here (RGB); the pipeline then adds it to the
+  // image instead of shading the light.
+  Image* cpuRadiance;
 };
 
 class Technique {
@@ -61,6 +65,9 @@ class Technique {
   virtual void renderVisibility(LightPass& pass) = 0;
   // True when the technique gives per-light-sample visibility (enables eq. 6 shading).
   virtual bool providesPerSample() const { return false; }
+  // True when the technique shades every light itself (LightPass::cpuRadiance; the converged
+  // reference): the pipeline's shading mode does not apply to it.
+  virtual bool shadesLights() const { return false; }
   // Render-target memory the technique allocated, in bytes (for reports).
   virtual std::size_t memoryBytes() const { return 0; }
   // Numbers about the last frame worth reporting (edges drawn, counter base, passes, ...).

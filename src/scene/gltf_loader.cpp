@@ -321,7 +321,7 @@ Primitive convertPrimitive(Loader& L, const tinygltf::Primitive& p, const std::s
 // ---------------------------------------------------------------------------------------------
 
 void convertMaterials(Loader& L) {
-  std::map<int, int> textureOfImage;
+  std::map<std::pair<int, bool>, int> textureOfImage;  // (image, sRGB) -> Scene::textures
   for (std::size_t i = 0; i < L.gltf.materials.size(); ++i) {
     const tinygltf::Material& g = L.gltf.materials[i];
     const std::string what = "material " + std::to_string(i);
@@ -348,46 +348,57 @@ void convertMaterials(Loader& L) {
     } else if (!g.alphaMode.empty() && g.alphaMode != "OPAQUE") {
       L.warn(what + ": unknown alphaMode '" + g.alphaMode + "', treated as OPAQUE");
     }
-    const int tex = g.pbrMetallicRoughness.baseColorTexture.index;
-    if (tex >= 0) {
+    // A texture slot's image, decoded once per (image, colour space) and shared by materials.
+    auto textureOf = [&](const tinygltf::TextureInfo& info, const char* slot, bool srgb) -> int {
+      const int tex = info.index;
+      if (tex < 0) return -1;
       if (std::size_t(tex) >= L.gltf.textures.size()) {
-        L.fail(what + ": baseColorTexture " + std::to_string(tex) + " does not exist");
+        L.fail(what + ": " + slot + " " + std::to_string(tex) + " does not exist");
       }
+      if (info.texCoord != 0) {
+        L.warn(what + ": " + slot + " uses TEXCOORD_" + std::to_string(info.texCoord) + "; only TEXCOORD_0 is loaded");
+      }
+      if (info.extensions.count("KHR_texture_transform")) L.warn(what + ": KHR_texture_transform ignored");
       const int image = L.gltf.textures[std::size_t(tex)].source;
       if (image < 0 || std::size_t(image) >= L.gltf.images.size()) {
-        L.warn(what + ": texture " + std::to_string(tex) + " has no image; texture ignored");
-      } else if (const auto it = textureOfImage.find(image); it != textureOfImage.end()) {
-        m.baseColorTexture = it->second;
-      } else {
-        const tinygltf::Image& img = L.gltf.images[std::size_t(image)];
-        Texture t;
-        t.source = L.path + (img.uri.empty() || img.uri.rfind("data:", 0) == 0
-                                 ? "#image" + std::to_string(image)
-                                 : "#" + img.uri);
-        std::string why = "no data";
-        if (!img.image.empty() && decodeGltfImage(img.image, t.image, why)) {
-          m.baseColorTexture = int(L.out.textures.size());
-          textureOfImage[image] = m.baseColorTexture;
-          L.out.textures.push_back(std::move(t));
-        } else {
-          L.warn(what + ": image " + std::to_string(image) + ": " + why + "; texture ignored");
-        }
+        L.warn(what + ": texture " + std::to_string(tex) + " has no image; " + slot + " ignored");
+        return -1;
       }
-      if (g.pbrMetallicRoughness.baseColorTexture.texCoord != 0) {
-        L.warn(what + ": baseColorTexture uses TEXCOORD_" +
-               std::to_string(g.pbrMetallicRoughness.baseColorTexture.texCoord) +
-               "; only TEXCOORD_0 is loaded");
+      const std::pair<int, bool> key{image, srgb};
+      if (const auto it = textureOfImage.find(key); it != textureOfImage.end()) return it->second;
+      const tinygltf::Image& img = L.gltf.images[std::size_t(image)];
+      Texture t;
+      t.source = L.path + (img.uri.empty() || img.uri.rfind("data:", 0) == 0 ? "#image" + std::to_string(image)
+                                                                            : "#" + img.uri);
+      std::string why = "no data";
+      if (img.image.empty() || !decodeGltfImage(img.image, t.image, why, srgb)) {
+        L.warn(what + ": image " + std::to_string(image) + ": " + why + "; " + slot + " ignored");
+        return -1;
       }
-      if (g.pbrMetallicRoughness.baseColorTexture.extensions.count("KHR_texture_transform")) {
-        L.warn(what + ": KHR_texture_transform ignored");
-      }
-      if (m.alphaMode != AlphaMode::Opaque) {
-        std::ostringstream opacity;
-        opacity << m.opacity;
-        L.warn(what + ": texture alpha is not used for shadows (constant opacity " + opacity.str() +
-               ")");
-      }
+      const int index = int(L.out.textures.size());
+      textureOfImage[key] = index;
+      L.out.textures.push_back(std::move(t));
+      return index;
+    };
+    m.baseColorTexture = textureOf(g.pbrMetallicRoughness.baseColorTexture, "baseColorTexture", true);
+    if (m.baseColorTexture >= 0 && m.alphaMode != AlphaMode::Opaque) {
+      std::ostringstream opacity;
+      opacity << m.opacity;
+      L.warn(what + ": texture alpha is not used for shadows (constant opacity " + opacity.str() + ")");
     }
+    // The specification's BRDF (Appendix B); factors default to 1 (tinygltf fills them in).
+    m.brdf = BrdfModel::MetallicRoughness;
+    const double metallic = g.pbrMetallicRoughness.metallicFactor, roughness = g.pbrMetallicRoughness.roughnessFactor;
+    if (!std::isfinite(metallic) || !std::isfinite(roughness)) L.fail(what + ": metallicFactor or roughnessFactor is not finite");
+    m.metallic = std::clamp(float(metallic), 0.0f, 1.0f);
+    m.roughness = std::clamp(float(roughness), 0.0f, 1.0f);
+    // Linear data (the specification: "texture ... MUST be ... linear"): not sRGB-decoded.
+    m.metallicRoughnessTexture =
+        textureOf(g.pbrMetallicRoughness.metallicRoughnessTexture, "metallicRoughnessTexture", false);
+    for (const auto& [slot, info] : {std::pair<const char*, int>{"normalTexture", g.normalTexture.index},
+                                     {"occlusionTexture", g.occlusionTexture.index},
+                                     {"emissiveTexture", g.emissiveTexture.index}})
+      if (info >= 0) L.warn(what + ": " + slot + " is not used (penumbra shades with vertex normals, no emission)");
     L.out.materials.push_back(std::move(m));
   }
 }

@@ -447,7 +447,7 @@ void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& j
   if (!warn.empty()) warnings.push_back(path + ": tinygltf: " + firstLines(warn));
 }
 
-bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std::string& why) {
+bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std::string& why, bool srgb) {
   // Sides from the header first, so a tiny file cannot make stb allocate gigabytes.
   long long w = -1, h = -1;
   const auto* b = encoded.data();
@@ -516,7 +516,7 @@ bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std:
       v[3] = decoded.component == 2 ? v[1] : 1.0f;
       v[1] = v[2] = v[0];
     }
-    for (int c = 0; c < 3; ++c) out.data[t * 4 + std::size_t(c)] = srgbToLinear(v[c]);
+    for (int c = 0; c < 3; ++c) out.data[t * 4 + std::size_t(c)] = srgb ? srgbToLinear(v[c]) : v[c];
     out.data[t * 4 + 3] = v[3];
   }
   return true;

@@ -40,8 +40,9 @@ void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& j
                         std::vector<std::string>& warnings);
 
 // Decodes an encoded glTF image (PNG/JPEG, at most 8192^2) to linear RGBA float, colour
-// channels converted from sRGB. Returns false with `why` set if it cannot.
-bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std::string& why);
+// channels converted from sRGB when `srgb` (colour textures; data textures such as
+// metallicRoughnessTexture are linear). Returns false with `why` set if it cannot.
+bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std::string& why, bool srgb = true);
 
 // A texture file (.png sRGB-decoded, .exr linear) already resolved: what scene-file materials,
 // lights and OBJ materials (map_Kd) load. EXR NaN/Inf texels are replaced by 0 and counted in

@@ -116,10 +116,25 @@ struct MtlReader {
     int current = -1;  // index into model.materials; -1 before newmtl or for a repeated name
     bool hasD = false, hasTr = false;
     float tr = 0.0f;
+    // Ks and Ns onto the glTF metallic-roughness BRDF (issue 16 section 4): Ks > 0 turns the
+    // specular lobe on, as a dielectric's (F0 0.04, metallic 0: MTL's Ks scales a Phong lobe, it
+    // is not a reflectance at normal incidence, so its strength and colour are not used, said
+    // once per file); Ns, the Blinn-Phong exponent, gives GGX alpha = sqrt(2 / (Ns + 2)) (Walter
+    // et al. 2007, eq. 33's Beckmann-Phong correspondence), roughness = sqrt(alpha).
+    glm::vec3 ks(0.0f);
+    float ns = -1.0f;  // -1: not given (roughness 1)
+    std::vector<std::string> specular;  // materials whose Ks was mapped
     std::string currentName;
     const auto finishMaterial = [&] {
-      if (current < 0 || !hasTr) return;
+      if (current < 0) return;
       Material& m = model.materials[std::size_t(current)];
+      if (std::max({ks.x, ks.y, ks.z}) > 0.0f) {
+        m.brdf = BrdfModel::MetallicRoughness;
+        m.metallic = 0.0f;
+        m.roughness = ns >= 0.0f ? std::sqrt(std::sqrt(2.0f / (ns + 2.0f))) : 1.0f;
+        specular.push_back(currentName);
+      }
+      if (!hasTr) return;
       if (!hasD) {
         m.opacity = 1.0f - tr;
       } else if (std::abs(m.opacity - (1.0f - tr)) > 1e-6f) {
@@ -140,6 +155,7 @@ struct MtlReader {
       if (key == "newmtl") {
         finishMaterial();
         hasD = hasTr = false;
+        ks = glm::vec3(0.0f), ns = -1.0f;
         currentName = rest;
         if (materialByName.count(rest)) {
           model.warnings.push_back(mtl + ": material '" + rest +
@@ -173,6 +189,19 @@ struct MtlReader {
                                    "not supported); the base colour stays 0.8");
         } else {
           m.baseColor = glm::vec3(c[0], c[1], c[2]);
+        }
+      } else if (key == "Ks" || key == "Ns") {
+        float c[3] = {0.0f, 0.0f, 0.0f};
+        const std::size_t want = key == "Ns" ? 1 : 3;
+        bool ok = t.size() == 1 || t.size() == want;
+        for (std::size_t i = 0; ok && i < t.size(); ++i) ok = parseFloat(t[i], c[i]) && c[i] >= 0.0f;
+        if (!ok) {
+          model.warnings.push_back(mtl + ": " + context + ": " + key + " '" + rest + "' is not " +
+                                   (want == 1 ? "a finite number" : "1 or 3 finite numbers") + " >= 0; ignored");
+        } else if (key == "Ns") {
+          ns = c[0];
+        } else {
+          ks = t.size() == 1 ? glm::vec3(c[0]) : glm::vec3(c[0], c[1], c[2]);
         }
       } else if (key == "d" || key == "Tr") {
         // "d -halo 0.5": the halo form (opacity by view angle) is read as plain d, warned.
@@ -211,8 +240,12 @@ struct MtlReader {
       }
     }
     finishMaterial();
+    if (!specular.empty())
+      model.warnings.push_back(mtl + ": Ks is read as a dielectric specular lobe (F0 0.04, roughness from Ns); "
+                               "its strength and colour are not used, in " + std::to_string(specular.size()) +
+                               " material" + (specular.size() == 1 ? "" : "s") + " (" + nameList(specular) + ")");
     for (const auto& [key, names] : unused)
-      model.warnings.push_back(mtl + ": '" + key + "' not used (penumbra reads Kd, map_Kd, d and "
+      model.warnings.push_back(mtl + ": '" + key + "' not used (penumbra reads Kd, Ks, Ns, map_Kd, d and "
                                "Tr), in " + std::to_string(names.size()) + " material" +
                                (names.size() == 1 ? "" : "s") + " (" + nameList(names) + ")");
   }

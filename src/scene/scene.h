@@ -24,6 +24,9 @@ struct Texture {
 
 enum class AlphaMode { Opaque, Mask, Blend };
 
+// Values match shaders/shared.h PENUMBRA_BRDF_*.
+enum class BrdfModel { Lambert = 0, MetallicRoughness = 1 };
+
 struct Material {
   std::string name;
   glm::vec3 baseColor{0.8f};
@@ -34,6 +37,15 @@ struct Material {
   float opacity = 1.0f;
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
+  // The BRDF (shaders/shared.h penumbraBrdf). Lambert: baseColor / pi (scene-file materials
+  // without "metallic" or "roughness"). MetallicRoughness: the glTF 2.0 BRDF (Lambertian diffuse
+  // + GGX with Smith masking, Schlick Fresnel) of glTF materials, OBJ materials with Ks and
+  // scene-file materials that give "metallic" or "roughness".
+  BrdfModel brdf = BrdfModel::Lambert;
+  float metallic = 0.0f;   // [0, 1]
+  float roughness = 1.0f;  // [0, 1], perceptual (alpha = roughness^2)
+  // glTF metallicRoughnessTexture (linear; G scales roughness, B scales metallic), or -1.
+  int metallicRoughnessTexture = -1;
 };
 
 // A rigid rotation at a constant rate (scene file "spin"), for `compare --frames`: the pose at

@@ -218,6 +218,16 @@ void readMaterial(Context& ctx, const Json& item, int index) {
     ctx.fail(f.at("opacity"), "must be in [0, 1], got " + Fields::fmtFloat(m.opacity));
   }
   m.alphaMode = m.opacity < 1.0f ? AlphaMode::Blend : AlphaMode::Opaque;
+  // Either key selects the glTF metallic-roughness BRDF (defaults: a rough dielectric).
+  if (f.has("metallic") || f.has("roughness")) {
+    m.brdf = BrdfModel::MetallicRoughness;
+    m.metallic = f.number("metallic", 0.0f);
+    m.roughness = f.number("roughness", 1.0f);
+    for (const char* key : {"metallic", "roughness"}) {
+      const float v = std::string(key) == "metallic" ? m.metallic : m.roughness;
+      if (f.has(key) && !(v >= 0.0f && v <= 1.0f)) ctx.fail(f.at(key), "must be in [0, 1], got " + Fields::fmtFloat(v));
+    }
+  }
   f.finish();
   ctx.materialByName[m.name] = int(ctx.scene.materials.size());
   ctx.scene.materials.push_back(std::move(m));

@@ -100,7 +100,7 @@ const std::vector<TechniqueInfo>& techniqueTable() {
                 vssmPreset(false, VssmOptions{}.shadowLevels)),
       {"raytrace", "Embree reference with the same light samples as every technique (per sample)", {},
        [](const TechniqueArgs&) { return makeRaytraceSameSamples(); }},
-      {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility only)", {},
+      {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility and the shaded image)", {},
        [](const TechniqueArgs&) { return makeRaytraceConverged(1024); }},
   };
   return table;

@@ -25,6 +25,15 @@ namespace {
 // direction), so a sample lying on a surface does not shadow itself.
 constexpr float kTFar = 1.0f - 1e-5f;
 
+// A pixel's BRDF inputs (CpuGBuffer) and the light's emission, for the shaded image.
+struct ShadeInputs {
+  glm::vec3 shadingNormal, baseColor;
+  float metallic = 0.0f, roughness = 1.0f;
+  int model = 0;
+  glm::vec3 emission, lightNormal;  // colour * intensity; LightSampleSet::lightNormal
+  float sampleWeight = 1.0f;        // LightSampleSet::sampleWeight
+};
+
 // A hit counted by the occlusion filter for the current ray.
 struct CountedHit {
   unsigned geomID, primID;
@@ -210,10 +219,13 @@ struct EmbreeReference::Impl {
   // Visibility of one pixel against `count` samples (positions/luminance arrays of that set),
   // with the conventions of the header: horizon rule, ray origin off the surface. All rays
   // of the pixel go to Embree as one stream.
+  // With `shade`, also the light's outgoing radiance towards the eye into `radiance`: the sum
+  // over the samples of f L_k G_k T_k (shared.h penumbraBrdf, penumbraSampleGeometry: the
+  // pipeline's per-sample shading, eq. 6) times emission and the set's sample weight.
   glm::vec3 shadePixel(const glm::vec3& p, const glm::vec3& n, const glm::vec3& eye, const glm::vec3* pos,
                        const glm::vec3* lum, int count, float* perSample, Scratch& s,
-                       std::vector<int>& sampleOf, std::vector<float>& tr,
-                       std::uint64_t& rayCount) const {
+                       std::vector<int>& sampleOf, std::vector<float>& tr, std::uint64_t& rayCount,
+                       const ShadeInputs* shade = nullptr, glm::vec3* radiance = nullptr) const {
     const glm::vec3 o = shared::penumbraShadowOrigin(p, n, eye);
     s.reset(std::size_t(count));
     sampleOf.clear();
@@ -226,24 +238,36 @@ struct EmbreeReference::Impl {
     traceStream(s, tr.data());
     rayCount += s.rays.size();
     if (perSample) std::fill(perSample, perSample + count, 0.0f);
-    glm::dvec3 sum(0.0);
+    glm::dvec3 sum(0.0), shaded(0.0);
+    const glm::vec3 v = glm::normalize(eye - p);
     for (std::size_t j = 0; j < sampleOf.size(); ++j) {
       const int k = sampleOf[j];
       if (perSample) perSample[k] = tr[j];
       sum += glm::dvec3(lum[k]) * double(tr[j]);  // eq. 2: L_i * (1 - Sat(D)), in sample order
+      if (shade && tr[j] > 0.0f) {
+        const glm::vec3 l = glm::normalize(pos[k] - p);
+        const float g = shared::penumbraSampleGeometry(p, n, shade->shadingNormal, pos[k], shade->lightNormal);
+        const glm::vec3 f = shared::penumbraBrdf(shade->shadingNormal, v, l, shade->baseColor, shade->metallic,
+                                                 shade->roughness, shade->model);
+        shaded += glm::dvec3(lum[k] * f) * double(g * tr[j]);
+      }
     }
+    if (shade && radiance) *radiance = glm::vec3(shaded) * shade->emission * shade->sampleWeight;
     return glm::vec3(sum / double(count));
   }
 
   // Traces every surface pixel of `gbuf` (multithreaded by rows) with the `n` samples that
   // `samplesFor(x, y, pixel, scratchSet)` gives it (positions and luminances; it may fill and
   // point into `scratchSet`). Per-sample results are kept when `perSample` is set.
+  // With `light`, also the light's shaded image (VisibilityResult::radiance) from the G-buffer's
+  // BRDF inputs.
   template <class SamplesFor>
   VisibilityResult traceImage(const CpuGBuffer& gbuf, int n, bool perSample,
-                              SamplesFor&& samplesFor) {
+                              SamplesFor&& samplesFor, const Light* light = nullptr) {
     VisibilityResult out;
     out.samples = n;
     out.visibility = Image(gbuf.width, gbuf.height, 3, 0.0f);
+    if (light) out.radiance = Image(gbuf.width, gbuf.height, 3, 0.0f);
     if (perSample) out.perSample.assign(std::size_t(gbuf.width) * gbuf.height * n, 0.0f);
     rays += forEachRow(gbuf.height, threads, [&](int y, std::uint64_t& rayCount) {
       Scratch scratch;
@@ -255,10 +279,19 @@ struct EmbreeReference::Impl {
         if (!gbuf.valid[i]) continue;  // no surface: visibility 0
         const auto [pos, lum] = samplesFor(x, y, i, scratchSet);
         const glm::vec3 p = gbuf.position[i], nrm = gbuf.normal[i];
+        ShadeInputs shade;
+        if (light) {
+          const glm::vec3& m = gbuf.material[i];
+          shade = {gbuf.shadingNormal[i], gbuf.baseColor[i], m.x, m.y, int(m.z + 0.5f),
+                   light->color * light->intensity, scratchSet.lightNormal, scratchSet.sampleWeight};
+        }
+        glm::vec3 radiance(0.0f);
         const glm::vec3 v = shadePixel(p, nrm, gbuf.camera.value_or(p + nrm), pos, lum, n,
-                                       perSample ? &out.perSample[i * n] : nullptr, scratch,
-                                       sampleOf, tr, rayCount);
+                                       perSample ? &out.perSample[i * n] : nullptr, scratch, sampleOf, tr,
+                                       rayCount, light ? &shade : nullptr, light ? &radiance : nullptr);
         for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
+        if (light)
+          for (int c = 0; c < 3; ++c) out.radiance.at(x, y, c) = radiance[c];
       }
     });
     return out;
@@ -350,6 +383,9 @@ VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light&
   checkGBuffer(gbuf);
   // Validates count and light up front, so errors are thrown here rather than in a worker.
   const int n = makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, 1, time).count;
+  // The shaded image needs the G-buffer's BRDF inputs (a caller may give geometry only).
+  const bool shaded = gbuf.shadingNormal.size() == gbuf.position.size() && gbuf.baseColor.size() == gbuf.position.size() &&
+                      gbuf.material.size() == gbuf.position.size();
   return impl_->traceImage(gbuf, n, false, [&](int, int, std::size_t i, LightSampleSet& set) {
     // A fresh stratified set per pixel, seeded by the pixel index (makeLightSampleSet hashes
     // the seed): decorrelated (section 5.1) and independent of the thread that computes it.
@@ -357,7 +393,7 @@ VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light&
     const std::uint32_t pixelSeed = seed == 0 ? std::uint32_t(i) : shared::penumbraHash(std::uint32_t(i) ^ shared::penumbraHash(seed));
     set = makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, pixelSeed, time);
     return std::pair(set.positions.data(), set.luminance.data());
-  });
+  }, shaded ? &light : nullptr);
 }
 
 float EmbreeReference::transmittance(const glm::vec3& from, const glm::vec3& to) const {

@@ -3,7 +3,8 @@
 // Mode "same samples": for every pixel of the G-buffer and every light sample of the pixel's
 // set, the transmittance of the segment from the surface point to the sample (opaque hit -> 0,
 // semi-opaque surfaces multiply their (1 - opacity)). Mode "converged": many stratified samples
-// per pixel, decorrelated, for the visibility buffer only.
+// per pixel, decorrelated, for the visibility buffer and the shaded image (the converged truth
+// compare measures every technique's shaded image against).
 //
 // Conventions shared with every GPU technique (so that results are comparable):
 //  * a pixel is shaded only if the G-buffer has a surface there (valid);
@@ -38,6 +39,9 @@ struct VisibilityResult {
   Image visibility;              // RGB, width x height
   std::vector<float> perSample;  // empty or width*height*N
   int samples = 0;               // N
+  // Converged mode with a G-buffer that carries the BRDF inputs: the light's outgoing radiance
+  // (RGB, width x height), the per-sample direct illumination of its `samples` samples; else empty.
+  Image radiance;
 };
 
 class EmbreeReference {

@@ -1,5 +1,6 @@
 // Technique adapter for the Embree reference (embree_reference.h): reads the G-buffer back, traces
-// on the CPU, uploads the visibility buffer (and per-sample transmittance) for shading.
+// on the CPU, uploads the visibility buffer (and per-sample transmittance) for shading; the
+// converged reference also hands back its own shaded image of each light.
 #include "techniques/raytrace/raytrace.h"
 
 #include "gl/objects.h"
@@ -37,9 +38,11 @@ class Raytrace final : public Technique {
     });
     if (pass.cpuPerSample) *pass.cpuPerSample = std::move(r.perSample);
     if (pass.cpuVisibility) *pass.cpuVisibility = std::move(r.visibility);
+    if (pass.cpuRadiance && r.radiance.pixelCount() > 0) *pass.cpuRadiance = std::move(r.radiance);
   }
 
   bool providesPerSample() const override { return converged_ == 0; }
+  bool shadesLights() const override { return converged_ > 0; }
 
  private:
   int converged_;
