@@ -1,7 +1,8 @@
 #!/bin/sh
 # Quick start, step 1 (as root on Debian 12): install the Debian packages penumbra needs, build,
 # and run the main job: the default textured-area-light scene with every technique and the
-# Embree reference, written to out/default/ (images, heat maps, report.json).
+# Embree reference, written to out/default/ (images, heat maps, report.json), then the glossy
+# shading scene to out/glossy/.
 #   ./setup.sh          install + build + main job
 #   ./setup.sh --deps   install the packages only (used by .ci/run)
 set -eu
@@ -27,3 +28,7 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
 cmake --build build
 mkdir -p out
 ./build/src/cli/penumbra compare --techniques all --samples 16 -o out/default
+# Issue 16's shading scene (glossy metallic-roughness materials, smooth normals, three lights):
+# every shaded image also measured against the converged shaded reference.
+./build/src/cli/penumbra compare scenes/glossy.json --techniques dcs,hard-sv,mvr,pcss,vssm --samples 16 \
+  --converged -o out/glossy

@@ -53,6 +53,14 @@ int timings(const StudyRun& r, std::FILE* out) {
   return techniqueTimings(o, out);
 }
 
+int shading(const StudyRun& r, std::FILE* out) {
+  ShadingStudyOptions o;
+  o.backend = r.backend;
+  o.outDir = (std::filesystem::path(r.outDir) / "shading").string();
+  if (r.quick) o.width = 64, o.frames = 1, o.scenes = {"default", "scenes/glossy.json"};
+  return shadingStudy(o, out);
+}
+
 }  // namespace
 
 const std::vector<Study>& studyTable() {
@@ -62,6 +70,7 @@ const std::vector<Study>& studyTable() {
       {"multiview", "VWSS paper tables 1-2, figures 8 and 13, map-resolution convergence", multiview},
       {"single-map", "Sterna table 1, VSSM against PCSS as the light grows, VSSM stages, single-map errors", singleMap},
       {"techniques", "per-stage timings of the main techniques on the engine", timings},
+      {"shading", "shading modes (ratio, modulate, per-sample) against the converged shaded reference", shading},
   };
   return table;
 }

@@ -81,11 +81,29 @@ struct TimingOptions {
   std::vector<int> samples = {1};
   std::vector<std::string> techniques = {"hard-sv"};
   PixelPattern pattern = PixelPattern::Correlated;
-  ShadingMode shading = ShadingMode::Modulate;
+  ShadingMode shading = ShadingMode::Modulate;  // eq. 3, as the README's timing tables were measured
   std::string json;  // results as JSON here, if given
   gl::Backend backend = gl::Backend::Egl;
 };
 int techniqueTimings(const TimingOptions& o, std::FILE* out);
+
+// Shading modes against the converged shaded reference on every shipped scene (bench_shading.cpp,
+// issue 16): ratio, modulate and per-sample, their error and their cost per frame.
+struct ShadingStudyOptions {
+  // The speed-error study's scenes and the glossy one (metallic-roughness materials).
+  std::vector<std::string> scenes = [] {
+    std::vector<std::string> s = SpeedErrorOptions{}.scenes;
+    s.push_back("scenes/glossy.json");
+    return s;
+  }();
+  std::string technique = "dcs";
+  int samples = 16;
+  int width = 128;  // height: the scene's aspect
+  int frames = 3, warmup = 1;
+  std::string outDir;  // shading.json here, if given
+  gl::Backend backend = gl::Backend::Egl;
+};
+int shadingStudy(const ShadingStudyOptions& o, std::FILE* out);
 
 // What `penumbra bench` gives every study.
 struct StudyRun {

@@ -36,7 +36,9 @@ Scene litFloor(float lightSize) {
 
 TEST(Pipeline, ModulateShadingMatchesEquation3) {
   Scene scene = litFloor(0.5f);
-  Renderer renderer(context(), scene, settings(64, 4));
+  RenderSettings s = settings(64, 4);
+  s.shading = ShadingMode::Modulate;
+  Renderer renderer(context(), scene, s);
   auto none = makeTechnique("none");
   FrameResult f = renderer.render(*none);
   const Light& l = scene.lights[0];
@@ -63,6 +65,7 @@ TEST(Pipeline, PerSampleShadingConvergesToModulateForSmallLights) {
   // they agree to well under 1% on an unoccluded floor.
   Scene scene = litFloor(0.05f);
   RenderSettings s = settings(64, 16);
+  s.shading = ShadingMode::Modulate;
   auto ray = makeTechnique("raytrace");
   FrameResult modulate = Renderer(context(), scene, s).render(*ray);
   s.shading = ShadingMode::PerSample;

@@ -105,11 +105,24 @@ int timings(int argc, char** argv) {
   app.add_option("--warmup", o.warmup);
   app.add_option("--json", o.json);
   app.add_option("--pattern", pattern, "correlated | decorrelated | interleaved");
-  app.add_option("--shading", shading, "modulate (eq. 3) | per-sample (eq. 6)");
+  app.add_option("--shading", shading, "modulate (eq. 3) | per-sample (eq. 6) | ratio");
   return runStudy(app, argc, argv, o, techniqueTimings, [&] {
     o.pattern = cli::parsePixelPattern(pattern);
     o.shading = cli::parseShadingMode(shading);
   });
+}
+
+int shading(int argc, char** argv) {
+  CLI::App app{"shading modes against the converged shaded reference", "penumbra_bench_shading"};
+  ShadingStudyOptions o;
+  app.add_option("--scenes", o.scenes, "scene files ('default': the built-in scene)")->delimiter(',');
+  app.add_option("--technique", o.technique);
+  app.add_option("--samples", o.samples);
+  app.add_option("-W", o.width, "image width (height: the scene's aspect)");
+  app.add_option("--frames", o.frames);
+  app.add_option("--warmup", o.warmup);
+  app.add_option("-o", o.outDir, "output folder (shading.json)");
+  return runStudy(app, argc, argv, o, shadingStudy);
 }
 
 }  // namespace
@@ -118,6 +131,6 @@ int main(int argc, char** argv) {
   // Keyed like studyTable() (bench/studies.h).
   static const std::map<std::string, std::function<int(int, char**)>> mains = {
       {"speed-error", speedError}, {"dcs", dcs}, {"multiview", multiview}, {"single-map", singleMap},
-      {"techniques", timings}};
+      {"techniques", timings}, {"shading", shading}};
   return mains.at(PENUMBRA_BENCH_STUDY)(argc, argv);
 }

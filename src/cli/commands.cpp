@@ -239,9 +239,7 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   TechniqueParams params(o.params);
   auto tech = makeTechnique(info.name, params);
   params.checkConsumed();
-  if (settings.shading == ShadingMode::PerSample && !tech->providesPerSample())
-    throw Error("--shading", "per-sample shading (eq. 6) needs a technique with per-sample visibility",
-                ExitCode::Usage);
+  // (a shading mode the technique cannot feed is refused by the renderer, naming it)
   FrameResult frame = renderer.render(*tech, technique);
   writeFrame(output, frame);
   json j = frameSummary(frame);

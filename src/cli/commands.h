@@ -19,7 +19,7 @@ struct CommonOptions {
   std::string pattern = "correlated";
   unsigned seed = 1;
   float time = 0.0f;
-  std::string shading = "modulate";
+  std::string shading = "ratio";
   bool noInterleaveFilter = false;  // --no-interleave-filter
   std::vector<std::string> params;  // --param key=value (technique parameters)
   bool json = false;

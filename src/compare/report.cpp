@@ -271,7 +271,7 @@ std::string reportTable(const CompareResult& r) {
     t += "pipeline statistics: " + r.info["pipelineStatistics"].get<std::string>() + "\n";
   t += fmt::format("{:<32} {:>9} {:>17} {:>9} {:>8} {:>9} {:>8} {:>9} {:>10}", "technique", "total ms",
                    "(min-max)", "harness", "MiB", "vis RMSE", "vis max", "img RMSE", "misclass");
-  if (conv) t += fmt::format(" {:>10}", "conv RMSE");
+  if (conv) t += fmt::format(" {:>10} {:>10}", "conv vis", "conv img");
   if (temporal) t += fmt::format(" {:>9}", "flicker");
   if (counted) t += fmt::format(" {:>9} {:>9} {:>9} {:>9}", "fragments", "geometry", "compute", "prims");
   t += "  stages ms\n";
@@ -288,7 +288,9 @@ std::string reportTable(const CompareResult& r) {
     else
       t += fmt::format(" {:>9.4f} {:>8.4f} {:>9.4g} {:>10}", run.errors.visibility.rmse, run.errors.visibility.maxAbs,
                        run.errors.shaded.rmse, run.errors.misclassifiedPixels);
-    if (conv) t += run.converged ? fmt::format(" {:>10.4f}", run.converged->visibility.rmse) : fmt::format(" {:>10}", "-");
+    if (conv)
+      t += run.converged ? fmt::format(" {:>10.4f} {:>10.4g}", run.converged->visibility.rmse, run.converged->shaded.rmse)
+                         : fmt::format(" {:>10} {:>10}", "-", "-");
     if (temporal) t += run.flicker >= 0.0 ? fmt::format(" {:>9.4f}", run.flicker) : fmt::format(" {:>9}", "-");
     if (counted) {
       const PipelineCounts c = totalCounts(run);
