@@ -1,5 +1,6 @@
 // The lighting pipeline: analytic shading, shading modes, backends, GL hygiene.
 #include <cmath>
+#include <numbers>
 
 #include "render_test_util.h"
 #include "analytic_oracle.h"
@@ -273,9 +274,10 @@ TEST(Pipeline, ComputedNormalsAreSmoothWithinTheCreaseAngle) {
 namespace {
 // Renders `scene` (its floor of albedo 0.5 unoccluded under its one light) with ratio shading
 // through the V-only path (none) and the per-sample one (raytrace), and checks every floor pixel
-// against `expected(p)` (the outgoing radiance at world point p) to 1e-4 relative; and the
-// converged reference's own shaded image (1024 stratified samples, issue 16 section 5) to
-// `convergedTolerance`, its Monte Carlo error.
+// against `expected(p)` (the outgoing radiance at world point p; NaN: not checked) to 1e-4
+// relative; and the converged reference's own shaded image (1024 stratified samples, issue 16
+// section 5) to `convergedTolerance`, its Monte Carlo error. For all, the mean relative error
+// over the floor (a bias; the noise averages out) stays within 1e-3.
 template <typename Expected>
 void expectRatioShadingIsClosedForm(const Scene& scene, Expected expected, double convergedTolerance) {
   RenderSettings s = settings(96, 16);
@@ -286,18 +288,26 @@ void expectRatioShadingIsClosedForm(const Scene& scene, Expected expected, doubl
     auto tech = makeTechnique(name);
     FrameResult f = renderer.render(*tech, name);
     const CpuGBuffer& g = f.gbuffer;
-    double worst = 0.0;
+    double worst = 0.0, bias = 0.0;
     std::size_t pixels = 0;
     for (std::size_t i = 0; i < f.color.pixelCount(); ++i) {
       if (!g.valid[i]) continue;
       const double e = expected(glm::dvec3(g.position[i]) + g.origin);
-      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(f.color.data[i * 3 + std::size_t(c)] - e) / e);
+      if (std::isnan(e)) continue;  // a point the closed form does not cover
+      for (int c = 0; c < 3; ++c) {
+        const double rel = (f.color.data[i * 3 + std::size_t(c)] - e) / e;
+        worst = std::max(worst, std::abs(rel));
+        bias += rel / 3.0;
+      }
       ++pixels;
     }
     ::testing::Test::RecordProperty(std::string(name) + "_worst_relative", std::to_string(worst));
-    std::printf("%s: %zu floor pixels, worst relative error %.3g against the closed form\n", name, pixels, worst);
+    bias /= double(std::max<std::size_t>(pixels, 1));
+    std::printf("%s: %zu floor pixels, worst relative error %.3g, mean %.2g against the closed form\n", name, pixels,
+                worst, bias);
     EXPECT_GT(pixels, 4000u);
     EXPECT_LE(worst, tolerance) << name;
+    EXPECT_LE(std::abs(bias), 1e-3) << name << ": the mean relative error, noise averaged out, is the bias";
   }
 }
 }  // namespace
@@ -335,6 +345,28 @@ TEST(Pipeline, RatioShadingOfAnUnoccludedSphereLightIsItsClosedForm) {
     const double r = glm::length(d), R = light.size.x;
     return 0.5 * double(light.intensity) * R * R * d.y / (r * r * r);
   }, 8e-3);  // the converged reference: measured 5.4e-3
+}
+
+// The sphere light across the floor's plane (issue 16 section 2: the horizon-crossing case, the
+// ball cut into shells, shared.h penumbraBallIrradiance): the GPU's ratio shading equals the
+// CPU's evaluation of the same function to 1e-4 (measured 1.9e-5; the floor's normals agree, so one plane clips
+// it; points within 1.1 R of the centre are left out: inside the ball there is no closed form),
+// and the converged reference (1024 samples of the ball) agrees to its noise, measured below.
+TEST(Pipeline, RatioShadingOfASphereLightAcrossTheHorizonIsItsClosedForm) {
+  Scene scene = litFloor(1.0f);
+  scene.materials[0].baseColor = glm::vec3(0.5f);
+  Light& light = scene.lights[0];
+  light.shape = LightShape::Sphere;
+  light.position = {0.5f, 0.12f, 0.25f};
+  light.size = {0.3f, 0.3f};
+  expectRatioShadingIsClosedForm(scene, [&](const glm::dvec3& p) {
+    const glm::vec3 up(0.0f, 1.0f, 0.0f);
+    const glm::dvec3 d = glm::dvec3(light.position) - p;
+    if (glm::length(d) < 1.1 * light.size.x) return std::nan("");
+    return 0.5 / std::numbers::pi * double(light.intensity) *
+           double(shared::penumbraBallIrradiance(glm::vec3(p), up, up, light.position, light.size.x));
+  }, 0.12);  // the converged reference: measured 0.094 next to the ball, where 1024 samples of a
+             // volume 1.1 R away are noisy; the mean relative error (its bias) is 1.1e-5
 }
 
 // Where no closed form is in (here the default scene's textured light) the unshadowed term is
