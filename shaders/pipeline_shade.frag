@@ -1,8 +1,8 @@
 // Direct illumination of one light, added into the HDR target (DCS paper section 6).
 // MODULATE: eq. 3, the light as a point at its centre carrying the whole light's power, times
 // the RGB visibility of eq. 2. PER_SAMPLE: eq. 6, the sum over the pixel's light samples.
-// RATIO: Heitz, Hill and McGuire 2018: the unshadowed term (exact for untextured rect lights,
-// shared.h penumbraRectIrradiance, and for untextured sphere lights wholly above the horizon,
+// RATIO: Heitz, Hill and McGuire 2018: the unshadowed term (in closed form for untextured rect,
+// disk and sphere lights, shared.h penumbraRectIrradiance, penumbraDiskIrradiance,
 // penumbraBallIrradiance; else the unshadowed sample sum) times the shadow ratio
 // sum_k w_k T_k / sum_k w_k from the per-sample results, or V over its unshadowed value for a
 // technique with V only. A pixel whose samples all miss (sum_k w_k = 0) gets ratio 0, as eq. 6.
@@ -69,6 +69,11 @@ float closedFormIrradiance(Surface s) {
     return dot(lightNormal, s.p - lightPosition) > 0.0
                ? penumbraRectIrradiance(s.p, s.n, s.ns, lightPosition, lightTangent, cross(lightNormal, lightTangent),
                                         lightHalfExtent)
+               : 0.0;
+  if (lightShape == PENUMBRA_LIGHT_DISK)
+    return dot(lightNormal, s.p - lightPosition) > 0.0
+               ? penumbraDiskIrradiance(s.p, s.n, s.ns, lightPosition, lightTangent, cross(lightNormal, lightTangent),
+                                        lightShapeRadius)
                : 0.0;
   if (lightShape == PENUMBRA_LIGHT_SPHERE) return penumbraBallIrradiance(s.p, s.n, s.ns, lightPosition, lightShapeRadius);
   return -1.0;

@@ -56,4 +56,12 @@ inline double parallelRectFormFactor(double x0, double x1, double z0, double z1,
   return corner(x1, z1) - corner(x0, z1) - corner(x1, z0) + corner(x0, z0);
 }
 
+// Configuration factor from a differential area to a parallel disk of radius R at height h whose
+// centre is offset by rho from the area's normal (Howell's catalogue of configuration factors):
+// F = 1/2 (1 - (h^2 + rho^2 - R^2) / sqrt((h^2 + rho^2 + R^2)^2 - 4 R^2 rho^2)).
+inline double parallelDiskFormFactor(double rho, double h, double R) {
+  const double a = h * h + rho * rho;
+  return 0.5 * (1.0 - (a - R * R) / std::sqrt((a + R * R) * (a + R * R) - 4.0 * R * R * rho * rho));
+}
+
 }  // namespace penumbra::test

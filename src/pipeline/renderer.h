@@ -7,13 +7,13 @@
 //  * PerSample (eq. 6): the sum over light samples of the direct illumination of each sample,
 //    with each sample's transmittance; needs a technique that provides per-sample results.
 //  * Ratio (Heitz, Hill and McGuire 2018, "Combining analytic direct illumination and
-//    stochastic shadows"): the unshadowed term U, exact where a closed form is in (untextured
-//    rect lights: Lambert's polygon irradiance, shared.h penumbraRectIrradiance; untextured
-//    sphere lights wholly above the horizon: penumbraBallIrradiance), else the unshadowed sum
-//    over the pixel's samples; times the shadow ratio sum_k w_k T_k / sum_k w_k,
-//    w_k = L_k cos cos / r^2 of sample k, from the per-sample results, or V / V_unshadowed
-//    (eq. 2 over its unshadowed value) for techniques that give only V.
-// All use a Lambertian BRDF (albedo / pi), the same one the reference uses.
+//    stochastic shadows"), the default: the unshadowed term U, whose diffuse part is in closed
+//    form for untextured rect, disk and sphere lights (shared.h penumbraRectIrradiance,
+//    penumbraDiskIrradiance, penumbraBallIrradiance), else the unshadowed sum over the pixel's
+//    samples; times the shadow ratio sum_k w_k T_k / sum_k w_k, w_k = f L_k cos cos / r^2 of
+//    sample k, from the per-sample results, or V / V_unshadowed (eq. 2 over its unshadowed
+//    value) for techniques that give only V.
+// All use the material's BRDF (shared.h penumbraBrdf), the same function the reference uses.
 #pragma once
 
 #include <memory>

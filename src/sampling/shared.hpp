@@ -19,7 +19,5 @@ using glm::min;
 using glm::sqrt;
 using glm::normalize;
 using glm::clamp;
-using glm::cos;
-using glm::sin;
 #include "shared.h"  // NOLINT: shared with GLSL, see shaders/shared.h
 }  // namespace penumbra::shared
