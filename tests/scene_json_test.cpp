@@ -45,7 +45,8 @@ constexpr const char* kAllShapes = R"({
   "resolution": [320, 200],
   "background": 0.25,
   "materials": [{"name": "glass", "baseColor": [0.2, 0.4, 0.6], "opacity": 0.5},
-                {"name": "red", "baseColor": [1, 0, 0]}],
+                {"name": "red", "baseColor": [1, 0, 0]},
+                {"name": "gloss", "roughness": 0.25}],
   "objects": [
     {"name": "box", "shape": "box", "size": [1, 2, 3], "translate": [10, 0, 0]},
     {"name": "plane", "shape": "plane", "material": "red"},
@@ -121,6 +122,13 @@ TEST(SceneJson, AllShapesAndTransforms) {
   EXPECT_EQ(ghost.baseColor, glm::vec3(1, 0, 0));
   EXPECT_EQ(ghost.opacity, 0.25f);
   EXPECT_EQ(s.materials[std::size_t(mesh(s, "plane").material)].opacity, 1.0f);
+  // "metallic" or "roughness" selects the metallic-roughness BRDF; without them, Lambertian.
+  EXPECT_EQ(glass.brdf, BrdfModel::Lambert);
+  const auto gloss = std::find_if(s.materials.begin(), s.materials.end(), [](auto& m) { return m.name == "gloss"; });
+  ASSERT_NE(gloss, s.materials.end());
+  EXPECT_EQ(gloss->brdf, BrdfModel::MetallicRoughness);
+  EXPECT_EQ(gloss->roughness, 0.25f);
+  EXPECT_EQ(gloss->metallic, 0.0f);
   EXPECT_EQ(mesh(s, "box").material, 0);  // the default material
   EXPECT_TRUE(s.hasSemiOpaque());
 
@@ -228,6 +236,10 @@ TEST(SceneJson, ValidationErrorsNameTheFileAndTheItem) {
   expectError([&] { loadScene(p); }, p, "unknown material 'nope'");
   p = object(R"({"shape": "box", "opacity": 1.5})");
   expectError([&] { loadScene(p); }, p, "opacity");
+  p = dir.file("m.json", R"({"materials": [{"name": "m", "roughness": 1.5}], "objects": [{"shape": "box"}]})");
+  expectError([&] { loadScene(p); }, p, "materials[0] 'm'.roughness: must be in [0, 1], got 1.5");
+  p = dir.file("m.json", R"({"materials": [{"name": "m", "metallic": -0.5}], "objects": [{"shape": "box"}]})");
+  expectError([&] { loadScene(p); }, p, "materials[0] 'm'.metallic: must be in [0, 1]");
   p = object(R"({"shape": "sphere", "segments": 2})");
   expectError([&] { loadScene(p); }, p, "segments");
   p = object(R"({"name": "x"})");
