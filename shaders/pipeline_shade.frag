@@ -2,16 +2,18 @@
 // MODULATE: eq. 3, the light as a point at its centre carrying the whole light's power, times
 // the RGB visibility of eq. 2. PER_SAMPLE: eq. 6, the sum over the pixel's light samples.
 // RATIO: Heitz, Hill and McGuire 2018: the unshadowed term (in closed form for untextured rect,
-// disk and sphere lights, shared.h penumbraRectIrradiance, penumbraDiskIrradiance,
-// penumbraBallIrradiance; else the unshadowed sample sum) times the shadow ratio
+// disk and sphere lights, shared.h penumbraLightPolygon (Lambert's formula on the light's
+// polygon), penumbraBallIrradiance; else the unshadowed sample sum) times the shadow ratio
 // sum_k w_k T_k / sum_k w_k from the per-sample results, or V over its unshadowed value for a
 // technique with V only. A pixel whose samples all miss (sum_k w_k = 0) gets ratio 0, as eq. 6.
 // BRDF: shared.h penumbraBrdf (Lambertian or the glTF metallic-roughness BRDF, from the
 // G-buffer's material target), its cosine with the shading normal (the G-buffer's interpolated
 // vertex normal), the horizon rule with the geometric one (README "Conventions"). In the ratio
 // mode the diffuse part's unshadowed term is Lambert's formula times the samples' mean of the
-// diffuse BRDF (1 - F varies over the light; exact for LAMBERT), the specular part's the sample
-// sum.
+// diffuse BRDF (1 - F varies over the light; exact for LAMBERT); the specular part's is the LTC
+// integral (shared.h penumbraLightPolygon, the table of src/shading/ltc.h) times the Fresnel-weighted
+// norm f0 (norm - fresnel) + fresnel for untextured rect and disk lights, else the sample sum
+// (sphere lights: no polygon; textured lights: README "Shading").
 #include "common_light.glsl"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
@@ -27,6 +29,8 @@ layout(binding = PENUMBRA_UNIT_SAMPLE_VIS) uniform sampler2DArray sampleVisibili
 #endif
 #ifdef RATIO
 uniform int ratioFromSamples;  // 1: the technique's per-sample results are bound
+layout(binding = PENUMBRA_UNIT_LTC) uniform sampler2DArray ltcTable;  // layer 0 M^-1, layer 1 norm, fresnel
+uniform float ltcSize;                                               // cells a side
 #endif
 uniform vec3 eyePosition;
 
@@ -61,22 +65,27 @@ vec3 sampleTerm(Surface s, uint i) {
 }
 
 #ifdef RATIO
-// The unshadowed integral of cos(theta_s) [cos(theta_l)] / r^2 over the light in closed form
-// where penumbra has one for this light and point, else -1.
-float closedFormIrradiance(Surface s) {
+// The unshadowed terms in closed form where penumbra has one for this light and point: returns
+// the integral of cos(theta_s) [cos(theta_l)] / r^2 over the light, -1 where there is none; and
+// sets `specular` to the specular part's (radiance 1) by LTC, -1 where there is none.
+float closedForms(Surface s, out vec3 specular) {
+  specular = vec3(-1.0);
   if (lightTextured != 0) return -1.0;
-  if (lightShape == PENUMBRA_LIGHT_RECT)
-    return dot(lightNormal, s.p - lightPosition) > 0.0
-               ? penumbraRectIrradiance(s.p, s.n, s.ns, lightPosition, lightTangent, cross(lightNormal, lightTangent),
-                                        lightHalfExtent)
-               : 0.0;
-  if (lightShape == PENUMBRA_LIGHT_DISK)
-    return dot(lightNormal, s.p - lightPosition) > 0.0
-               ? penumbraDiskIrradiance(s.p, s.n, s.ns, lightPosition, lightTangent, cross(lightNormal, lightTangent),
-                                        lightShapeRadius)
-               : 0.0;
   if (lightShape == PENUMBRA_LIGHT_SPHERE) return penumbraBallIrradiance(s.p, s.n, s.ns, lightPosition, lightShapeRadius);
-  return -1.0;
+  if (lightShape != PENUMBRA_LIGHT_RECT && lightShape != PENUMBRA_LIGHT_DISK) return -1.0;
+  specular = vec3(0.0);
+  if (!(dot(lightNormal, s.p - lightPosition) > 0.0)) return 0.0;  // behind the light: it sees none of it
+  bool glossy = s.model == PENUMBRA_BRDF_METALLIC_ROUGHNESS;
+  vec2 uv = penumbraLtcCoordinates(s.roughness, dot(s.ns, s.v), ltcSize);
+  vec4 minv = glossy ? textureLod(ltcTable, vec3(uv, 0.0), 0.0) : vec4(1.0, 0.0, 0.0, 1.0);
+  vec2 e = penumbraLightPolygon(lightShape, s.p, s.n, s.ns, lightPosition, lightTangent, cross(lightNormal, lightTangent),
+                                lightShape == PENUMBRA_LIGHT_RECT ? lightHalfExtent : vec2(lightShapeRadius), glossy,
+                                s.v, minv);
+  if (glossy) {
+    vec4 terms = textureLod(ltcTable, vec3(uv, 1.0), 0.0);
+    specular = e.y * (penumbraF0(s.base, s.metallic) * (terms.x - terms.y) + vec3(terms.y));
+  }
+  return e.x;
 }
 
 vec3 ratioOf(vec3 a, vec3 b) {
@@ -112,13 +121,15 @@ void main() {
     if (aboveHorizon(s.p, s.n, samplePositions[base + k].xyz)) unshadowedV += sampleLuminance[base + k].rgb;
     if (ratioFromSamples != 0) shadowed += (fd + fs) * texelFetch(sampleVisibility, ivec3(px, int(k)), 0).r;
   }
-  float closed = closedFormIrradiance(s);
+  vec3 ltc;
+  float closed = closedForms(s, ltc);
   vec3 centre;
   geometricTerm(s, lightPosition, vec3(1.0), centre);
   // The diffuse BRDF's mean over the samples, weighted by their geometric terms (its value at
   // the light's centre where no sample is above the horizon).
   vec3 diffuseMean = dot(geometric, vec3(1.0)) > 0.0 ? ratioOf(diffuse, geometric) : diffuseOf(s, centre);
-  vec3 unshadowed = (closed >= 0.0 ? closed * diffuseMean : diffuse * sampleWeight) + specular * sampleWeight;
+  vec3 unshadowed = (closed >= 0.0 ? closed * diffuseMean : diffuse * sampleWeight) +
+                    (ltc.x >= 0.0 ? ltc : specular * sampleWeight);
   vec3 ratio = ratioFromSamples != 0 ? ratioOf(shadowed, weights)
                                      : ratioOf(texelFetch(visibility, px, 0).rgb * float(sampleCount), unshadowedV);
   outColor = vec4(lightEmission * unshadowed * ratio, 1.0);

@@ -163,76 +163,147 @@ PENUMBRA_FN float penumbraAtan2(float y, float x) {
   return x < 0.0f ? 3.1415926536f - a : a;
 }
 
-// Lambert's polygon irradiance (Lambert 1760; in vector form Arvo 1995, "Applications of
-// irradiance tensors to the simulation of non-Lambertian phenomena", eq. 8): for a polygon of
-// constant radiance seen from p, the integral over it of cos(theta_p) cos(theta_l) / r^2 dA is
-// 1/2 sum_i Theta_i (gamma_i . n), Theta_i the angle between the unit vectors to consecutive
-// vertices and gamma_i the unit normal of the plane through p and that edge. That holds for a
-// polygon in n's hemisphere, so the polygon is first clipped to the half-spaces above the
-// geometric normal ng (the horizon rule every technique and the reference apply per sample,
-// README "Conventions") and above the shading normal ns (the cosine's max(., 0)). Angles by
-// atan2 (acos loses small ones). `a` holds the n <= PENUMBRA_POLYGON_MAX - 2 vertices of a
-// convex polygon relative to p (each clip adds at most one); it is overwritten. The emitter's
-// one-sidedness is the caller's (a point behind the light's plane sees none of it). Returns the
-// integral (m^2 / m^2: a form factor times pi).
-#define PENUMBRA_POLYGON_MAX 36
-PENUMBRA_FN float penumbraPolygonIrradiance(vec3 a[PENUMBRA_POLYGON_MAX], int n, vec3 ng, vec3 ns) {
-  vec3 b[PENUMBRA_POLYGON_MAX];
-  for (int plane = 0; plane < 2; ++plane) {
-    vec3 h = plane == 0 ? ng : ns;
-    int m = 0;
-    for (int i = 0; i < n; ++i) {
-      vec3 u = a[i], v = a[(i + 1) % n];
-      float hu = dot(h, u), hv = dot(h, v);
-      if (hu > 0.0f) b[m++] = u;
-      if ((hu > 0.0f) != (hv > 0.0f)) b[m++] = u + (v - u) * (hu / (hu - hv));
-    }
-    n = m;
-    for (int i = 0; i < n; ++i) a[i] = b[i];
-  }
-  // Scale-invariant in each vertex (no normalize: an approximate inverse square root would
-  // cost more than the cancellation between the edges of a far polygon already does).
-  float sum = 0.0f;
-  for (int i = 0; i < n; ++i) {
-    vec3 u = a[i], v = a[(i + 1) % n];
-    vec3 c = cross(u, v);
-    float s = length(c);
-    if (s > 0.0f) sum += penumbraAtan2(s, dot(u, v)) * (dot(c, ns) / s);
-  }
-  return 0.5f * abs(sum);
+// ---- rect and disk lights as polygons seen from a point ------------------------------------
+// Lambert's formula (Lambert 1760; in vector form Arvo 1995, "Applications of irradiance tensors
+// to the simulation of non-Lambertian phenomena", eq. 8): for a polygon in z's hemisphere, the
+// integral over its solid angle of the cosine with the unit z is 1/2 |sum_i E(v_i, v_i+1)|,
+// E(u, v) = Theta (gamma . z) with Theta the angle between u and v and gamma the unit normal of
+// the plane through the origin and that edge. Angles by atan2 (acos loses small ones). E is
+// scale-invariant in each vertex (no normalize: an approximate inverse square root would cost
+// more than the cancellation between the edges of a far polygon already does).
+// The edge from u to u + e: its cross product as u x e, exact where e is (the light's edge
+// vectors are made directly, not as differences of nearly equal vertices far from the light).
+PENUMBRA_FN float penumbraEdgeIntegral(vec3 u, vec3 e, vec3 z) {
+  vec3 c = cross(u, e);
+  float s = length(c);
+  return s > 0.0f ? penumbraAtan2(s, dot(u, u) + dot(u, e)) * (dot(c, z) / s) : 0.0f;
 }
 
-// A rect light (centre, unit tangent and bitangent, half extents) through the polygon formula.
+// The light's polygon is clipped to half-spaces dot(plane_k, x) > 0 through the point, in order:
+// 0 the geometric normal ng (the horizon rule every technique and the reference apply per sample,
+// README "Conventions"), 1 the shading normal ns (the cosine's max(., 0)), and for the LTC 2 the
+// plane the transform maps to z = 0 (D_o's support). Clipping is streamed edge by edge (no vertex
+// arrays, whose dynamic indexing made llvmpipe compile the shading shader for 80 s): an edge is
+// cut by each plane in turn; where it leaves plane k's half-space the cut point is the clipped
+// polygon's exit point on plane k, where it enters its entry point; once every edge is through,
+// each plane's closing edge (exit -> entry, on the plane: the clipped polygon is convex, so one of
+// each) is cut by the planes after it. Lambert's sum with z = ns takes the edges past planes 0-1,
+// the LTC's (the edges mapped by M^-1 in the frame (x, y, ns), z = its z) those past plane 2.
+struct PenumbraPolygonClip {
+  vec3 plane[3];
+  vec3 exitPoint[3];
+  vec3 entryPoint[3];
+  int crossings[3];  // bit 0: an exit point, bit 1: an entry point
+  vec3 x, y;         // the LTC frame's tangents (z = plane[1] = ns)
+  vec4 minv;         // (a, c, b, d) of M^-1 (the LTC section below)
+  float lambert, ltc;
+  int planes;        // 2: Lambert only, 3: also the LTC
+};
+
+#ifdef __cplusplus
+#define PENUMBRA_INOUT(T) T&
+#else
+#define PENUMBRA_INOUT(T) inout T
+#endif
+
+// Edge (u, u + e) of the boundary (relative to the point) through planes first..planes-1.
+PENUMBRA_FN void penumbraClipEdge(PENUMBRA_INOUT(PenumbraPolygonClip) c, vec3 u, vec3 e, int first) {
+  for (int k = 0; k < 3; ++k) {
+    if (k == 2 && first <= 2) {
+      c.lambert += penumbraEdgeIntegral(u, e, c.plane[1]);
+      if (c.planes == 2) return;
+    }
+    if (k < first) continue;
+    float hu = dot(c.plane[k], u), he = dot(c.plane[k], e);
+    bool inU = hu > 0.0f, inV = hu + he > 0.0f;
+    if (!inU && !inV) return;
+    if (inU != inV) {
+      float t = -hu / he;
+      vec3 cut = u + e * t;
+      if (inU) {
+        c.exitPoint[k] = cut;
+        c.crossings[k] |= 1;
+        e = e * t;
+      } else {
+        c.entryPoint[k] = cut;
+        c.crossings[k] |= 2;
+        e = e * (1.0f - t);
+        u = cut;
+      }
+    }
+  }
+  vec3 tu = vec3(dot(u, c.x), dot(u, c.y), dot(u, c.plane[1]));
+  vec3 te = vec3(dot(e, c.x), dot(e, c.y), dot(e, c.plane[1]));
+  tu = vec3(c.minv.x * tu.x + c.minv.z * tu.z, tu.y, c.minv.y * tu.x + c.minv.w * tu.z);
+  te = vec3(c.minv.x * te.x + c.minv.z * te.z, te.y, c.minv.y * te.x + c.minv.w * te.z);
+  c.ltc += penumbraEdgeIntegral(tu, te, vec3(0.0f, 0.0f, 1.0f));
+}
+
+// A rect light (PENUMBRA_LIGHT_RECT: centre, unit tangent and bitangent, half extents `size`) or
+// a disk light (PENUMBRA_LIGHT_DISK: radius size.x) seen from p, with geometric and shading
+// normals ng and ns: (x) the irradiance of the light at radiance 1, the integral over it of
+// cos(theta_p) cos(theta_l) / r^2 dA (m^2 / m^2: a form factor times pi), and, when withLtc, (y)
+// the integral over it of the normalised LTC lobe for the view v and the table's M^-1 `minv`
+// (the LTC section below). The disk is its equal-area regular 32-gon (radius scaled by
+// sqrt((2 pi / 32) / sin(2 pi / 32)), so the polygon's area is the disk's): a disk has no
+// elementary closed form off its axis (its vector irradiance is that of a circular current loop,
+// elliptic integrals) and none once clipped; through Lambert's formula the 32-gon is within 3e-6
+// relative of the disk while it is wholly above the horizon, 1.4e-4 where the horizon cuts it
+// (issue 16 section 2; tests/raytrace_analytic.cpp). The corners by rotating one (a rect's by
+// pi / 2, the disk's by 2 pi / 32: no GL cos and sin). The emitter's one-sidedness is the
+// caller's (a point behind the light's plane sees none of it).
+PENUMBRA_FN vec2 penumbraLightPolygon(int shape, vec3 p, vec3 ng, vec3 ns, vec3 centre, vec3 tangent, vec3 bitangent,
+                                      vec2 size, bool withLtc, vec3 v, vec4 minv) {
+  PenumbraPolygonClip c;
+  c.plane[0] = ng;
+  c.plane[1] = ns;
+  for (int k = 0; k < 3; ++k) {
+    c.crossings[k] = 0;
+    c.exitPoint[k] = vec3(0.0f);
+    c.entryPoint[k] = vec3(0.0f);
+  }
+  c.lambert = 0.0f;
+  c.ltc = 0.0f;
+  c.planes = withLtc ? 3 : 2;
+  c.minv = minv;
+  // The LTC frame: x = v's part orthogonal to ns (v along ns: the lobe is isotropic about ns, the
+  // t = 0 cells, any tangent serves), y = ns x x. Plane 2: (M^-1 w).z > 0, i.e. w . (c x + d ns) > 0.
+  vec3 x = v - ns * dot(v, ns);
+  if (!(length(x) > 1e-6f)) x = abs(ns.x) < 0.9f ? cross(ns, vec3(1.0f, 0.0f, 0.0f)) : cross(ns, vec3(0.0f, 1.0f, 0.0f));
+  c.x = normalize(x);
+  c.y = cross(ns, c.x);
+  c.plane[2] = c.x * minv.y + ns * minv.w;
+
+  bool disk = shape == PENUMBRA_LIGHT_DISK;
+  int n = disk ? 32 : 4;
+  vec2 scale = disk ? vec2(size.x * 1.003222080f) : size;  // sqrt((pi / 16) / sin(pi / 16))
+  vec2 rotation = disk ? vec2(0.980785280f, 0.195090322f) : vec2(0.0f, 1.0f);  // cos, sin of the step
+  vec2 corner = disk ? vec2(1.0f, 0.0f) : vec2(-1.0f, -1.0f);
+  vec3 base = centre - p;
+  vec2 firstCorner = corner;
+  for (int i = 0; i < n; ++i) {
+    vec2 next = i == n - 1 ? firstCorner
+                           : vec2(corner.x * rotation.x - corner.y * rotation.y, corner.y * rotation.x + corner.x * rotation.y);
+    vec3 u = base + tangent * (corner.x * scale.x) + bitangent * (corner.y * scale.y);
+    vec3 e = tangent * ((next.x - corner.x) * scale.x) + bitangent * ((next.y - corner.y) * scale.y);
+    penumbraClipEdge(c, u, e, 0);
+    corner = next;
+  }
+  for (int k = 0; k < 3; ++k)
+    if (c.crossings[k] == 3) penumbraClipEdge(c, c.exitPoint[k], c.entryPoint[k] - c.exitPoint[k], k + 1);
+  return vec2(0.5f * abs(c.lambert), 0.5f * 0.31830988618f * abs(c.ltc));
+}
+
 PENUMBRA_FN float penumbraRectIrradiance(vec3 p, vec3 ng, vec3 ns, vec3 centre, vec3 tangent, vec3 bitangent,
                                          vec2 halfSize) {
-  vec3 a[PENUMBRA_POLYGON_MAX];
-  vec3 du = tangent * halfSize.x, dv = bitangent * halfSize.y;
-  a[0] = centre - du - dv - p;
-  a[1] = centre + du - dv - p;
-  a[2] = centre + du + dv - p;
-  a[3] = centre - du + dv - p;
-  return penumbraPolygonIrradiance(a, 4, ng, ns);
+  return penumbraLightPolygon(PENUMBRA_LIGHT_RECT, p, ng, ns, centre, tangent, bitangent, halfSize, false, ns,
+                              vec4(1.0f, 0.0f, 0.0f, 1.0f)).x;
 }
 
-// A disk light through the polygon formula on its equal-area regular 32-gon (radius scaled by
-// sqrt((2 pi / 32) / sin(2 pi / 32)), so the polygon's area is the disk's). A disk has no
-// elementary closed form off its axis (its vector irradiance is that of a circular current loop,
-// elliptic integrals) and none once clipped. The 32-gon is within 3e-6 relative of the disk
-// while it is wholly above the horizon, 1.1e-4 where the horizon cuts it (the corners at the cut)
-// (issue 16 section 2; tests/raytrace_analytic.cpp). The corners by a fixed rotation (no GL cos
-// and sin).
 PENUMBRA_FN float penumbraDiskIrradiance(vec3 p, vec3 ng, vec3 ns, vec3 centre, vec3 tangent, vec3 bitangent,
                                          float radius) {
-  vec3 a[PENUMBRA_POLYGON_MAX];
-  float r = radius * 1.003222080f;  // sqrt((pi / 16) / sin(pi / 16))
-  float c = 1.0f, s = 0.0f;
-  for (int i = 0; i < 32; ++i) {
-    a[i] = centre + (tangent * c + bitangent * s) * r - p;
-    float next = c * 0.980785280f - s * 0.195090322f;  // rotate by 2 pi / 32
-    s = s * 0.980785280f + c * 0.195090322f;
-    c = next;
-  }
-  return penumbraPolygonIrradiance(a, 32, ng, ns);
+  return penumbraLightPolygon(PENUMBRA_LIGHT_DISK, p, ng, ns, centre, tangent, bitangent, vec2(radius), false, ns,
+                              vec4(1.0f, 0.0f, 0.0f, 1.0f)).x;
 }
 
 // The cosine-weighted solid angle of a spherical cap of angular radius alpha (sin^2 alpha =
@@ -371,8 +442,12 @@ PENUMBRA_FN vec3 penumbraSchlick(vec3 f0, float vh) {
 // estimator gives each its own unshadowed term (Lambert's formula, LTC). Below n's horizon the
 // specular part is 0 and the diffuse part keeps its value (the callers' cosine, clamped at 0,
 // removes it).
+PENUMBRA_FN vec3 penumbraF0(vec3 baseColor, float metallic) {
+  return vec3(0.04f) * (1.0f - metallic) + baseColor * metallic;
+}
+
 PENUMBRA_FN vec3 penumbraFresnel(vec3 v, vec3 l, vec3 baseColor, float metallic) {
-  vec3 f0 = vec3(0.04f) * (1.0f - metallic) + baseColor * metallic;
+  vec3 f0 = penumbraF0(baseColor, metallic);
   vec3 h = v + l;
   float hl = length(h);
   return penumbraSchlick(f0, hl > 0.0f ? dot(v, h) / hl : 0.0f);
@@ -393,6 +468,26 @@ PENUMBRA_FN vec3 penumbraBrdfSpecular(vec3 n, vec3 v, vec3 l, vec3 baseColor, fl
 PENUMBRA_FN vec3 penumbraBrdf(vec3 n, vec3 v, vec3 l, vec3 baseColor, float metallic, float roughness, int model) {
   return penumbraBrdfDiffuse(v, l, baseColor, metallic, model) +
          penumbraBrdfSpecular(n, v, l, baseColor, metallic, roughness, model);
+}
+
+
+// ---- the GGX lobe's unshadowed integral over a polygon (LTC) --------------------------------
+// Heitz, Dupuy, Hill and Neubelt 2016, "Real-time polygonal-light shading with linearly
+// transformed cosines", section 5: the integral over a polygon of the lobe penumbraGgxCosine (F =
+// 1) is norm times that of the clamped cosine D_o over the polygon transformed by M^-1, which is
+// Lambert's formula / pi (penumbraLightPolygon's y). minv holds the table's (a, c, b, d) of
+// M^-1 = [[a 0 b] [0 1 0] [c 0 d]] (src/shading/ltc.h) in the frame x = v's part orthogonal to
+// ns, y = ns x x, z = ns. Divergence: the polygon is first clipped to the horizons of ng (the
+// horizon rule) and of ns (the true lobe is 0 below it; the paper clips only the transformed
+// polygon at z = 0, which we also do: D_o's support). Clipping commutes with the linear map, so
+// the world planes clip before it. The caller multiplies by the Fresnel-weighted norm,
+// f0 (norm - fresnel) + fresnel, and the radiance.
+
+// The table's texture coordinates (ltc.h grid: roughness, sqrt(1 - cos theta_v)) for a table of
+// `size` cells a side, at texel centres.
+PENUMBRA_FN vec2 penumbraLtcCoordinates(float roughness, float nv, float size) {
+  vec2 g = vec2(clamp(roughness, 0.0f, 1.0f), sqrt(max(1.0f - clamp(nv, 0.0f, 1.0f), 0.0f)));
+  return (g * (size - 1.0f) + vec2(0.5f)) / size;
 }
 
 #endif

@@ -26,6 +26,7 @@
 #include "compare/report.h"
 #include "sampling/shared.hpp"
 #include "scene/scene.h"
+#include "shading/ltc.h"
 #include "techniques/dcs/edge_lut.h"
 #include "techniques/registry.h"
 
@@ -410,7 +411,46 @@ int bench(const BenchOptions& b) {
   return failed ? int(ExitCode::Error) : 0;
 }
 
+namespace {
+
+// `lut --ltc`: the fit (all cores; the bytes do not depend on how many), the table and its report.
+int ltcLut(const CommonOptions& o, const LutOptions& l) {
+  if (l.ltcSize < 2 || l.ltcSize > 256) throw Error("--ltc-size", "must be in 2..256", ExitCode::Usage);
+  checkWritableFolder(l.outDir, "--output", /*create=*/true);
+  shading::LtcFitOptions fit;
+  fit.size = l.ltcSize;
+  Progress progress(fit.size);
+  shading::LtcTable table = shading::fitLtcGgx(fit, {}, [&](int done, int total) {
+    progress.step(fmt::format("ltc fit: {} of {} roughness columns", done, total));
+  });
+  progress.finish();
+  const std::string path = (fs::path(l.outDir) / "ltc_ggx.lut").string();
+  const std::string report = (fs::path(l.outDir) / "ltc_ggx_error.csv").string();
+  shading::writeLtcTable(path, table);
+  {
+    std::ofstream out(report, std::ios::trunc);
+    out << shading::ltcErrorCsv(table);
+    if (!(out.flush())) throw Error(report, "cannot write");
+  }
+  double worst = 0.0, mean = 0.0;
+  for (const glm::vec4& t : table.terms) {
+    worst = std::max(worst, double(t.z));
+    mean += double(t.z) / double(table.terms.size());
+  }
+  if (o.json) {
+    json j = {{"kind", "ltc"}, {"path", path}, {"report", report}, {"mean_l1_error", mean}, {"max_l1_error", worst}};
+    std::printf("%s\n", json::array({j}).dump(2).c_str());
+  } else {
+    std::printf("LTC GGX table %s (%dx%d), per-cell L1 error relative to norm: mean %.4g, max %.4g (%s)\n",
+                path.c_str(), fit.size, fit.size, mean, worst, report.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
 int lut(const CommonOptions& o, const LutOptions& l) {
+  if (l.ltc) return ltcLut(o, l);
   if (l.shape != "rect" && l.shape != "disk") throw Error("--shape", "must be rect or disk, got '" + l.shape + "'", ExitCode::Usage);
   if (l.cube < 1 || l.cube > 1024) throw Error("--cube", "must be in 1..1024", ExitCode::Usage);
   if (l.line < 2 || l.line > 4096 || l.line % 2) throw Error("--line", "must be even, in 2..4096", ExitCode::Usage);

@@ -57,8 +57,11 @@ struct LutOptions {
   std::string shape = "rect";  // without a scene: the light shape the table is for (rect | disk)
   int cube = 64, line = 512;   // edge LUT sizes (edge_lut.h)
   std::string outDir = "luts";
+  bool ltc = false;            // instead: the LTC GGX table (src/shading/ltc.h) and its error report
+  int ltcSize = 64;
 };
-// Writes the dcs edge LUT (src/techniques/dcs/edge_lut.h) of the sample pattern the options
+// --ltc: fits the LTC GGX table, writing <outDir>/ltc_ggx.lut and its per-cell error report
+// <outDir>/ltc_ggx_error.csv. Else writes the dcs edge LUT (src/techniques/dcs/edge_lut.h) of the sample pattern the options
 // describe: for each rect or disk light of the scene (none given: for a light of --shape), and
 // the luminance table (N samples x M sets, RGB EXR) of each textured light.
 int lut(const CommonOptions& o, const LutOptions& l);

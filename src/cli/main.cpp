@@ -88,12 +88,14 @@ int main(int argc, char** argv) {
   bench->add_option("--backend", benchOptions.backend, "GL backend: egl | osmesa")->capture_default_str();
 
   cli::LutOptions lutOptions;
-  auto* lut = app.add_subcommand("lut", "write the dcs edge LUT of a sample pattern (and textured lights' luminance tables)");
+  auto* lut = app.add_subcommand("lut", "write the dcs edge LUT of a sample pattern (and textured lights' luminance tables), or the LTC GGX table");
   addCommon(lut, o, true);
   lut->add_option("--shape", lutOptions.shape, "light shape when no scene is given: rect | disk")->capture_default_str();
   lut->add_option("--cube", lutOptions.cube, "sector table size (cube map faces)")->capture_default_str();
   lut->add_option("--line", lutOptions.line, "line table size")->capture_default_str();
   lut->add_option("-o,--output", lutOptions.outDir, "output folder")->capture_default_str();
+  lut->add_flag("--ltc", lutOptions.ltc, "fit the LTC GGX table instead (ltc_ggx.lut and ltc_ggx_error.csv)");
+  lut->add_option("--ltc-size", lutOptions.ltcSize, "LTC table size (cells a side)")->capture_default_str();
 
   try {
     app.parse(argc, argv);

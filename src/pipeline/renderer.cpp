@@ -10,6 +10,7 @@
 #include "core/log.h"
 #include "core/memory.h"
 #include "sampling/shared.hpp"
+#include "shading/ltc.h"
 
 namespace penumbra {
 
@@ -310,6 +311,14 @@ Renderer::Renderer(gl::Context& context, const Scene& given, const RenderSetting
                      : settings.shading == ShadingMode::Ratio   ? "RATIO"
                                                                 : "MODULATE";
   shade_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {mode});
+  if (settings.shading == ShadingMode::Ratio) {
+    const shading::LtcTable& table = shading::builtinLtcTable();
+    ltc_ = gl::Texture::make2DArray(GL_RGBA32F, table.size(), table.size(), 2);
+    ltc_.upload(&table.minv[0].x, 4, 0);
+    ltc_.upload(&table.terms[0].x, 4, 1);
+    glTextureParameteri(ltc_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(ltc_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  }
   filter_ = gl::Program({"fullscreen.vert", "pipeline_filter.frag"});
   if (settings.pipelineStatistics) statistics_ = gl::PipelineStatistics::create();
 }
@@ -477,7 +486,11 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       prog.use();
       setLightUniforms(prog, light, samples);
       prog.set("eyePosition", gpu_->cameraPosition());
-      if (ratio) prog.set("ratioFromSamples", wantSamples ? 1 : 0);
+      if (ratio) {
+        prog.set("ratioFromSamples", wantSamples ? 1 : 0);
+        prog.set("ltcSize", float(ltc_.width()));
+        ltc_.bind(PENUMBRA_UNIT_LTC);
+      }
       emptyVao_.bind();
       glDrawArrays(GL_TRIANGLES, 0, 3);
       if (separate) {
@@ -516,7 +529,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   result.statistics = technique.statistics();
   result.memoryBytes = gpu_->memoryBytes() + color_.bytes() + visibility_.bytes() +
                        (filtered_ ? filtered_.bytes() : 0) + (lightColor_ ? lightColor_.bytes() : 0) +
-                       (perSample_ ? perSample_.bytes() : 0) + technique.memoryBytes();
+                       (perSample_ ? perSample_.bytes() : 0) + (ltc_ ? ltc_.bytes() : 0) + technique.memoryBytes();
   timer.setCounter(nullptr);
   gl::Context::checkErrors("frame");
   return result;

@@ -8,9 +8,10 @@
 //    with each sample's transmittance; needs a technique that provides per-sample results.
 //  * Ratio (Heitz, Hill and McGuire 2018, "Combining analytic direct illumination and
 //    stochastic shadows"), the default: the unshadowed term U, whose diffuse part is in closed
-//    form for untextured rect, disk and sphere lights (shared.h penumbraRectIrradiance,
-//    penumbraDiskIrradiance, penumbraBallIrradiance), else the unshadowed sum over the pixel's
-//    samples; times the shadow ratio sum_k w_k T_k / sum_k w_k, w_k = f L_k cos cos / r^2 of
+//    form for untextured rect, disk and sphere lights (shared.h penumbraLightPolygon,
+//    penumbraBallIrradiance) and whose GGX specular part is the LTC integral for untextured rect
+//    and disk lights (shading/ltc.h, the table built in from luts/ltc_ggx.lut), else the
+//    unshadowed sum over the pixel's samples; times the shadow ratio sum_k w_k T_k / sum_k w_k, w_k = f L_k cos cos / r^2 of
 //    sample k, from the per-sample results, or V / V_unshadowed (eq. 2 over its unshadowed
 //    value) for techniques that give only V.
 // All use the material's BRDF (shared.h penumbraBrdf), the same function the reference uses.
@@ -161,6 +162,7 @@ class Renderer {
   gl::Texture color_, visibility_, perSample_;
   gl::Texture filtered_, lightColor_;  // interleaved sampling: filtered visibility, eq. 6 light term
   gl::Framebuffer colorFbo_, filteredFbo_, lightColorFbo_;
+  gl::Texture ltc_;  // ratio shading: the LTC GGX table (shading/ltc.h), two layers, linear filtering
   gl::Program shade_, filter_;  // shade_: pipeline_shade.frag for settings.shading
   gl::VertexArray emptyVao_;
   std::uint64_t prepared_ = 0;  // Technique::serial() of the technique prepared last

@@ -9,6 +9,7 @@ namespace penumbra::shared {
 using uint = std::uint32_t;
 using vec2 = glm::vec2;
 using vec3 = glm::vec3;
+using vec4 = glm::vec4;
 using glm::abs;
 using glm::cross;
 using glm::dot;

@@ -11,22 +11,13 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/fnv.h"
 
 namespace penumbra::dcs {
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 constexpr const char* kMagic = "penumbra-edge-lut 1";
-
-struct Fnv {
-  std::uint64_t h = 1469598103934665603ull;
-  void bytes(const void* p, std::size_t n) {
-    const auto* b = static_cast<const unsigned char*>(p);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
-  }
-  template <class T>
-  void value(const T& v) { bytes(&v, sizeof v); }
-};
 
 // Angle of (x, y) around the origin in [0, 2 pi), from the +x axis.
 double angleOf(double x, double y) {
@@ -47,12 +38,10 @@ glm::dvec3 cubeDirection(int face, double sc, double tc) {
 }
 
 std::uint64_t payloadChecksum(const EdgeLut& l) {
-  Fnv f;
+  Fnv1a f;
   for (const auto* v : {&l.sector, &l.line, &l.packed}) f.bytes(v->data(), v->size() * sizeof(std::uint32_t));
   return f.h;
 }
-
-std::string hex(std::uint64_t v) { return fmt::format("{:016x}", v); }
 
 }  // namespace
 
@@ -77,7 +66,7 @@ std::vector<glm::vec2> normalisedSamples(const LightSampleSet& s) {
 }
 
 std::uint64_t patternHash(const std::vector<glm::vec2>& normalised, int samples, int sets) {
-  Fnv f;
+  Fnv1a f;
   f.value(std::int32_t(samples));
   f.value(std::int32_t(sets));
   for (const glm::vec2& p : normalised) {
@@ -158,8 +147,8 @@ void writeEdgeLut(const std::string& path, const EdgeLut& l) {
   if (!out) throw Error(path, std::string("cannot write: ") + std::strerror(errno));
   out << kMagic << "\n"
       << "samples " << l.samples << "\nsets " << l.sets << "\nwords " << l.words << "\ncube " << l.size.cube
-      << "\nline " << l.size.line << "\nextent " << fmt::format("{:.9g}", l.extent) << "\npattern " << hex(l.pattern)
-      << "\nchecksum " << hex(payloadChecksum(l)) << "\nend\n";
+      << "\nline " << l.size.line << "\nextent " << fmt::format("{:.9g}", l.extent) << "\npattern " << hex64(l.pattern)
+      << "\nchecksum " << hex64(payloadChecksum(l)) << "\nend\n";
   // The payload in little-endian order (this code runs on little-endian machines only).
   static_assert(sizeof(std::uint32_t) == 4);
   for (const auto* v : {&l.sector, &l.line, &l.packed})
@@ -223,7 +212,7 @@ EdgeLut readEdgeLut(const std::string& path) {
   l.packed.resize(S * std::size_t(packedWords(l.samples)));
   for (auto* v : {&l.sector, &l.line, &l.packed}) in.read(reinterpret_cast<char*>(v->data()), std::streamsize(v->size() * 4));
   if (!in) throw Error(path, "truncated payload");
-  if (hex(payloadChecksum(l)) != checksumHex) throw Error(path, "checksum mismatch (corrupt file)");
+  if (hex64(payloadChecksum(l)) != checksumHex) throw Error(path, "checksum mismatch (corrupt file)");
   return l;
 }
 
@@ -233,8 +222,8 @@ void checkEdgeLutMatches(const EdgeLut& l, const std::string& path, const std::v
     throw Error(path, fmt::format("edge LUT for {} samples x {} sets, the renderer uses {} x {}", l.samples, l.sets,
                                   samples, sets));
   if (l.pattern != patternHash(normalised, samples, sets))
-    throw Error(path, "edge LUT was built for another sample pattern (pattern hash " + hex(l.pattern) + " != " +
-                          hex(patternHash(normalised, samples, sets)) + "); regenerate it with `penumbra lut`");
+    throw Error(path, "edge LUT was built for another sample pattern (pattern hash " + hex64(l.pattern) + " != " +
+                          hex64(patternHash(normalised, samples, sets)) + "); regenerate it with `penumbra lut`");
 }
 
 }  // namespace penumbra::dcs

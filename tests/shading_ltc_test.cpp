@@ -1,0 +1,222 @@
+// The LTC GGX table (src/shading/ltc.h) and the shader's integral over it (shared.h
+// penumbraLightPolygon), GL-free: the fit reproduces the checked-in table bit for bit, the
+// shader's transform is the fit's lobe, the polygon integral's error against the true lobe, and
+// the file's bad-input errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "core/error.h"
+#include "sampling/shared.hpp"
+#include "shading/ltc.h"
+
+namespace penumbra::test {
+namespace {
+
+using shading::LtcTable;
+
+std::string lutPath() { return std::string(PENUMBRA_SOURCE_DIR) + "/luts/ltc_ggx.lut"; }
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The cell's M^-1 and terms exactly (grid points: no interpolation).
+const glm::vec4& cellMinv(const LtcTable& t, int a, int row) {
+  return t.minv[std::size_t(row) * std::size_t(t.size()) + std::size_t(a)];
+}
+const glm::vec4& cellTerms(const LtcTable& t, int a, int row) {
+  return t.terms[std::size_t(row) * std::size_t(t.size()) + std::size_t(a)];
+}
+
+// Unit vector at polar angle theta from z, azimuth phi from x.
+glm::dvec3 direction(double theta, double phi) {
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+}  // namespace
+
+// The checked-in table is what the code fits (issue 16 section 2: reproducible byte for byte):
+// the embedded copy is the file's bytes, and a fresh fit of four roughness columns (with the
+// t = 0 column each starts from) gives exactly those cells. The whole fit: `penumbra lut --ltc`
+// (43 s on 2 cores), luts/README.md.
+TEST(Ltc, TheFitReproducesTheCheckedInTable) {
+  const LtcTable& builtin = shading::builtinLtcTable();
+  const LtcTable file = shading::readLtcTable(lutPath());
+  ASSERT_EQ(file.size(), builtin.size());
+  EXPECT_EQ(std::memcmp(file.minv.data(), builtin.minv.data(), file.minv.size() * sizeof(glm::vec4)), 0);
+  EXPECT_EQ(std::memcmp(file.terms.data(), builtin.terms.data(), file.terms.size() * sizeof(glm::vec4)), 0);
+
+  const std::vector<int> columns = {0, 13, 40, builtin.size() - 1};
+  const LtcTable fresh = shading::fitLtcGgx(builtin.fit, columns);
+  const int n = builtin.size();
+  int compared = 0;
+  for (int row = 0; row < n; ++row)
+    for (int a = 0; a < n; ++a) {
+      if (row != 0 && std::find(columns.begin(), columns.end(), a) == columns.end()) continue;
+      ASSERT_EQ(std::memcmp(&cellMinv(fresh, a, row), &cellMinv(builtin, a, row), sizeof(glm::vec4)), 0)
+          << "M^-1 of cell (" << a << ", " << row << ")";
+      ASSERT_EQ(std::memcmp(&cellTerms(fresh, a, row), &cellTerms(builtin, a, row), sizeof(glm::vec4)), 0)
+          << "terms of cell (" << a << ", " << row << ")";
+      ++compared;
+    }
+  EXPECT_EQ(compared, n + 4 * (n - 1));
+}
+
+// The shader's integral (penumbraLightPolygon: the frame from n and v, M^-1 from the table's four
+// numbers, Lambert's formula) is the fitted lobe the fit evaluates (ltcCellLobe): a small square
+// around direction l integrates to the integral of g / norm over it (midpoint rule), on both sides
+// of the view plane and behind the normal from v. Catches a transposed matrix or a mirrored frame.
+TEST(Ltc, TheShaderIntegralIsTheFittedLobe) {
+  const LtcTable& t = shading::builtinLtcTable();
+  const int n = t.size();
+  double worst = 0.0;
+  int checked = 0;
+  for (int a : {12, 30, 50})
+    for (int row : {0, 20, 40, 55}) {
+      const glm::dvec3 v = shading::ltcCellView(n, row);
+      for (double theta : {0.2, 0.6, 1.0})
+        for (double phi : {0.0, 1.0, 2.5, 4.0}) {
+          const glm::dvec3 l = direction(theta, phi);
+          const double g = shading::ltcCellLobe(t, a, row, l);
+          if (g < 1e-3 * double(cellTerms(t, a, row).x)) continue;  // the tail: relative error meaningless
+          // A square of side 2h at distance 1 along l, facing it; the fit's lobe integrated over it
+          // by the midpoint rule (dw = dA cos / r^2).
+          const double h = 0.05;
+          const glm::dvec3 e1 = glm::normalize(glm::cross(l, glm::dvec3(0.3, 0.7, 0.1)));
+          const glm::dvec3 e2 = glm::cross(l, e1);
+          const int m = 64;
+          double expected = 0.0;
+          for (int j = 0; j < m; ++j)
+            for (int i = 0; i < m; ++i) {
+              const glm::dvec3 x = l + ((i + 0.5) / m * 2.0 - 1.0) * h * e1 + ((j + 0.5) / m * 2.0 - 1.0) * h * e2;
+              const double r2 = glm::dot(x, x);
+              expected += shading::ltcCellLobe(t, a, row, x / std::sqrt(r2)) * (2.0 * h / m) * (2.0 * h / m) / (r2 * std::sqrt(r2));
+            }
+          expected /= double(cellTerms(t, a, row).x);
+          const shared::vec3 z(0.0f, 0.0f, 1.0f);
+          const double integral = shared::penumbraLightPolygon(PENUMBRA_LIGHT_RECT, glm::vec3(0.0f), z, z, glm::vec3(l),
+                                                               glm::vec3(e1), glm::vec3(e2), glm::vec2(float(h)), true,
+                                                               glm::vec3(v), cellMinv(t, a, row)).y;
+          const double rel = std::abs(integral - expected) / expected;
+          if (rel > 2e-3) std::printf("cell (%d, %d), l at theta %.1f phi %.1f: %.5g, the fit's lobe %.5g\n", a, row, theta, phi, integral, expected);
+          worst = std::max(worst, rel);
+          ++checked;
+        }
+    }
+  std::printf("%d directions, worst relative difference %.3g\n", checked, worst);
+  EXPECT_GT(checked, 60);
+  EXPECT_LE(worst, 2e-3);
+}
+
+namespace {
+// The integral over a rect (centre c at distance along direction, facing the origin) of the true
+// lobe by a midpoint rule over its area, and by LTC (the table looked up as the GPU does).
+struct RectCase {
+  double roughness, cosThetaV, theta, phi, halfSize;
+};
+
+void rectIntegrals(const RectCase& k, double& truth, double& ltc, double& norm) {
+  const LtcTable& t = shading::builtinLtcTable();
+  const glm::dvec3 v(std::sqrt(1.0 - k.cosThetaV * k.cosThetaV), 0.0, k.cosThetaV);
+  const glm::dvec3 c = direction(k.theta, k.phi);
+  const glm::dvec3 e1 = glm::normalize(glm::cross(c, glm::dvec3(0.3, 0.7, 0.1)));
+  const glm::dvec3 e2 = glm::cross(c, e1);
+  const float alpha = shared::penumbraAlpha(float(k.roughness));
+  const int m = 400;
+  truth = 0.0;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) {
+      const double s = ((i + 0.5) / m * 2.0 - 1.0) * k.halfSize, u = ((j + 0.5) / m * 2.0 - 1.0) * k.halfSize;
+      const glm::dvec3 x = c + s * e1 + u * e2;
+      const double r2 = glm::dot(x, x);
+      const glm::dvec3 l = x / std::sqrt(r2);
+      const double dw = (2.0 * k.halfSize / m) * (2.0 * k.halfSize / m) * glm::dot(l, c) / r2;
+      truth += double(shared::penumbraGgxCosine(shared::vec3(0, 0, 1), glm::vec3(v), glm::vec3(l), alpha)) * dw;
+    }
+  const glm::vec4 minv = shading::ltcLookup(t, 0, float(k.roughness), float(k.cosThetaV));
+  const glm::vec4 terms = shading::ltcLookup(t, 1, float(k.roughness), float(k.cosThetaV));
+  const shared::vec3 z(0.0f, 0.0f, 1.0f);
+  ltc = double(shared::penumbraLightPolygon(PENUMBRA_LIGHT_RECT, glm::vec3(0.0f), z, z, glm::vec3(c), glm::vec3(e1),
+                                            glm::vec3(e2), glm::vec2(float(k.halfSize)), true, glm::vec3(v), minv).y) *
+        double(terms.x);
+  norm = double(terms.x);
+}
+}  // namespace
+
+// Issue 16 section 2: what the LTC gives against the true lobe over rect lights: rects centred
+// on the mirror direction, beyond it and sideways (in the lobe's tail), small (half-size 0.1 at
+// distance 1) and large (0.5), for roughness 0.2-0.6 and views from normal to 75 degrees. The
+// error relative to the true integral on the mirror direction, and relative to norm (the whole
+// lobe: what the light adds next to what a light filling the hemisphere would) everywhere; the
+// gates are the measured values (llvmpipe and the CPU agree: this test is the CPU's). The LTC
+// misses most of the tail sideways (the fit's cubic objective weights the peak), and at 75
+// degrees and roughness 0.6 it is 20% off on the mirror direction (luts/ltc_ggx_error.csv).
+TEST(Ltc, PolygonIntegralAgainstTheTrueLobe) {
+  double worstOn = 0.0, worstNorm = 0.0;
+  for (double r : {0.2, 0.3, 0.45, 0.6})
+    for (double cv : {1.0, 0.8, 0.5, 0.26})
+      for (double size : {0.1, 0.5}) {
+        const double thetaV = std::acos(cv);
+        for (int where = 0; where < 3; ++where) {
+          RectCase k{r, cv, std::max(thetaV, 0.05), std::numbers::pi, size};  // the mirror direction
+          if (where == 1) k.theta = std::min(thetaV + 0.4, 1.3);
+          if (where == 2) k.theta = std::max(thetaV, 0.3), k.phi = 1.0;
+          double truth, ltc, norm;
+          rectIntegrals(k, truth, ltc, norm);
+          std::printf("roughness %.2f cos(theta_v) %.2f half-size %.1f %-8s: true %.5g ltc %.5g (%+.3f, %+.4f of norm)\n",
+                      r, cv, size, where == 0 ? "mirror" : where == 1 ? "beyond" : "sideways", truth, ltc,
+                      (ltc - truth) / truth, (ltc - truth) / norm);
+          if (where == 0) worstOn = std::max(worstOn, std::abs(ltc - truth) / truth);
+          worstNorm = std::max(worstNorm, std::abs(ltc - truth) / norm);
+        }
+      }
+  std::printf("worst error: %.3g relative on the mirror direction, %.3g of norm in all\n", worstOn, worstNorm);
+  RecordProperty("worst_mirror_relative", std::to_string(worstOn));
+  RecordProperty("worst_of_norm", std::to_string(worstNorm));
+  EXPECT_LE(worstOn, 0.25);
+  EXPECT_LE(worstNorm, 0.09);
+}
+
+// Bad table files get one clear error each.
+TEST(Ltc, BadTableFilesAreRefused) {
+  const std::string good = fileBytes(lutPath());
+  ASSERT_FALSE(good.empty());
+  auto refuse = [&](const std::string& bytes, const std::string& what) {
+    try {
+      shading::parseLtcTable(bytes, "x.lut");
+      ADD_FAILURE() << "accepted: " << what;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("x.lut"), std::string::npos) << e.what();
+      std::printf("%s: %s\n", what.c_str(), e.what());
+    }
+  };
+  refuse("", "empty");
+  refuse("penumbra-edge-lut 1\n", "another table");
+  refuse(good.substr(0, good.size() - 7), "truncated");
+  std::string flipped = good;
+  flipped[flipped.size() - 100] ^= 0x10;
+  refuse(flipped, "a flipped payload bit");
+  std::string header = good;
+  header.replace(header.find("size 64"), 7, "size 65");
+  refuse(header, "a wrong size");
+  std::string twice = good;
+  twice.insert(twice.find("checksum"), "size 64\n");
+  refuse(twice, "a key given twice");
+  // A round trip through the writer keeps every byte.
+  const std::string copy = (std::filesystem::temp_directory_path() / "penumbra_ltc_copy.lut").string();
+  shading::writeLtcTable(copy, shading::builtinLtcTable());
+  EXPECT_EQ(fileBytes(copy), good);
+  std::remove(copy.c_str());
+}
+
+}  // namespace penumbra::test
