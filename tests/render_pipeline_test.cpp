@@ -291,6 +291,15 @@ Scene floorUnder(LightShape shape, glm::vec3 position, glm::vec2 size) {
   return scene;
 }
 
+// The glossy floors' material: metallic-roughness, roughness 0.3, a gold-like base colour (exact
+// in the G-buffer's half floats), dielectric (metallic 0) or metal (1).
+void makeGlossy(Material& m, float metallic) {
+  m.brdf = BrdfModel::MetallicRoughness;
+  m.baseColor = glm::vec3(1.0f, 0.75f, 0.25f);
+  m.metallic = metallic;
+  m.roughness = 0.3f;
+}
+
 template <typename Expected>
 void expectRatioShadingIsClosedForm(const Scene& scene, Expected expected, double convergedTolerance,
                                     double tolerance = 1e-4) {
@@ -416,11 +425,7 @@ TEST(Pipeline, RatioShadingIsPerSampleWithoutAClosedForm) {
 TEST(Pipeline, GlossyShadingIsTheSharedBrdfOnGpuAndCpu) {
   for (float metallic : {0.0f, 1.0f}) {
     Scene scene = litFloor(1.0f);
-    Material& m = scene.materials[0];
-    m.brdf = BrdfModel::MetallicRoughness;
-    m.baseColor = glm::vec3(1.0f, 0.75f, 0.25f);  // exact in the G-buffer's half floats
-    m.metallic = metallic;
-    m.roughness = 0.3f;
+    makeGlossy(scene.materials[0], metallic);
     scene.lights[0].position = {0.0f, 1.5f, -1.0f};  // its highlight on the floor in view
     scene.makeCameraRelative();
     RenderSettings s = settings(96, 128);
@@ -470,7 +475,7 @@ TEST(Pipeline, GlossyShadingIsTheSharedBrdfOnGpuAndCpu) {
 }
 
 // Issue 16 "Must show": LTC GGX against the converged shaded reference on a glossy plane. The
-// floor of GlossyShading... (roughness 0.3, a dielectric and a gold-like metal) unoccluded under
+// floor of GlossyShadingIsTheSharedBrdfOnGpuAndCpu (makeGlossy) unoccluded under
 // a rect and a disk light, shaded by `none` with the ratio estimator: V = 1, so the image is the
 // unshadowed term, Lambert's formula for the diffuse part and the LTC integral (shared.h
 // penumbraLtcPolygon, luts/ltc_ggx.lut) for the specular one. Against raytrace-converged (1024
@@ -482,11 +487,7 @@ TEST(Pipeline, LtcSpecularAgainstTheConvergedShadedReference) {
   for (LightShape shape : {LightShape::Rect, LightShape::Disk})
     for (float metallic : {0.0f, 1.0f}) {
       Scene scene = floorUnder(shape, {0.0f, 1.5f, -1.0f}, shape == LightShape::Rect ? glm::vec2(1.2f, 0.6f) : glm::vec2(0.5f));
-      Material& m = scene.materials[0];
-      m.brdf = BrdfModel::MetallicRoughness;
-      m.baseColor = glm::vec3(1.0f, 0.75f, 0.25f);
-      m.metallic = metallic;
-      m.roughness = 0.3f;
+      makeGlossy(scene.materials[0], metallic);
       FrameResult img[3];
       const ShadingMode modes[2] = {ShadingMode::Ratio, ShadingMode::PerSample};
       for (int i = 0; i < 2; ++i) {
