@@ -206,29 +206,33 @@ struct PenumbraPolygonClip {
 #define PENUMBRA_INOUT(T) inout T
 #endif
 
-// Edge (u, u + e) of the boundary (relative to the point) through planes first..planes-1.
-PENUMBRA_FN void penumbraClipEdge(PENUMBRA_INOUT(PenumbraPolygonClip) c, vec3 u, vec3 e, int first) {
+// Edge (u, v) of the boundary (relative to the point) through planes first..planes-1; e = v - u,
+// exact where it can be (penumbraEdgeIntegral). Each end is classified by dot(plane, end) of that
+// very vector, the same value for the edges that share it (u + e would round differently: a cut
+// point on plane 0 read as inside plane 1 at one edge's end and outside at the next edge's start
+// lost the closing edge when ng = ns).
+PENUMBRA_FN void penumbraClipEdge(PENUMBRA_INOUT(PenumbraPolygonClip) c, vec3 u, vec3 v, vec3 e, int first) {
   for (int k = 0; k < 3; ++k) {
     if (k == 2 && first <= 2) {
       c.lambert += penumbraEdgeIntegral(u, e, c.plane[1]);
       if (c.planes == 2) return;
     }
     if (k < first) continue;
-    float hu = dot(c.plane[k], u), he = dot(c.plane[k], e);
-    bool inU = hu > 0.0f, inV = hu + he > 0.0f;
-    if (!inU && !inV) return;
-    if (inU != inV) {
-      float t = -hu / he;
+    float hu = dot(c.plane[k], u), hv = dot(c.plane[k], v);
+    if (!(hu > 0.0f) && !(hv > 0.0f)) return;
+    if ((hu > 0.0f) != (hv > 0.0f)) {
+      float t = hu / (hu - hv);
       vec3 cut = u + e * t;
-      if (inU) {
+      if (hu > 0.0f) {
         c.exitPoint[k] = cut;
         c.crossings[k] |= 1;
+        v = cut;
         e = e * t;
       } else {
         c.entryPoint[k] = cut;
         c.crossings[k] |= 2;
-        e = e * (1.0f - t);
         u = cut;
+        e = e * (1.0f - t);
       }
     }
   }
@@ -281,16 +285,20 @@ PENUMBRA_FN vec2 penumbraLightPolygon(int shape, vec3 p, vec3 ng, vec3 ns, vec3 
   vec2 corner = disk ? vec2(1.0f, 0.0f) : vec2(-1.0f, -1.0f);
   vec3 base = centre - p;
   vec2 firstCorner = corner;
+  vec3 first = base + tangent * (corner.x * scale.x) + bitangent * (corner.y * scale.y);
+  vec3 u = first;
   for (int i = 0; i < n; ++i) {
     vec2 next = i == n - 1 ? firstCorner
                            : vec2(corner.x * rotation.x - corner.y * rotation.y, corner.y * rotation.x + corner.x * rotation.y);
-    vec3 u = base + tangent * (corner.x * scale.x) + bitangent * (corner.y * scale.y);
+    vec3 v = i == n - 1 ? first : base + tangent * (next.x * scale.x) + bitangent * (next.y * scale.y);
     vec3 e = tangent * ((next.x - corner.x) * scale.x) + bitangent * ((next.y - corner.y) * scale.y);
-    penumbraClipEdge(c, u, e, 0);
+    penumbraClipEdge(c, u, v, e, 0);
+    u = v;
     corner = next;
   }
   for (int k = 0; k < 3; ++k)
-    if (c.crossings[k] == 3) penumbraClipEdge(c, c.exitPoint[k], c.entryPoint[k] - c.exitPoint[k], k + 1);
+    if (c.crossings[k] == 3)
+      penumbraClipEdge(c, c.exitPoint[k], c.entryPoint[k], c.entryPoint[k] - c.exitPoint[k], k + 1);
   return vec2(0.5f * abs(c.lambert), 0.5f * 0.31830988618f * abs(c.ltc));
 }
 

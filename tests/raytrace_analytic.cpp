@@ -4,8 +4,11 @@
 // sample crosses the occluder plane inside or outside the occluder polygon.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include "analytic_oracle.h"
 #include "sampling/light_samples.h"
@@ -290,6 +293,74 @@ TEST(ClosedForms, DiskIrradianceIsLambertsIntegral) {
     worst = std::max(worst, std::abs(got - want) / want);
   }
   std::printf("disk irradiance: worst relative difference %.3g\n", worst);
+}
+
+namespace {
+// An independent oracle for the clipped polygon formula: Sutherland-Hodgman on vertex arrays and
+// Lambert's sum with acos, all in double.
+double clippedLambert(std::vector<glm::dvec3> a, const glm::dvec3& ng, const glm::dvec3& ns) {
+  for (const glm::dvec3& h : {ng, ns}) {
+    std::vector<glm::dvec3> b;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const glm::dvec3 u = a[i], v = a[(i + 1) % a.size()];
+      const double hu = glm::dot(h, u), hv = glm::dot(h, v);
+      if (hu > 0.0) b.push_back(u);
+      if ((hu > 0.0) != (hv > 0.0)) b.push_back(u + (v - u) * (hu / (hu - hv)));
+    }
+    a = b;
+  }
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const glm::dvec3 u = glm::normalize(a[i]), v = glm::normalize(a[(i + 1) % a.size()]);
+    const glm::dvec3 c = glm::cross(u, v);
+    if (glm::length(c) > 0.0) sum += std::atan2(glm::length(c), glm::dot(u, v)) * glm::dot(c, ns) / glm::length(c);
+  }
+  return 0.5 * std::abs(sum);
+}
+}  // namespace
+
+// The streamed clipping of shared.h penumbraLightPolygon (edge by edge, no vertex arrays) against
+// the array clipping in double, on 20000 random rects and disks (as the same 32-gon) around
+// random points, cut by the geometric and shading planes; a third with the two normals equal
+// (every cut point then lies on both planes: a classification that differs between an edge's end
+// and the next edge's start lost the closing edge, 2205 of 200000 cases off by up to 366x before
+// the fix). Measured: 8.9e-5 relative at worst (2.6e-4 over 200000 such cases; floor 1e-3 of the
+// value).
+TEST(ClosedForms, StreamedPolygonClippingIsArrayClipping) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+  auto random = [&] { return glm::vec3(U(rng), U(rng), U(rng)); };
+  double worst = 0.0;
+  int clipped = 0;
+  for (int it = 0; it < 20000; ++it) {
+    const glm::vec3 p = random() * 2.0f, ng = glm::normalize(random());
+    glm::vec3 ns = it % 3 == 0 ? ng : glm::normalize(ng + 0.5f * random());
+    if (glm::dot(ns, ng) < 0.0f) ns = -ns;
+    const glm::vec3 c = random() * 2.0f, t = glm::normalize(random());
+    const glm::vec3 b = glm::normalize(glm::cross(t, random()));
+    const glm::vec2 half(0.1f + 0.5f * std::abs(U(rng)), 0.1f + 0.5f * std::abs(U(rng)));
+    const bool disk = it % 2 == 1;
+    std::vector<glm::dvec3> poly;
+    if (disk) {
+      const double r = double(half.x) * 1.003222080;
+      for (int i = 0; i < 32; ++i) {
+        const double a = 2.0 * std::numbers::pi * i / 32.0;
+        poly.push_back(glm::dvec3(c - p) + r * (std::cos(a) * glm::dvec3(t) + std::sin(a) * glm::dvec3(b)));
+      }
+    } else {
+      for (glm::dvec2 k : {glm::dvec2(-1, -1), glm::dvec2(1, -1), glm::dvec2(1, 1), glm::dvec2(-1, 1)})
+        poly.push_back(glm::dvec3(c - p) + k.x * double(half.x) * glm::dvec3(t) + k.y * double(half.y) * glm::dvec3(b));
+    }
+    const double want = clippedLambert(poly, glm::dvec3(ng), glm::dvec3(ns));
+    const double got = disk ? shared::penumbraDiskIrradiance(p, ng, ns, c, t, b, half.x)
+                            : shared::penumbraRectIrradiance(p, ng, ns, c, t, b, half);
+    const double rel = std::abs(got - want) / std::max(want, 1e-3);
+    clipped += std::any_of(poly.begin(), poly.end(), [&](const glm::dvec3& v) { return glm::dot(v, glm::dvec3(ng)) <= 0.0; });
+    worst = std::max(worst, rel);
+    ASSERT_LE(rel, 1e-3) << "case " << it << (disk ? " (disk)" : " (rect)") << ": " << got << " against " << want;
+  }
+  std::printf("%d of 20000 cut by the horizon; worst relative difference %.3g\n", clipped, worst);
+  EXPECT_GT(clipped, 2000);
 }
 
 }  // namespace penumbra::test
