@@ -12,8 +12,10 @@
 // mode the diffuse part's unshadowed term is Lambert's formula times the samples' mean of the
 // diffuse BRDF (1 - F varies over the light; exact for LAMBERT); the specular part's is the LTC
 // integral (shared.h penumbraLightPolygon, the table of src/shading/ltc.h) times the Fresnel-weighted
-// norm f0 (norm - fresnel) + fresnel for untextured rect and disk lights, else the sample sum
-// (sphere lights: no polygon; textured lights: README "Shading").
+// norm f0 (norm - fresnel) + fresnel for rect and disk lights, else the sample sum (sphere
+// lights: no polygon). A textured rect or disk light's two integrals are each times its emission
+// prefiltered for that lobe (Heitz et al. 2016 section 5.3: shared.h penumbraPrefilterFootprint,
+// src/shading/prefiltered_light.h); a textured sphere keeps the sample sum (README "Shading").
 #include "common_light.glsl"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
@@ -31,6 +33,10 @@ layout(binding = PENUMBRA_UNIT_SAMPLE_VIS) uniform sampler2DArray sampleVisibili
 uniform int ratioFromSamples;  // 1: the technique's per-sample results are bound
 layout(binding = PENUMBRA_UNIT_LTC) uniform sampler2DArray ltcTable;  // layer 0 M^-1, layer 1 norm, fresnel
 uniform float ltcSize;                                               // cells a side
+uniform int lightPrefiltered;  // 1: the light's prefiltered emission is bound (a textured rect or disk)
+layout(binding = PENUMBRA_UNIT_LIGHT_PREFILTERED) uniform sampler2DArray prefiltered;  // a layer a level
+uniform float prefilterSigma0;
+uniform int prefilterLevels;
 #endif
 uniform vec3 eyePosition;
 
@@ -65,27 +71,55 @@ vec3 sampleTerm(Surface s, uint i) {
 }
 
 #ifdef RATIO
+// L_D, the emission averaged over the light with a lobe's weight, at a footprint (u, v, d) of
+// penumbraPrefilterFootprint: every level mixed with penumbraPrefilterWeight as a normalised
+// convolution (src/shading/prefiltered_light.h prefilteredEmission).
+vec3 prefilteredEmission(vec3 footprint) {
+  vec2 tc = penumbraPrefilterCoordinates(footprint.xy);
+  vec3 num = vec3(0.0);
+  float den = 0.0;
+  for (int k = 0; k < prefilterLevels; ++k) {
+    float w = penumbraPrefilterWeight(footprint.z, prefilterSigma0, k, prefilterLevels);
+    vec4 t = textureLod(prefiltered, vec3(tc, float(k)), 0.0);
+    num += w * t.a * t.rgb;
+    den += w * t.a;
+  }
+  return den > 0.0 ? num / den : textureLod(prefiltered, vec3(tc, float(prefilterLevels - 1)), 0.0).rgb;
+}
+
 // The unshadowed terms in closed form where penumbra has one for this light and point: returns
-// the integral of cos(theta_s) [cos(theta_l)] / r^2 over the light, -1 where there is none; and
-// sets `specular` to the specular part's (radiance 1) by LTC, -1 where there is none.
-float closedForms(Surface s, out vec3 specular) {
+// the integral of L cos(theta_s) [cos(theta_l)] / r^2 over the light (L the emission texture, 1
+// untextured), -1 where there is none; and sets `specular` to the specular part's by LTC, -1
+// where there is none.
+vec3 closedForms(Surface s, out vec3 specular) {
   specular = vec3(-1.0);
-  if (lightTextured != 0) return -1.0;
-  if (lightShape == PENUMBRA_LIGHT_SPHERE) return penumbraBallIrradiance(s.p, s.n, s.ns, lightPosition, lightShapeRadius);
-  if (lightShape != PENUMBRA_LIGHT_RECT && lightShape != PENUMBRA_LIGHT_DISK) return -1.0;
+  bool polygon = lightShape == PENUMBRA_LIGHT_RECT || lightShape == PENUMBRA_LIGHT_DISK;
+  if (lightTextured != 0 && !(polygon && lightPrefiltered != 0)) return vec3(-1.0);
+  if (lightShape == PENUMBRA_LIGHT_SPHERE) return vec3(penumbraBallIrradiance(s.p, s.n, s.ns, lightPosition, lightShapeRadius));
+  if (!polygon) return vec3(-1.0);
   specular = vec3(0.0);
-  if (!(dot(lightNormal, s.p - lightPosition) > 0.0)) return 0.0;  // behind the light: it sees none of it
+  if (!(dot(lightNormal, s.p - lightPosition) > 0.0)) return vec3(0.0);  // behind the light: it sees none of it
   bool glossy = s.model == PENUMBRA_BRDF_METALLIC_ROUGHNESS;
   vec2 uv = penumbraLtcCoordinates(s.roughness, dot(s.ns, s.v), ltcSize);
   vec4 minv = glossy ? textureLod(ltcTable, vec3(uv, 0.0), 0.0) : vec4(1.0, 0.0, 0.0, 1.0);
-  vec2 e = penumbraLightPolygon(lightShape, s.p, s.n, s.ns, lightPosition, lightTangent, cross(lightNormal, lightTangent),
-                                lightShape == PENUMBRA_LIGHT_RECT ? lightHalfExtent : vec2(lightShapeRadius), glossy,
-                                s.v, minv);
+  vec3 bitangent = cross(lightNormal, lightTangent);
+  vec2 size = lightShape == PENUMBRA_LIGHT_RECT ? lightHalfExtent : vec2(lightShapeRadius);
+  vec2 e = penumbraLightPolygon(lightShape, s.p, s.n, s.ns, lightPosition, lightTangent, bitangent, size, glossy, s.v, minv);
+  vec3 emittedDiffuse = vec3(1.0), emittedSpecular = vec3(1.0);
+  if (lightTextured != 0) {
+    vec3 x = penumbraLtcTangent(s.ns, s.v), y = cross(s.ns, x);
+    vec4 identity = vec4(1.0, 0.0, 0.0, 1.0);
+    emittedDiffuse = prefilteredEmission(penumbraPrefilterFootprint(s.p, lightPosition, lightTangent, bitangent, size,
+                                                                    x, y, s.ns, identity));
+    if (glossy)
+      emittedSpecular = prefilteredEmission(penumbraPrefilterFootprint(s.p, lightPosition, lightTangent, bitangent,
+                                                                       size, x, y, s.ns, minv));
+  }
   if (glossy) {
     vec4 terms = textureLod(ltcTable, vec3(uv, 1.0), 0.0);
-    specular = e.y * (penumbraF0(s.base, s.metallic) * (terms.x - terms.y) + vec3(terms.y));
+    specular = e.y * (penumbraF0(s.base, s.metallic) * (terms.x - terms.y) + vec3(terms.y)) * emittedSpecular;
   }
-  return e.x;
+  return e.x * emittedDiffuse;
 }
 
 vec3 ratioOf(vec3 a, vec3 b) {
@@ -109,26 +143,30 @@ void main() {
 #elif defined(RATIO)
   uint base = pixelSampleBase(px);
   vec3 weights = vec3(0.0), shadowed = vec3(0.0), unshadowedV = vec3(0.0);
-  vec3 diffuse = vec3(0.0), geometric = vec3(0.0), specular = vec3(0.0);
+  vec3 diffuse = vec3(0.0), specular = vec3(0.0), diffuseUnit = vec3(0.0);
+  float geometric = 0.0;
   for (uint k = 0u; k < sampleCount; ++k) {
     vec3 l;
-    vec3 g = geometricTerm(s, samplePositions[base + k].xyz, sampleLuminance[base + k].rgb, l);
-    vec3 fd = g * diffuseOf(s, l), fs = g * specularOf(s, l);
+    vec3 g1 = geometricTerm(s, samplePositions[base + k].xyz, vec3(1.0), l);
+    vec3 g = g1 * sampleLuminance[base + k].rgb;
+    vec3 bd = diffuseOf(s, l);
+    vec3 fd = g * bd, fs = g * specularOf(s, l);
     weights += fd + fs;
     diffuse += fd;
     specular += fs;
-    geometric += g;
+    diffuseUnit += g1 * bd;
+    geometric += g1.x;
     if (aboveHorizon(s.p, s.n, samplePositions[base + k].xyz)) unshadowedV += sampleLuminance[base + k].rgb;
     if (ratioFromSamples != 0) shadowed += (fd + fs) * texelFetch(sampleVisibility, ivec3(px, int(k)), 0).r;
   }
   vec3 ltc;
-  float closed = closedForms(s, ltc);
+  vec3 closed = closedForms(s, ltc);
   vec3 centre;
   geometricTerm(s, lightPosition, vec3(1.0), centre);
-  // The diffuse BRDF's mean over the samples, weighted by their geometric terms (its value at
-  // the light's centre where no sample is above the horizon).
-  vec3 diffuseMean = dot(geometric, vec3(1.0)) > 0.0 ? ratioOf(diffuse, geometric) : diffuseOf(s, centre);
-  vec3 unshadowed = (closed >= 0.0 ? closed * diffuseMean : diffuse * sampleWeight) +
+  // The diffuse BRDF's mean over the samples, weighted by their geometric terms without the
+  // emission (its value at the light's centre where no sample is above the horizon).
+  vec3 diffuseMean = geometric > 0.0 ? diffuseUnit / geometric : diffuseOf(s, centre);
+  vec3 unshadowed = (closed.x >= 0.0 ? closed * diffuseMean : diffuse * sampleWeight) +
                     (ltc.x >= 0.0 ? ltc : specular * sampleWeight);
   vec3 ratio = ratioFromSamples != 0 ? ratioOf(shadowed, weights)
                                      : ratioOf(texelFetch(visibility, px, 0).rgb * float(sampleCount), unshadowedV);

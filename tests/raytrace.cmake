@@ -6,4 +6,5 @@ penumbra_add_test(test_raytrace ${CMAKE_CURRENT_SOURCE_DIR}/raytrace_embree.cpp
                   ${CMAKE_CURRENT_SOURCE_DIR}/raytrace_analytic.cpp
                   LIBS penumbra_reference)
 # The LTC GGX table, its fit and the shader's polygon integral on the CPU (GL-free).
-penumbra_add_test(test_shading ${CMAKE_CURRENT_SOURCE_DIR}/shading_ltc_test.cpp LIBS penumbra_shading)
+penumbra_add_test(test_shading ${CMAKE_CURRENT_SOURCE_DIR}/shading_ltc_test.cpp
+                  ${CMAKE_CURRENT_SOURCE_DIR}/shading_prefilter_test.cpp LIBS penumbra_shading)

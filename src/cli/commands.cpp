@@ -6,10 +6,11 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
-#include <thread>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -27,6 +28,7 @@
 #include "sampling/shared.hpp"
 #include "scene/scene.h"
 #include "shading/ltc.h"
+#include "shading/prefiltered_light.h"
 #include "techniques/dcs/edge_lut.h"
 #include "techniques/registry.h"
 
@@ -486,6 +488,20 @@ int lut(const CommonOptions& o, const LutOptions& l) {
       std::string path = (fs::path(l.outDir) / (scene.name + "_" + light.name + "_luminance.exr")).string();
       writeExr(path, {{"", &lum}});
       written.push_back({{"light", light.name}, {"kind", "luminance"}, {"path", path}});
+    }
+    if (const Image* texture = lightEmissionTexture(scene, light, s.time);
+        texture && (light.shape == LightShape::Rect || light.shape == LightShape::Disk)) {
+      // The ratio estimator's prefiltered emission (shading/prefiltered_light.h), a layer a level.
+      const shading::PrefilteredLight chain = shading::prefilterLight(*texture, light.shape == LightShape::Disk);
+      std::vector<Image> levels(std::size_t(chain.levels), Image(chain.size, chain.size, 4));
+      const std::size_t n = std::size_t(chain.size) * std::size_t(chain.size);
+      for (std::size_t k = 0; k < levels.size(); ++k)
+        std::memcpy(levels[k].data.data(), &chain.texels[k * n].x, n * sizeof(glm::vec4));
+      std::vector<ExrLayer> layers;
+      for (std::size_t k = 0; k < levels.size(); ++k) layers.push_back({"level" + std::to_string(k), &levels[k]});
+      std::string path = (fs::path(l.outDir) / (scene.name + "_" + light.name + "_prefiltered.exr")).string();
+      writeExr(path, layers);
+      written.push_back({{"light", light.name}, {"kind", "prefiltered"}, {"path", path}});
     }
   }
   if (o.json) {

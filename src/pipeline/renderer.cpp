@@ -11,6 +11,7 @@
 #include "core/memory.h"
 #include "sampling/shared.hpp"
 #include "shading/ltc.h"
+#include "shading/prefiltered_light.h"
 
 namespace penumbra {
 
@@ -325,6 +326,26 @@ Renderer::Renderer(gl::Context& context, const Scene& given, const RenderSetting
 
 Renderer::~Renderer() = default;
 
+const Renderer::Prefiltered* Renderer::prefilteredFor(const Light& light) {
+  if (light.shape != LightShape::Rect && light.shape != LightShape::Disk) return nullptr;
+  const Image* texture = lightEmissionTexture(scene_, light, settings_.time);
+  if (!texture) return nullptr;
+  const bool disk = light.shape == LightShape::Disk;
+  auto [it, made] = prefiltered_.try_emplace({texture, disk});
+  if (made) {
+    const shading::PrefilteredLight chain = shading::prefilterLight(*texture, disk);
+    Prefiltered& p = it->second;
+    p.texture = gl::Texture::make2DArray(GL_RGBA32F, chain.size, chain.size, chain.levels);
+    const std::size_t level = std::size_t(chain.size) * std::size_t(chain.size);
+    for (int k = 0; k < chain.levels; ++k) p.texture.upload(&chain.texels[std::size_t(k) * level].x, 4, k);
+    glTextureParameteri(p.texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(p.texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    p.sigma0 = chain.sigma0;
+    p.levels = chain.levels;
+  }
+  return &it->second;
+}
+
 namespace {
 
 // Values of `im` that are NaN or infinite, and the pixels holding them.
@@ -490,6 +511,13 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
         prog.set("ratioFromSamples", wantSamples ? 1 : 0);
         prog.set("ltcSize", float(ltc_.width()));
         ltc_.bind(PENUMBRA_UNIT_LTC);
+        const Prefiltered* chain = prefilteredFor(light);
+        prog.set("lightPrefiltered", chain ? 1 : 0);
+        if (chain) {
+          chain->texture.bind(PENUMBRA_UNIT_LIGHT_PREFILTERED);
+          prog.set("prefilterSigma0", chain->sigma0);
+          prog.set("prefilterLevels", chain->levels);
+        }
       }
       emptyVao_.bind();
       glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -530,6 +558,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   result.memoryBytes = gpu_->memoryBytes() + color_.bytes() + visibility_.bytes() +
                        (filtered_ ? filtered_.bytes() : 0) + (lightColor_ ? lightColor_.bytes() : 0) +
                        (perSample_ ? perSample_.bytes() : 0) + (ltc_ ? ltc_.bytes() : 0) + technique.memoryBytes();
+  for (const auto& [key, chain] : prefiltered_) result.memoryBytes += chain.texture.bytes();
   timer.setCounter(nullptr);
   gl::Context::checkErrors("frame");
   return result;

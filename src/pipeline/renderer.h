@@ -10,15 +10,19 @@
 //    stochastic shadows"), the default: the unshadowed term U, whose diffuse part is in closed
 //    form for untextured rect, disk and sphere lights (shared.h penumbraLightPolygon,
 //    penumbraBallIrradiance) and whose GGX specular part is the LTC integral for untextured rect
-//    and disk lights (shading/ltc.h, the table built in from luts/ltc_ggx.lut), else the
-//    unshadowed sum over the pixel's samples; times the shadow ratio sum_k w_k T_k / sum_k w_k, w_k = f L_k cos cos / r^2 of
+//    and disk lights (shading/ltc.h, the table built in from luts/ltc_ggx.lut); for textured
+//    rect and disk lights both are those integrals times the emission prefiltered for each lobe
+//    (Heitz et al. 2016 section 5.3, shading/prefiltered_light.h); else (sphere lights' LTC,
+//    textured spheres, points) the unshadowed sum over the pixel's samples; times the shadow ratio sum_k w_k T_k / sum_k w_k, w_k = f L_k cos cos / r^2 of
 //    sample k, from the per-sample results, or V / V_unshadowed (eq. 2 over its unshadowed
 //    value) for techniques that give only V.
 // All use the material's BRDF (shared.h penumbraBrdf), the same function the reference uses.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -163,6 +167,15 @@ class Renderer {
   gl::Texture filtered_, lightColor_;  // interleaved sampling: filtered visibility, eq. 6 light term
   gl::Framebuffer colorFbo_, filteredFbo_, lightColorFbo_;
   gl::Texture ltc_;  // ratio shading: the LTC GGX table (shading/ltc.h), two layers, linear filtering
+  // Ratio shading: textured rect and disk lights' prefiltered emission (shading/prefiltered_light.h),
+  // one layer a level, by emission texture and support (disk or not); made on first use.
+  struct Prefiltered {
+    gl::Texture texture;
+    float sigma0 = 0.0f;
+    int levels = 0;
+  };
+  std::map<std::pair<const Image*, bool>, Prefiltered> prefiltered_;
+  const Prefiltered* prefilteredFor(const Light& light);
   gl::Program shade_, filter_;  // shade_: pipeline_shade.frag for settings.shading
   gl::VertexArray emptyVao_;
   std::uint64_t prepared_ = 0;  // Technique::serial() of the technique prepared last

@@ -238,25 +238,6 @@ LightMap makeLightMap(const Scene& scene, const Light& light, float time) {
   return m;
 }
 
-// Bilinear RGB of the linear texture at the light's (u,v): texel centres at (i+0.5)/w, clamped
-// to the edge. v = 0 is the image's top row (row 0, the glTF texture convention). One- and
-// two-channel textures are grey.
-glm::vec3 emission(const Image& img, glm::dvec2 uv) {
-  const double fx = uv.x * img.width - 0.5, fy = uv.y * img.height - 0.5;
-  const double x0f = std::floor(fx), y0f = std::floor(fy);
-  const double ax = fx - x0f, ay = fy - y0f;
-  auto texel = [&](int x, int y) {
-    x = std::clamp(x, 0, img.width - 1);
-    y = std::clamp(y, 0, img.height - 1);
-    if (img.channels < 3) return glm::dvec3(img.at(x, y, 0));
-    return glm::dvec3(img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2));
-  };
-  const int x0 = int(x0f), y0 = int(y0f);
-  const glm::dvec3 top = texel(x0, y0) * (1.0 - ax) + texel(x0 + 1, y0) * ax;
-  const glm::dvec3 bottom = texel(x0, y0 + 1) * (1.0 - ax) + texel(x0 + 1, y0 + 1) * ax;
-  return glm::vec3(top * (1.0 - ay) + bottom * ay);
-}
-
 // How set j of a pattern is derived from its base set: a toroidal shift of the unit square
 // (rects) or a rotation about the light normal (disks, spheres).
 struct SetTransform {
@@ -302,7 +283,7 @@ void appendSample(const LightMap& m, glm::dvec2 unit, double radial, const SetTr
   }
   out.positions.push_back(glm::vec3(p));
   out.uv.push_back({unitFloat(uv.x), unitFloat(uv.y)});
-  out.luminance.push_back(m.texture ? emission(*m.texture, uv) : glm::vec3(1.0f));
+  out.luminance.push_back(m.texture ? emissionAt(*m.texture, uv) : glm::vec3(1.0f));
 }
 
 void appendSet(const LightMap& m, const std::vector<glm::dvec2>& unit,
@@ -324,6 +305,26 @@ void checkCount(int count, int max, const char* where) {
 }
 
 }  // namespace
+
+glm::vec3 emissionAt(const Image& img, glm::dvec2 uv) {
+  const double fx = uv.x * img.width - 0.5, fy = uv.y * img.height - 0.5;
+  const double x0f = std::floor(fx), y0f = std::floor(fy);
+  const double ax = fx - x0f, ay = fy - y0f;
+  auto texel = [&](int x, int y) {
+    x = std::clamp(x, 0, img.width - 1);
+    y = std::clamp(y, 0, img.height - 1);
+    if (img.channels < 3) return glm::dvec3(img.at(x, y, 0));
+    return glm::dvec3(img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2));
+  };
+  const int x0 = int(x0f), y0 = int(y0f);
+  const glm::dvec3 top = texel(x0, y0) * (1.0 - ax) + texel(x0 + 1, y0) * ax;
+  const glm::dvec3 bottom = texel(x0, y0 + 1) * (1.0 - ax) + texel(x0 + 1, y0 + 1) * ax;
+  return glm::vec3(top * (1.0 - ay) + bottom * ay);
+}
+
+const Image* lightEmissionTexture(const Scene& scene, const Light& light, float time) {
+  return makeLightMap(scene, light, time).texture;
+}
 
 const char* toString(SampleStrategy s) {
   switch (s) {

@@ -80,6 +80,15 @@ LightSampleSet makeLightSamples(const Scene& scene, const Light& light, const Sa
 LightSampleSet makeLightSampleSet(const Scene& scene, const Light& light, SampleStrategy strategy,
                                   int count, std::uint32_t seed, float time = 0.0f);
 
+// The emission texture of `light` at `time` (its frame at that time), null for an untextured
+// light; throws like makeLightSamples for a bad light or texture.
+const Image* lightEmissionTexture(const Scene& scene, const Light& light, float time = 0.0f);
+
+// Bilinear RGB of a linear emission texture at light uv, each sample's luminance: texel centres at
+// (i + 0.5) / w, clamped to the edge; v = 0 is the image's top row (row 0, the glTF texture
+// convention). One- and two-channel textures are grey.
+glm::vec3 emissionAt(const Image& texture, glm::dvec2 uv);
+
 // Unit-domain point sets, exposed for tests: N points in [0,1)^2 (stratified: jittered
 // sqrt(N) x ceil(N/sqrt(N)) grid; poisson: dart throwing with decreasing radius; vogel:
 // golden-angle spiral mapped to the square by the concentric inverse).

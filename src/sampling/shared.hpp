@@ -14,6 +14,7 @@ using glm::abs;
 using glm::cross;
 using glm::dot;
 using glm::length;
+using glm::exp2;
 using glm::exp;
 using glm::max;
 using glm::min;
