@@ -1,4 +1,4 @@
-// vssm's normalised depth (src/techniques/vssm): view depth mapped to [0, 1] over
+// vssm's and msm's normalised depth (src/techniques/vssm, msm): view depth mapped to [0, 1] over
 // [depthMin, depthMax] (the nearest occluder to the scene's far end); an empty map texel
 // (reversed depth 0, infinitely far) is 1. `near` is the map's near plane (z = near / d).
 uniform float depthMin, depthMax;

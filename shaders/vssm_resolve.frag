@@ -28,6 +28,7 @@
 layout(std430, binding = PENUMBRA_SSBO_VSSM_SAT) readonly buffer Sat { SAT_T sat[]; };
 layout(std430, binding = PENUMBRA_SSBO_VSSM_HSM) readonly buffer Hsm { vec2 hsm[]; };
 #include "vssm_common.glsl"
+#include "moment_kernel.glsl"
 uniform int blockerDiv, shadowDiv;        // uniform subdivision (when the levels are 0)
 uniform int blockerLevels, shadowLevels;  // adaptive quad-tree height H (0: uniform)
 uniform float threshold;       // variance (normalised depth^2) below which a sub-kernel is flat
@@ -64,14 +65,6 @@ struct Accum {
   float normalSum, normalSq, normalArea, normalT, lit, blocked, blockerSum, total;
 };
 
-// The receiver's normalised depth where its plane crosses the ray through texel coordinate c
-// (receiver-plane depth, as every shadow-map technique here: a tilted receiver compares each
-// sub-kernel with its own plane's depth there, not with the depth at its centre).
-float receiverAt(Receiver r, vec2 c) {
-  vec2 uv = c / float(mapSize);
-  return normalisedDepth(planeDepth(r.o, r.n, lightPosition, vec2(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0), r.d) - r.bias);
-}
-
 // Classifies one sub-kernel box; returns true when it is a non-planarity box that is neither flat
 // nor a leaf-level decision (the adaptive traversal then descends instead of sampling).
 bool visit(inout Accum acc, Receiver r, ivec2 a, ivec2 b, bool canDescend) {
@@ -102,22 +95,6 @@ bool visit(inout Accum acc, Receiver r, ivec2 a, ivec2 b, bool canDescend) {
   }
   acc.total += box.area;
   return false;
-}
-
-// The texel box [lo, hi] of a kernel around uv of half-size radius (uv units).
-void kernelBox(Receiver r, float radius, out ivec2 lo, out ivec2 hi) {
-  vec2 c = r.uv * float(mapSize);
-  float extent = max(radius * float(mapSize), 0.5);
-  lo = clamp(ivec2(floor(c - extent)), ivec2(0), ivec2(mapSize - 1));
-  hi = clamp(ivec2(floor(c + extent)), ivec2(0), ivec2(mapSize - 1));
-}
-
-// Cell (x, y) of `cells` x `cells` of the box [lo, hi]; false if empty.
-bool cellBox(ivec2 lo, ivec2 hi, int cells, ivec2 cell, out ivec2 a, out ivec2 b) {
-  ivec2 span = hi - lo + 1;
-  a = lo + (span * cell) / cells;
-  b = lo + (span * (cell + 1)) / cells - 1;
-  return all(greaterThanEqual(b, a));
 }
 
 // Returns (lit area, blocked area, blocker depth sum, total area) over the kernel.

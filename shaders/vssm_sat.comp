@@ -1,14 +1,20 @@
-// vssm (src/techniques/vssm): the summed-area table of the depth moments (x, x^2) of the light
-// centre's map (VSSM Algorithm 1, L3), x the view depth normalised to [0, 1] over [depthMin,
-// depthMax] (empty texels: 1).
-//  * EXACT: x as a 15-bit integer and every sum in doubles, which hold integers exactly below
-//    2^53 (2048^2 texels of 32767^2 stay below): the table is exact.
-//  * otherwise fp32 (the common implementation): at 1024^2-2048^2 the corner sums swamp a box's
-//    variance (hard case 17).
+// vssm and msm (src/techniques/vssm, msm): the summed-area table of the depth moments of the
+// light centre's map, x the view depth normalised to [0, 1] over [depthMin, depthMax] (empty
+// texels: 1).
+//  * vssm (VSSM Algorithm 1, L3): (x, x^2). EXACT: x as a 15-bit integer and every sum in
+//    doubles, which hold integers exactly below 2^53 (2048^2 texels of 32767^2 stay below): the
+//    table is exact. Otherwise fp32 (the common implementation): at 1024^2-2048^2 the corner sums
+//    swamp a box's variance (hard case 17).
+//  * MOMENTS4 (msm): (u, u^2, u^3, u^4) of u = 2 x - 1 in [-1, 1], in doubles (DOUBLE: a sum's
+//    rounding is 2^-53 of at most 2^22 texels, far below any moment bias) or fp32.
 // PASS 0: moments into the table; PASS 1: prefix sums along rows; PASS 2: along columns (a
 // thread a row / column).
 #include "single_view_bindings.h"
-#ifdef EXACT
+#if defined(MOMENTS4) && defined(DOUBLE)
+#define SAT_T dvec4
+#elif defined(MOMENTS4)
+#define SAT_T vec4
+#elif defined(EXACT)
 #define SAT_T dvec2
 #else
 #define SAT_T vec2
@@ -28,7 +34,10 @@ void main() {
     if (i >= satSize * satSize) return;
     float z = texelFetch(depthRaw, ivec2(i % satSize, i / satSize), 0).r;
     float x = normalisedMapDepth(z, mapNear);
-#ifdef EXACT
+#if defined(MOMENTS4)
+    SAT_T u = SAT_T(2.0 * x - 1.0);
+    sat[i] = u * SAT_T(1.0, u.x, u.x * u.x, u.x * u.x * u.x);
+#elif defined(EXACT)
     double q = double(round(x * PENUMBRA_VSSM_FIXED_ONE));
     sat[i] = dvec2(q, q * q);
 #else

@@ -3,7 +3,7 @@
 # LP_NUM_THREADS=1 and 8 (separate processes: llvmpipe reads it when its screen is created),
 # twice each, must give bit-identical pixels for the blend (dcs counters), shadow-volume count
 # (hard-sv), depth-test (mvr) and integer-atomic (vwss, reproject) paths, and for the single-map
-# filters (pcss, vssm); the EGL and OSMesa backends must agree bit for bit too. Pixel data is
+# filters (pcss, vssm, msm, msm-soft); the EGL and OSMesa backends must agree bit for bit too. Pixel data is
 # compared with exr_diff (colour and visibility layers), not the files' bytes.
 # Usage: determinism_test.sh PENUMBRA EXR_DIFF SRCDIR. Exits 77 (skipped) only without a GL context.
 P="$1"; DIFF="$2"; SRC="$3"; T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
@@ -55,7 +55,7 @@ check() {
 SAMPLES=16; MAP="--param map=256"
 # Case 1: every path, and both backends.
 for t in hard-sv dcs; do OSMESA=1 check scenes/hard/01-cube-on-plane.json $t; done
-for t in mvr vwss reproject pcss vssm; do OSMESA=1 check scenes/hard/01-cube-on-plane.json $t $MAP; done
+for t in mvr vwss reproject pcss vssm msm msm-soft; do OSMESA=1 check scenes/hard/01-cube-on-plane.json $t $MAP; done
 # Case 13: stacks of thin plates (17: past dcs's narrowest counter base; 257: past 8 bits).
 for t in hard-sv dcs; do check tests/data/scene/13-plates-17.json $t; OSMESA=1 check tests/data/scene/13-plates-257.json $t; done
 for t in mvr vwss; do check tests/data/scene/13-plates-17.json $t $MAP; done

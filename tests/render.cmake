@@ -6,6 +6,7 @@ penumbra_add_gl_test(test_render
   ${CMAKE_CURRENT_SOURCE_DIR}/render_dcs_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_shadow_map_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_pcss_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/render_msm_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_robustness_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/gl_program_test.cpp
 
@@ -23,6 +24,9 @@ add_test(NAME params_readme COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/params_readme
 
 # Technique parameters: declarations, dcs through --param, the shared key/value reader. No GL.
 penumbra_add_test(test_technique_params ${CMAKE_CURRENT_SOURCE_DIR}/technique_params_test.cpp LIBS penumbra_techniques)
+
+# The 4MSM reconstruction (shaders/shared.h penumbraMsm4), GL-free.
+penumbra_add_test(test_moments ${CMAKE_CURRENT_SOURCE_DIR}/moments_test.cpp LIBS penumbra_sampling)
 
 # DCS counter packing: no GL needed.
 penumbra_add_test(test_dcs_packing ${CMAKE_CURRENT_SOURCE_DIR}/dcs_packing_test.cpp LIBS penumbra_techniques)

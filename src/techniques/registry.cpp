@@ -3,6 +3,7 @@
 #include "techniques/registry.h"
 #include "techniques/dcs/dcs.h"
 #include "techniques/hard_sv/hard_sv.h"
+#include "techniques/msm/msm.h"
 #include "techniques/mvr/mvr.h"
 #include "techniques/none/none.h"
 #include "techniques/pcss/pcss.h"
@@ -41,6 +42,14 @@ TechniqueInfo vssmEntry(std::string name, std::string description, VssmOptions p
 }
 TechniqueInfo vwssEntry(std::string name, std::string description, VwssMode mode) {
   return presetEntry(std::move(name), std::move(description), vwssParams(mode), mode, makeViewWarpedSoftShadows);
+}
+TechniqueInfo msmEntry(std::string name, std::string description, MsmOptions preset) {
+  return presetEntry(std::move(name), std::move(description), msmParams(preset), preset, makeMomentShadowMapping);
+}
+MsmOptions msmPreset(bool soft) {
+  MsmOptions o;
+  o.soft = soft;
+  return o;
 }
 VssmOptions vssmPreset(bool exactSat, int shadowLevels) {
   VssmOptions o;
@@ -98,6 +107,10 @@ const std::vector<TechniqueInfo>& techniqueTable() {
                 vssmPreset(true, 0)),
       vssmEntry("vssm-fp32", "vssm on a plain fp32 summed-area table (fails at large maps: hard case 17)",
                 vssmPreset(false, VssmOptions{}.shadowLevels)),
+      msmEntry("msm", "moment shadow mapping: hard shadows from the light centre, Hamburger 4MSM over a filter box of a four-moment summed-area table",
+               msmPreset(false)),
+      msmEntry("msm-soft", "moment soft shadows: PCSS blocker search and filtering from four-moment summed-area tables (4MSM)",
+               msmPreset(true)),
       {"raytrace", "Embree reference with the same light samples as every technique (per sample)", {},
        [](const TechniqueArgs&) { return makeRaytraceSameSamples(); }},
       {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility and the shaded image)", {},

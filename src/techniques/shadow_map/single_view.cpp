@@ -58,6 +58,41 @@ void SingleViewTechnique::renderVisibility(LightPass& pass) {
   gl::Context::checkErrors(name_.c_str());
 }
 
+SingleViewTechnique::DepthRange SingleViewTechnique::momentDepthRange(const LightPass& pass) {
+  glm::vec3 lo, hi;
+  pass.scene.bounds(lo, hi);
+  float far = 0.0f;
+  for (int c = 0; c < 8; ++c) {
+    glm::vec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+    far = std::max(far, glm::dot(corner - pass.light.position, frame_.axis));
+  }
+  // The nearest triangle point, not vertex: walls passing the light (a light inside a tube,
+  // hard case 29) are nearer than any of their vertices, and clamped to a vertex's depth they
+  // would occlude nothing.
+  DepthRange r;
+  r.min = std::min(nearestSurface(pass), far);
+  r.max = std::max(far, r.min * 1.001f + 1e-6f);
+  return r;
+}
+
+void SingleViewTechnique::buildMomentTable(gl::Buffer& sat, std::size_t bytesPerTexel,
+                                           const std::vector<std::string>& defines, const DepthRange& range) {
+  const std::size_t texels = std::size_t(frame_.size) * std::size_t(frame_.size);
+  if (sat.size() != texels * bytesPerTexel) sat = gl::Buffer(texels * bytesPerTexel, nullptr);
+  sat.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_SAT);
+  const gl::Program& p = program({"vssm_sat.comp"}, defines);
+  p.set("satSize", frame_.size);
+  p.set("mapNear", frame_.zNear);
+  p.set("depthMin", range.min);
+  p.set("depthMax", range.max);
+  p.use();
+  for (int pass = 0; pass < 3; ++pass) {
+    p.set("pass", pass);
+    dispatchThreads(pass == 0 ? texels : std::size_t(frame_.size));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+}
+
 void SingleViewTechnique::bindMap() const {
   depth_.bind(PENUMBRA_UNIT_PCSS_DEPTH);
   depth_.bind(PENUMBRA_UNIT_PCSS_COMPARE);

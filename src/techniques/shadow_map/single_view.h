@@ -42,6 +42,17 @@ class SingleViewTechnique : public Technique {
     return nearest_.get(pass.scene, pass.lightIndex, pass.light.position, frame_, true);
   }
   float lightHalfSize() const { return halfSize_; }      // the parallel-planes light size
+  // The depth range of the moment techniques' normalised depth (vssm, msm: shaders/
+  // vssm_common.glsl): from the nearest occluder surface to the farthest scene point ahead of the
+  // light along the map's axis.
+  struct DepthRange {
+    float min = 0.0f, max = 1.0f;
+  };
+  DepthRange momentDepthRange(const LightPass& pass);
+  // The summed-area table of the depth moments (shaders/vssm_sat.comp, its defines) into `sat`,
+  // sized to `bytesPerTexel`, over `range`.
+  void buildMomentTable(gl::Buffer& sat, std::size_t bytesPerTexel, const std::vector<std::string>& defines,
+                        const DepthRange& range);
   // Binds the map raw (PENUMBRA_UNIT_PCSS_DEPTH) and through the comparison sampler
   // (PENUMBRA_UNIT_PCSS_COMPARE).
   void bindMap() const;

@@ -20,19 +20,11 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
  protected:
   void renderShadow(LightPass& pass) override {
     const auto& f = frame();
-    // Depth range of the moments: from the nearest occluder to the farthest scene point ahead.
+    const DepthRange range = momentDepthRange(pass);
+    depthMin_ = range.min;
+    depthMax_ = range.max;
     glm::vec3 lo, hi;
     pass.scene.bounds(lo, hi);
-    float far = 0.0f;
-    for (int c = 0; c < 8; ++c) {
-      glm::vec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
-      far = std::max(far, glm::dot(corner - pass.light.position, f.axis));
-    }
-    // The nearest triangle point, not vertex: walls passing the light (a light inside a tube,
-    // hard case 29) are nearer than any of their vertices, and clamped to a vertex's depth they
-    // would occlude nothing.
-    depthMin_ = std::min(nearestSurface(pass), far);
-    depthMax_ = std::max(far, depthMin_ * 1.001f + 1e-6f);
     // Threshold = 1e-4 r (section 6.5), as a variance of the normalised depth; the contact
     // fallback's epsilon = 0.01 r (section 5.3). The paper's r is the scene's bounding radius;
     // ours is at most the radius of the part of the scene the map sees (its frustum between
@@ -48,22 +40,8 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
                   ExitCode::Usage);
 
     pass.timer.time(name() + " sat", [&] {
-      const std::size_t texels = std::size_t(f.size) * std::size_t(f.size);
-      const std::size_t bytes = texels * (o_.exactSat ? 16 : 8);
-      if (sat_.size() != bytes) sat_ = gl::Buffer(bytes, nullptr);
-      sat_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_SAT);
-      const gl::Program& p = program({"vssm_sat.comp"}, o_.exactSat ? std::vector<std::string>{"EXACT"}
-                                                                            : std::vector<std::string>{});
-      p.set("satSize", f.size);
-      p.set("mapNear", f.zNear);
-      p.set("depthMin", depthMin_);
-      p.set("depthMax", depthMax_);
-      p.use();
-      for (int pass3 = 0; pass3 < 3; ++pass3) {
-        p.set("pass", pass3);
-        shadow_map::dispatchThreads(pass3 == 0 ? texels : std::size_t(f.size));
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-      }
+      buildMomentTable(sat_, o_.exactSat ? 16 : 8, o_.exactSat ? std::vector<std::string>{"EXACT"} : std::vector<std::string>{},
+                       range);
     });
     pass.timer.time(name() + " hsm", [&] {
       hsmLevels_ = 0;

@@ -1,0 +1,84 @@
+#include "techniques/msm/msm.h"
+
+#include "core/error.h"
+#include "pipeline/renderer.h"
+#include "techniques/shadow_map/single_view.h"
+#include "single_view_bindings.h"  // NOLINT: shared with GLSL
+
+namespace penumbra {
+namespace {
+
+class MomentShadowMapping final : public shadow_map::SingleViewTechnique {
+ public:
+  MomentShadowMapping(const shadow_map::MapOptions& m, const MsmOptions& o)
+      : SingleViewTechnique(o.soft ? "msm-soft" : "msm", m), o_(o) {}
+
+ protected:
+  void renderShadow(LightPass& pass) override {
+    range_ = momentDepthRange(pass);
+    std::vector<std::string> defines = {"MOMENTS4"};
+    if (o_.satBits == 64) defines.push_back("DOUBLE");
+    pass.timer.time(name() + " sat", [&] { buildMomentTable(sat_, o_.satBits == 64 ? 32 : 16, defines, range_); });
+    pass.timer.time(name() + " shadow pass", [&] {
+      std::vector<std::string> resolve;
+      if (o_.satBits == 64) resolve.push_back("DOUBLE");
+      if (o_.soft) resolve.push_back("SOFT");
+      const gl::Program& p = program({"fullscreen.vert", "msm_resolve.frag"}, resolve);
+      setUniforms(p, pass, 0, 0, 1.0);
+      p.set("depthMin", range_.min);
+      p.set("depthMax", range_.max);
+      p.set("momentBias", float(o_.momentBias));
+      p.set("filterTexels", o_.filter);
+      p.set("subKernels", o_.subKernels);
+      sat_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_SAT);
+      bindMap();
+      resolveVisibility(pass, p);
+    });
+  }
+
+  std::size_t extraBytes() const override { return sat_.size(); }
+
+  void addStatistics(std::vector<std::pair<std::string, double>>& out) const override {
+    out.emplace_back("sat bits", double(o_.satBits));
+    out.emplace_back("moment bias", o_.momentBias);
+    if (!o_.soft) out.emplace_back("filter texels", double(o_.filter));
+    if (o_.soft) out.emplace_back("sub-kernels", double(o_.subKernels * o_.subKernels));
+    out.emplace_back("depth min", range_.min);
+    out.emplace_back("depth max", range_.max);
+    out.emplace_back("sat bytes", double(sat_.size()));
+  }
+
+ private:
+  MsmOptions o_;
+  gl::Buffer sat_;
+  DepthRange range_;
+};
+
+}  // namespace
+
+std::vector<ParamSpec> msmParams(const MsmOptions& o) {
+  std::vector<ParamSpec> p = shadow_map::mapParams();
+  if (!o.soft) p.push_back(ParamSpec::integer("filter", o.filter, 1, 63, "width in texels of the box the moments are filtered over (odd)"));
+  if (o.soft)
+    p.push_back(ParamSpec::integer("sub-kernels", o.subKernels, 1, 16,
+                                   "each kernel split into n x n sub-kernels with their own receiver depth"));
+  p.push_back(ParamSpec::number("moment-bias", o.momentBias, 0.0, 0.1,
+                                "alpha: the share by which a box's standardised moments are pulled towards a uniform distribution's"));
+  p.push_back(ParamSpec::integer("sat-bits", o.satBits, 32, 64, "precision of the summed-area table: 64 (doubles) or 32 (fp32)"));
+  return p;
+}
+
+std::unique_ptr<Technique> makeMomentShadowMapping(const TechniqueArgs& args, MsmOptions o) {
+  if (!o.soft) {
+    o.filter = args.integer("filter");
+    if (o.filter % 2 == 0) throw Error("--param", "filter: must be odd, got " + std::to_string(o.filter), ExitCode::Usage);
+  }
+  if (o.soft) o.subKernels = args.integer("sub-kernels");
+  o.momentBias = args.number("moment-bias");
+  o.satBits = args.integer("sat-bits");
+  if (o.satBits != 32 && o.satBits != 64)
+    throw Error("--param", "sat-bits: must be 32 or 64, got " + std::to_string(o.satBits), ExitCode::Usage);
+  return std::make_unique<MomentShadowMapping>(shadow_map::readMapOptions(args), o);
+}
+
+}  // namespace penumbra
