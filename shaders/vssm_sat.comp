@@ -7,6 +7,9 @@
 //    swamp a box's variance (hard case 17).
 //  * MOMENTS4 (msm): (u, u^2, u^3, u^4) of u = 2 x - 1 in [-1, 1], in doubles (DOUBLE: a sum's
 //    rounding is 2^-53 of at most 2^22 texels, far below any moment bias) or fp32.
+//  * MOMENTS4 and EVSM (evsm, Lauritzen and McCool 2008): the two warps' moments (e+, e+^2, e-,
+//    e-^2), e+ = exp(c+ u), e- = -exp(-c- u) (exponents evsmPositive, evsmNegative; the exp of
+//    half the exponent in float, squared in the table's precision: c up to 176 in doubles).
 // PASS 0: moments into the table; PASS 1: prefix sums along rows; PASS 2: along columns (a
 // thread a row / column).
 #include "single_view_bindings.h"
@@ -26,6 +29,7 @@ layout(binding = PENUMBRA_UNIT_PCSS_DEPTH) uniform sampler2D depthRaw;
 uniform int satSize;
 uniform int pass;
 uniform float mapNear;
+uniform float evsmPositive, evsmNegative;  // EVSM: the warps' exponents
 #include "vssm_common.glsl"
 
 void main() {
@@ -34,7 +38,12 @@ void main() {
     if (i >= satSize * satSize) return;
     float z = texelFetch(depthRaw, ivec2(i % satSize, i / satSize), 0).r;
     float x = normalisedMapDepth(z, mapNear);
-#if defined(MOMENTS4)
+#if defined(MOMENTS4) && defined(EVSM)
+    float u = 2.0 * x - 1.0;
+    SAT_T h = SAT_T(exp(0.5 * evsmPositive * u), 0.0, exp(-0.5 * evsmNegative * u), 0.0);
+    h = SAT_T(h.x * h.x, 0.0, -h.z * h.z, 0.0);
+    sat[i] = SAT_T(h.x, h.x * h.x, h.z, h.z * h.z);
+#elif defined(MOMENTS4)
     SAT_T u = SAT_T(2.0 * x - 1.0);
     sat[i] = u * SAT_T(1.0, u.x, u.x * u.x, u.x * u.x * u.x);
 #elif defined(EXACT)

@@ -2,6 +2,7 @@
 #include "core/error.h"
 #include "techniques/registry.h"
 #include "techniques/dcs/dcs.h"
+#include "techniques/evsm/evsm.h"
 #include "techniques/hard_sv/hard_sv.h"
 #include "techniques/msm/msm.h"
 #include "techniques/mvr/mvr.h"
@@ -111,6 +112,8 @@ const std::vector<TechniqueInfo>& techniqueTable() {
                msmPreset(false)),
       msmEntry("msm-soft", "moment soft shadows: PCSS blocker search and filtering from four-moment summed-area tables (4MSM)",
                msmPreset(true)),
+      presetEntry("evsm", "exponential variance shadow maps (two exponents, four moments) with vssm's PCSS summed-area penumbra",
+                  evsmParams(EvsmOptions{}), EvsmOptions{}, makeExponentialVarianceShadowMaps),
       {"raytrace", "Embree reference with the same light samples as every technique (per sample)", {},
        [](const TechniqueArgs&) { return makeRaytraceSameSamples(); }},
       {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility and the shaded image)", {},

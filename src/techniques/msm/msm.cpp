@@ -59,12 +59,10 @@ class MomentShadowMapping final : public shadow_map::SingleViewTechnique {
 std::vector<ParamSpec> msmParams(const MsmOptions& o) {
   std::vector<ParamSpec> p = shadow_map::mapParams();
   if (!o.soft) p.push_back(ParamSpec::integer("filter", o.filter, 1, 63, "width in texels of the box the moments are filtered over (odd)"));
-  if (o.soft)
-    p.push_back(ParamSpec::integer("sub-kernels", o.subKernels, 1, 16,
-                                   "each kernel split into n x n sub-kernels with their own receiver depth"));
+  if (o.soft) p.push_back(shadow_map::subKernelsParam(o.subKernels));
   p.push_back(ParamSpec::number("moment-bias", o.momentBias, 0.0, 0.1,
                                 "alpha: the share by which a box's standardised moments are pulled towards a uniform distribution's"));
-  p.push_back(ParamSpec::integer("sat-bits", o.satBits, 32, 64, "precision of the summed-area table: 64 (doubles) or 32 (fp32)"));
+  p.push_back(shadow_map::satBitsParam().withDefault(o.satBits));
   return p;
 }
 
@@ -75,9 +73,7 @@ std::unique_ptr<Technique> makeMomentShadowMapping(const TechniqueArgs& args, Ms
   }
   if (o.soft) o.subKernels = args.integer("sub-kernels");
   o.momentBias = args.number("moment-bias");
-  o.satBits = args.integer("sat-bits");
-  if (o.satBits != 32 && o.satBits != 64)
-    throw Error("--param", "sat-bits: must be 32 or 64, got " + std::to_string(o.satBits), ExitCode::Usage);
+  o.satBits = shadow_map::readSatBits(args);
   return std::make_unique<MomentShadowMapping>(shadow_map::readMapOptions(args), o);
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/error.h"
 #include "gl/context.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
@@ -22,6 +23,20 @@ float halfSizeOf(const Light& light) {
 }
 
 }  // namespace
+
+ParamSpec satBitsParam() {
+  return ParamSpec::integer("sat-bits", 64, 32, 64, "precision of the summed-area table: 64 (doubles) or 32 (fp32)");
+}
+
+ParamSpec subKernelsParam(int fallback) {
+  return ParamSpec::integer("sub-kernels", fallback, 1, 16, "each kernel split into n x n sub-kernels with their own receiver depth");
+}
+
+int readSatBits(const TechniqueArgs& args) {
+  const int bits = args.integer("sat-bits");
+  if (bits != 32 && bits != 64) throw Error("--param", "sat-bits: must be 32 or 64, got " + std::to_string(bits), ExitCode::Usage);
+  return bits;
+}
 
 void SingleViewTechnique::prepare(const Scene& scene, GpuScene&) {
   semiOpaque_ = semiOpaqueTriangles(scene);
@@ -76,7 +91,8 @@ SingleViewTechnique::DepthRange SingleViewTechnique::momentDepthRange(const Ligh
 }
 
 void SingleViewTechnique::buildMomentTable(gl::Buffer& sat, std::size_t bytesPerTexel,
-                                           const std::vector<std::string>& defines, const DepthRange& range) {
+                                           const std::vector<std::string>& defines, const DepthRange& range,
+                                           const std::function<void(const gl::Program&)>& uniforms) {
   const std::size_t texels = std::size_t(frame_.size) * std::size_t(frame_.size);
   if (sat.size() != texels * bytesPerTexel) sat = gl::Buffer(texels * bytesPerTexel, nullptr);
   sat.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_SAT);
@@ -85,6 +101,7 @@ void SingleViewTechnique::buildMomentTable(gl::Buffer& sat, std::size_t bytesPer
   p.set("mapNear", frame_.zNear);
   p.set("depthMin", range.min);
   p.set("depthMax", range.max);
+  if (uniforms) uniforms(p);
   p.use();
   for (int pass = 0; pass < 3; ++pass) {
     p.set("pass", pass);

@@ -5,6 +5,7 @@
 // renderShadow().
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
@@ -17,6 +18,13 @@
 #include "single_view_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra::shadow_map {
+
+// The four-moment summed-area-table techniques' shared parameters (msm, msm-soft, evsm):
+// sat-bits (the table's precision, 64 or 32) and sub-kernels (each kernel split into n x n with
+// their own receiver depths), declared here once; readSatBits refuses other precisions.
+ParamSpec satBitsParam();
+ParamSpec subKernelsParam(int fallback);
+int readSatBits(const TechniqueArgs& args);
 
 class SingleViewTechnique : public Technique {
  public:
@@ -42,7 +50,7 @@ class SingleViewTechnique : public Technique {
     return nearest_.get(pass.scene, pass.lightIndex, pass.light.position, frame_, true);
   }
   float lightHalfSize() const { return halfSize_; }      // the parallel-planes light size
-  // The depth range of the moment techniques' normalised depth (vssm, msm: shaders/
+  // The depth range of the moment techniques' normalised depth (vssm, msm, evsm: shaders/
   // vssm_common.glsl): from the nearest occluder surface to the farthest scene point ahead of the
   // light along the map's axis.
   struct DepthRange {
@@ -51,8 +59,9 @@ class SingleViewTechnique : public Technique {
   DepthRange momentDepthRange(const LightPass& pass);
   // The summed-area table of the depth moments (shaders/vssm_sat.comp, its defines) into `sat`,
   // sized to `bytesPerTexel`, over `range`.
+  // `uniforms` sets the table program's own (evsm's exponents).
   void buildMomentTable(gl::Buffer& sat, std::size_t bytesPerTexel, const std::vector<std::string>& defines,
-                        const DepthRange& range);
+                        const DepthRange& range, const std::function<void(const gl::Program&)>& uniforms = {});
   // Binds the map raw (PENUMBRA_UNIT_PCSS_DEPTH) and through the comparison sampler
   // (PENUMBRA_UNIT_PCSS_COMPARE).
   void bindMap() const;
