@@ -83,10 +83,10 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
                 "table)\n\n",
                 map);
 
-    std::fprintf(out, "2. VSSM (and moment soft shadows) against PCSS as the light grows (light side x1..x8, 1024^2 map): "
+    std::fprintf(out, "2. VSSM (and msm-soft, evsm) against PCSS as the light grows (light side x1..x8, 1024^2 map): "
                 "shadow-stage ms (map excluded) and RMSE; 'pcss 256' samples 256 + 256 taps; pcss-dense every texel of both kernels (up to 32 x 32)\n");
-    std::fprintf(out, "%7s | %17s | %17s | %17s | %17s | %17s | %17s | %17s\n", "light x", "pcss 32/16",
-                "pcss-ultra 64/96", "pcss 256/256", "pcss-dense", "vssm", "vssm-uniform", "msm-soft");
+    std::fprintf(out, "%7s | %17s | %17s | %17s | %17s | %17s | %17s | %17s | %17s\n", "light x", "pcss 32/16",
+                "pcss-ultra 64/96", "pcss 256/256", "pcss-dense", "vssm", "vssm-uniform", "msm-soft", "evsm");
     for (float k : {1.0f, 2.0f, 4.0f, 8.0f}) {
       Scene grown = scene;
       for (auto& l : grown.lights) l.size *= k;
@@ -105,7 +105,8 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
                           {"pcss-dense", {}, "pcss shadow mask"},
                           {"vssm", {}, ""},
                           {"vssm-uniform", {}, ""},
-                          {"msm-soft", {}, ""}};
+                          {"msm-soft", {}, ""},
+                          {"evsm", {}, ""}};
       for (const Col& c : cols) {
         std::vector<std::string> p = c.params;
         p.push_back("map=1024");
@@ -134,8 +135,8 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
 
     std::fprintf(out, "\n4. Visibility RMSE against raytrace with the same %d samples / against raytrace-converged (1024 a "
                 "pixel), %dx%d, 1024^2 maps\n", samples, errorSize, errorSize);
-    std::fprintf(out, "%-24s | %15s | %15s | %15s | %15s | %15s | %15s\n", "scene", "mvr", "pcss", "pcss-ultra", "vssm",
-                "msm", "msm-soft");
+    std::fprintf(out, "%-24s | %15s | %15s | %15s | %15s | %15s | %15s | %15s\n", "scene", "mvr", "pcss", "pcss-ultra",
+                "vssm", "msm", "msm-soft", "evsm");
     for (const char* path : {"scenes/hard/23-analytic-square.json", "scenes/hard/15-two-plates.json",
                              "scenes/hard/15-thin-blade.json", "scenes/hard/15-sphere-grid.json",
                              "scenes/hard/16-contact.json", "scenes/hard/17-far-corner.json",
@@ -153,7 +154,7 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
       name = name.substr(name.rfind('/') + 1);
       if (name.size() > 5 && name.compare(name.size() - 5, 5, ".json") == 0) name = name.substr(0, name.size() - 5);
       std::fprintf(out, "%-24s |", name.c_str());
-      for (const char* t : {"mvr", "pcss", "pcss-ultra", "vssm", "msm", "msm-soft"}) {
+      for (const char* t : {"mvr", "pcss", "pcss-ultra", "vssm", "msm", "msm-soft", "evsm"}) {
         auto tech = makeTechnique(t);
         FrameResult f = r.render(*tech);
         std::fprintf(out, "  %6.4f / %6.4f |", measureErrors(f, sameRef).visibility.rmse,

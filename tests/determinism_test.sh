@@ -2,9 +2,10 @@
 # Hard case 24 (../shared/docs/hard-cases.md): determinism. Cases 1, 13 and 15 rendered with
 # LP_NUM_THREADS=1 and 8 (separate processes: llvmpipe reads it when its screen is created),
 # twice each, must give bit-identical pixels for the blend (dcs counters), shadow-volume count
-# (hard-sv), depth-test (mvr) and integer-atomic (vwss, reproject) paths, and for the single-map
-# filters (pcss, vssm, msm, msm-soft); the EGL and OSMesa backends must agree bit for bit too. Pixel data is
-# compared with exr_diff (colour and visibility layers), not the files' bytes.
+# (hard-sv), depth-test (mvr) and integer-atomic (vwss, reproject) paths, for the single-map
+# filters (pcss, vssm, msm, msm-soft, evsm) and the denoiser (raytrace-denoised, its filter on
+# all cores); the EGL and OSMesa backends must agree bit for bit too. Pixel data is compared with
+# exr_diff (colour and visibility layers), not the files' bytes.
 # Usage: determinism_test.sh PENUMBRA EXR_DIFF SRCDIR. Exits 77 (skipped) only without a GL context.
 P="$1"; DIFF="$2"; SRC="$3"; T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 SIZE=${DETERMINISM_SIZE:-128}
@@ -55,7 +56,8 @@ check() {
 SAMPLES=16; MAP="--param map=256"
 # Case 1: every path, and both backends.
 for t in hard-sv dcs; do OSMESA=1 check scenes/hard/01-cube-on-plane.json $t; done
-for t in mvr vwss reproject pcss vssm msm msm-soft; do OSMESA=1 check scenes/hard/01-cube-on-plane.json $t $MAP; done
+for t in mvr vwss reproject pcss vssm msm msm-soft evsm; do OSMESA=1 check scenes/hard/01-cube-on-plane.json $t $MAP; done
+check scenes/hard/01-cube-on-plane.json raytrace-denoised
 # Case 13: stacks of thin plates (17: past dcs's narrowest counter base; 257: past 8 bits).
 for t in hard-sv dcs; do check tests/data/scene/13-plates-17.json $t; OSMESA=1 check tests/data/scene/13-plates-257.json $t; done
 for t in mvr vwss; do check tests/data/scene/13-plates-17.json $t $MAP; done

@@ -2,6 +2,7 @@
 #include "core/error.h"
 #include "techniques/registry.h"
 #include "techniques/dcs/dcs.h"
+#include "techniques/denoised/denoised.h"
 #include "techniques/evsm/evsm.h"
 #include "techniques/hard_sv/hard_sv.h"
 #include "techniques/msm/msm.h"
@@ -118,6 +119,8 @@ const std::vector<TechniqueInfo>& techniqueTable() {
        [](const TechniqueArgs&) { return makeRaytraceSameSamples(); }},
       {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility and the shaded image)", {},
        [](const TechniqueArgs&) { return makeRaytraceConverged(1024); }},
+      {"raytrace-denoised", "1-4 shadow rays per pixel through Embree, temporal accumulation and a penumbra-sized cross-bilateral filter (NRD SIGMA style)",
+       denoisedParams(), makeRaytraceDenoised},
   };
   return table;
 }

@@ -396,6 +396,68 @@ VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light&
   }, shaded ? &light : nullptr);
 }
 
+SparseResult EmbreeReference::sparseSamples(const CpuGBuffer& gbuf, const LightSampleSet& samples, int spp,
+                                           std::uint32_t rotation) const {
+  checkGBuffer(gbuf);
+  const int n = samples.count;
+  PENUMBRA_CHECK(spp >= 1 && spp <= n, "sparseSamples: spp outside 1..N");
+  SparseResult out;
+  out.rays = spp;
+  out.ratio = Image(gbuf.width, gbuf.height, 3, 1.0f);
+  out.blocker.assign(std::size_t(gbuf.width) * gbuf.height, 0.0f);
+  const Impl& m = *impl_;
+  m.rays += forEachRow(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
+    Scratch scratch;
+    std::vector<float> tr;
+    std::vector<int> sampleOf;
+    for (int x = 0; x < gbuf.width; ++x) {
+      const std::size_t i = std::size_t(y) * gbuf.width + x;
+      if (!gbuf.valid[i]) continue;
+      const glm::vec3 p = gbuf.position[i], nrm = gbuf.normal[i];
+      const glm::vec3 o = shared::penumbraShadowOrigin(p, nrm, gbuf.camera.value_or(p + nrm));
+      const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
+      const std::uint32_t h = shared::penumbraHash(std::uint32_t(i) ^ 0x9e3779b9u);
+      scratch.reset(std::size_t(spp));
+      sampleOf.clear();
+      for (int j = 0; j < spp; ++j) {
+        const int k = int((h + rotation + std::uint32_t(j)) % std::uint32_t(n));
+        const glm::vec3& xk = samples.positions[first + k];
+        if (!(glm::dot(nrm, xk - p) > 0.0f)) continue;  // below the horizon: not traced
+        scratch.rays.push_back(makeRay(o, xk - o, unsigned(scratch.rays.size())));
+        sampleOf.push_back(k);
+      }
+      tr.assign(scratch.rays.size(), 0.0f);
+      m.traceStream(scratch, tr.data());
+      rayCount += scratch.rays.size();
+      glm::dvec3 lit(0.0), all(0.0);
+      double distance = 0.0;
+      int blocked = 0;
+      for (std::size_t j = 0; j < sampleOf.size(); ++j) {
+        const glm::dvec3 l(samples.luminance[first + sampleOf[j]]);
+        lit += l * double(tr[j]);
+        all += l;
+        if (tr[j] < 1.0f) {  // the nearest occluder along it
+          const glm::vec3 xk = samples.positions[first + sampleOf[j]];
+          RTCRayHit rh;
+          rh.ray = makeRay(o, xk - o, 0);
+          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          RTCIntersectContext ctx;
+          rtcInitIntersectContext(&ctx);
+          rtcIntersect1(m.scene, &ctx, &rh);
+          ++rayCount;
+          if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+            distance += double(rh.ray.tfar) * double(glm::length(glm::vec3(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z)));
+            ++blocked;
+          }
+        }
+      }
+      for (int c = 0; c < 3; ++c) out.ratio.at(x, y, c) = all[c] > 0.0 ? float(lit[c] / all[c]) : 1.0f;
+      out.blocker[i] = blocked > 0 ? float(distance / blocked) : 0.0f;
+    }
+  });
+  return out;
+}
+
 float EmbreeReference::transmittance(const glm::vec3& from, const glm::vec3& to) const {
   Scratch s;
   s.reset(1);

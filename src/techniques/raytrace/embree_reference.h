@@ -44,6 +44,16 @@ struct VisibilityResult {
   Image radiance;
 };
 
+// Sparse mode (raytrace-denoised): a few of each pixel's samples, their shadow ratio and the
+// distance to their occluders, the noisy input of a denoiser.
+struct SparseResult {
+  // Per pixel: sum_j L_kj T_kj / sum_j L_kj over the traced samples (those above the horizon),
+  // RGB; 1 where none was traced (the shading's unshadowed term is then 0 anyway).
+  Image ratio;
+  std::vector<float> blocker;  // the mean distance to the nearest occluder over the blocked rays; 0: none blocked
+  int rays = 0;                // rays per pixel at most (spp)
+};
+
 class EmbreeReference {
  public:
   // Builds the BVH over all scene meshes (opacity per mesh from its material). Throws
@@ -60,6 +70,12 @@ class EmbreeReference {
   // (seeded by the pixel; `seed` != 0 gives an independent estimate).
   VisibilityResult converged(const CpuGBuffer& gbuf, const Light& light, const Scene& scene,
                              int count = 1024, float time = 0.0f, std::uint32_t seed = 0) const;
+
+  // Sparse mode: `spp` of the N samples of each pixel's set, samples (h + rotation + j) mod N for
+  // j < spp with h a hash of the pixel index (raising `rotation` by spp each frame visits every
+  // sample once in N / spp frames).
+  SparseResult sparseSamples(const CpuGBuffer& gbuf, const LightSampleSet& samples, int spp,
+                             std::uint32_t rotation) const;
 
   // Transmittance of one segment (for tests): 1 unoccluded, 0 opaque hit.
   float transmittance(const glm::vec3& from, const glm::vec3& to) const;
