@@ -28,7 +28,7 @@ struct SpeedErrorOptions {
                                      "scenes/example.json",
                                      "scenes/engine.json"};  // "default": the built-in scene
   std::vector<std::string> techniques = {"hard-sv",   "dcs",  "dcs-lut",    "mvr",       "vwss", "reproject",
-                                         "pcss",      "pcss-ultra", "pcss-mask", "vssm", "msm-soft", "evsm"};
+                                         "pcss",      "pcss-ultra", "pcss-mask", "vssm", "msm-soft", "evsm", "raytrace-denoised"};
   std::vector<int> samples = {8, 16, 32};  // the samples sweep
   int width = 128;                         // image width (height: the scene's aspect)
   int frames = 3, warmup = 1;              // timed frames per technique and preset

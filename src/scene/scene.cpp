@@ -29,6 +29,16 @@ float Light::area() const {
   return 0.0f;
 }
 
+float Light::penumbraHalfSize() const {
+  switch (shape) {
+    case LightShape::Rect:
+    case LightShape::Disk: return 0.5f * std::sqrt(area());
+    case LightShape::Sphere: return 0.5f * std::sqrt(glm::pi<float>()) * size.x;
+    case LightShape::Point: return 0.0f;
+  }
+  return 0.0f;
+}
+
 int Light::frameAt(float time) const {
   if (emissionFrames.empty()) return -1;
   const int n = int(emissionFrames.size());

@@ -92,6 +92,9 @@ struct Light {
 
   bool isArea() const { return shape != LightShape::Point; }
   float area() const;  // m^2 (rect w*h, disk pi r^2, sphere 4 pi r^2); 0 for points
+  // The parallel-planes light size of PCSS-style penumbra estimates: half the side of the square
+  // of the light's area (rect, disk) or of the disc a sphere shows; 0 for points.
+  float penumbraHalfSize() const;
   int frameAt(float time) const;  // index into emissionFrames, or -1 if untextured
 };
 

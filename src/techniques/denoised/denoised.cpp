@@ -33,17 +33,6 @@ struct History {
   std::uint32_t frame = 0;
 };
 
-// Half the side of the square of the light's area (rect, disk) or of the disc a sphere shows:
-// the parallel-planes light size, as the single-view techniques use.
-float lightHalfSize(const Light& light) {
-  switch (light.shape) {
-    case LightShape::Rect:
-    case LightShape::Disk: return 0.5f * std::sqrt(light.area());
-    case LightShape::Sphere: return 0.5f * std::sqrt(float(M_PI)) * light.size.x;
-    default: return 0.0f;
-  }
-}
-
 // body(y) for every row on all cores (rows from a shared counter; each pixel depends only on
 // its inputs, so the result does not depend on the thread count).
 template <class Body>
@@ -132,7 +121,7 @@ class RaytraceDenoised final : public Technique {
     // The penumbra's radius in pixels from the occluders' mean distance over a window (pixels
     // whose rays all reached the light have none: a lit pixel next to a shadow takes its
     // neighbours'), by parallel planes.
-    const float halfSize = lightHalfSize(pass.light);
+    const float halfSize = pass.light.penumbraHalfSize();
     const float footprint = 2.0f * std::tan(glm::radians(pass.scene.camera.fovY) * 0.5f) / float(g.height);
     std::vector<float> radius(pixels, 0.0f);
     const int window = o_.maxRadius;

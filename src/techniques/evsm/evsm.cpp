@@ -42,30 +42,22 @@ class ExponentialVarianceShadowMaps final : public shadow_map::SingleViewTechniq
     pass.timer.time(name() + " shadow pass", [&] {
       std::vector<std::string> resolve = {"SOFT"};
       if (o_.satBits == 64) resolve.push_back("DOUBLE");
-      const gl::Program& p = program({"fullscreen.vert", "evsm_resolve.frag"}, resolve);
-      setUniforms(p, pass, 0, 0, 1.0);
-      p.set("depthMin", range_.min);
-      p.set("depthMax", range_.max);
-      p.set("evsmPositive", float(positive_));
-      p.set("evsmNegative", float(negative_));
-      p.set("subKernels", o_.subKernels);
-      sat_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_SAT);
-      bindMap();
-      resolveVisibility(pass, p);
+      resolveMoments(pass, program({"fullscreen.vert", "evsm_resolve.frag"}, resolve), sat_, range_, [&](const gl::Program& p) {
+        p.set("evsmPositive", float(positive_));
+        p.set("evsmNegative", float(negative_));
+        p.set("subKernels", o_.subKernels);
+      });
     });
   }
 
   std::size_t extraBytes() const override { return sat_.size(); }
 
   void addStatistics(std::vector<std::pair<std::string, double>>& out) const override {
-    out.emplace_back("sat bits", double(o_.satBits));
+    momentStatistics(out, o_.satBits, sat_, range_);
     out.emplace_back("positive exponent", positive_);
     out.emplace_back("negative exponent", negative_);
     out.emplace_back("exponent limit", limit_);
     out.emplace_back("sub-kernels", double(o_.subKernels * o_.subKernels));
-    out.emplace_back("depth min", range_.min);
-    out.emplace_back("depth max", range_.max);
-    out.emplace_back("sat bytes", double(sat_.size()));
   }
 
  private:

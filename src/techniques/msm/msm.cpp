@@ -23,29 +23,21 @@ class MomentShadowMapping final : public shadow_map::SingleViewTechnique {
       std::vector<std::string> resolve;
       if (o_.satBits == 64) resolve.push_back("DOUBLE");
       if (o_.soft) resolve.push_back("SOFT");
-      const gl::Program& p = program({"fullscreen.vert", "msm_resolve.frag"}, resolve);
-      setUniforms(p, pass, 0, 0, 1.0);
-      p.set("depthMin", range_.min);
-      p.set("depthMax", range_.max);
-      p.set("momentBias", float(o_.momentBias));
-      p.set("filterTexels", o_.filter);
-      p.set("subKernels", o_.subKernels);
-      sat_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_SAT);
-      bindMap();
-      resolveVisibility(pass, p);
+      resolveMoments(pass, program({"fullscreen.vert", "msm_resolve.frag"}, resolve), sat_, range_, [&](const gl::Program& p) {
+        p.set("momentBias", float(o_.momentBias));
+        p.set("filterTexels", o_.filter);
+        p.set("subKernels", o_.subKernels);
+      });
     });
   }
 
   std::size_t extraBytes() const override { return sat_.size(); }
 
   void addStatistics(std::vector<std::pair<std::string, double>>& out) const override {
-    out.emplace_back("sat bits", double(o_.satBits));
+    momentStatistics(out, o_.satBits, sat_, range_);
     out.emplace_back("moment bias", o_.momentBias);
     if (!o_.soft) out.emplace_back("filter texels", double(o_.filter));
     if (o_.soft) out.emplace_back("sub-kernels", double(o_.subKernels * o_.subKernels));
-    out.emplace_back("depth min", range_.min);
-    out.emplace_back("depth max", range_.max);
-    out.emplace_back("sat bytes", double(sat_.size()));
   }
 
  private:

@@ -9,20 +9,6 @@
 #include "single_view_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra::shadow_map {
-namespace {
-
-// Half the side of the square of the light's area (rect, disk) or of the disc a sphere shows:
-// the light "size" of the parallel-planes estimate.
-float halfSizeOf(const Light& light) {
-  switch (light.shape) {
-    case LightShape::Rect:
-    case LightShape::Disk: return 0.5f * std::sqrt(light.area());
-    case LightShape::Sphere: return 0.5f * std::sqrt(float(M_PI)) * light.size.x;
-    default: return 0.0f;
-  }
-}
-
-}  // namespace
 
 ParamSpec satBitsParam() {
   return ParamSpec::integer("sat-bits", 64, 32, 64, "precision of the summed-area table: 64 (doubles) or 32 (fp32)");
@@ -48,7 +34,7 @@ void SingleViewTechnique::renderVisibility(LightPass& pass) {
     return fit_.compute(pass.gpu, pass.light, pass.samples, map_, MapReach::Light);
   });
   searchNear_ = nearest_.get(pass.scene, pass.lightIndex, pass.light.position, frame_);
-  halfSize_ = halfSizeOf(pass.light);
+  halfSize_ = pass.light.penumbraHalfSize();
   if (!vao_) {
     vao_ = gl::VertexArray::create();
     raw_ = gl::Sampler::make(false, 0.0f);
@@ -108,6 +94,25 @@ void SingleViewTechnique::buildMomentTable(gl::Buffer& sat, std::size_t bytesPer
     dispatchThreads(pass == 0 ? texels : std::size_t(frame_.size));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
+}
+
+void SingleViewTechnique::resolveMoments(LightPass& pass, const gl::Program& p, const gl::Buffer& sat,
+                                         const DepthRange& range, const std::function<void(const gl::Program&)>& uniforms) {
+  setUniforms(p, pass, 0, 0, 1.0);
+  p.set("depthMin", range.min);
+  p.set("depthMax", range.max);
+  uniforms(p);
+  sat.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VSSM_SAT);
+  bindMap();
+  resolveVisibility(pass, p);
+}
+
+void SingleViewTechnique::momentStatistics(std::vector<std::pair<std::string, double>>& out, int satBits,
+                                           const gl::Buffer& sat, const DepthRange& range) {
+  out.emplace_back("sat bits", double(satBits));
+  out.emplace_back("depth min", range.min);
+  out.emplace_back("depth max", range.max);
+  out.emplace_back("sat bytes", double(sat.size()));
 }
 
 void SingleViewTechnique::bindMap() const {

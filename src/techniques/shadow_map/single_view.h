@@ -62,6 +62,14 @@ class SingleViewTechnique : public Technique {
   // `uniforms` sets the table program's own (evsm's exponents).
   void buildMomentTable(gl::Buffer& sat, std::size_t bytesPerTexel, const std::vector<std::string>& defines,
                         const DepthRange& range, const std::function<void(const gl::Program&)>& uniforms = {});
+  // The shadow pass of a four-moment table technique (shaders/moment_soft.glsl): `p` with the
+  // framework's uniforms, the depth range and its own (`uniforms`), the table and the map bound,
+  // into the visibility buffer.
+  void resolveMoments(LightPass& pass, const gl::Program& p, const gl::Buffer& sat, const DepthRange& range,
+                      const std::function<void(const gl::Program&)>& uniforms);
+  // Their statistics: the table's precision and bytes, the depth range.
+  static void momentStatistics(std::vector<std::pair<std::string, double>>& out, int satBits, const gl::Buffer& sat,
+                               const DepthRange& range);
   // Binds the map raw (PENUMBRA_UNIT_PCSS_DEPTH) and through the comparison sampler
   // (PENUMBRA_UNIT_PCSS_COMPARE).
   void bindMap() const;
