@@ -88,9 +88,12 @@ PrefilteredLight prefilterLight(const Image& emission, bool disk) {
 }
 
 glm::vec4 prefilteredLevel(const PrefilteredLight& chain, glm::vec2 uv, int k) {
+  // Far outside the chain (or not a number: a degenerate footprint) reads as its edge, as the
+  // GPU's clamp to edge does, before any conversion to an index.
+  auto edge = [](float t) { return std::isfinite(t) ? std::clamp(t, -1.0f, 2.0f) : 0.5f; };
   const glm::vec2 tc = shared::penumbraPrefilterCoordinates(uv);
   const int n = chain.size;
-  const float fx = tc.x * n - 0.5f, fy = tc.y * n - 0.5f;
+  const float fx = edge(tc.x) * n - 0.5f, fy = edge(tc.y) * n - 0.5f;
   const float x0f = std::floor(fx), y0f = std::floor(fy);
   const float ax = fx - x0f, ay = fy - y0f;
   auto texel = [&](int x, int y) {

@@ -142,7 +142,8 @@ class RaytraceDenoised final : public Technique {
         const float blocker = float(sum / count);
         const float toLight = glm::length(pass.light.position - g.position[i]);
         const float width = halfSize * blocker / std::max(toLight - blocker, 1e-3f * toLight);
-        radius[i] = std::min(width / (footprint * glm::length(g.position[i] - eye)), float(o_.maxRadius));
+        const float r = width / (footprint * glm::length(g.position[i] - eye));
+        radius[i] = std::isfinite(r) ? std::clamp(r, 0.0f, float(o_.maxRadius)) : float(o_.maxRadius);
       }
     });
 
@@ -161,10 +162,12 @@ class RaytraceDenoised final : public Technique {
           const glm::vec3 p = g.position[i] + shift;
           const glm::vec4 c = clip * glm::vec4(p, 1.0f);
           if (!(c.w > 0.0f)) continue;
-          const int px = int(std::floor((c.x / c.w * 0.5f + 0.5f) * float(g.width)));
-          // The G-buffer's rows are top row first (scene/gbuffer.h): ndc y = 1 is row 0.
-          const int py = int(std::floor((0.5f - c.y / c.w * 0.5f) * float(g.height)));
-          if (px < 0 || py < 0 || px >= g.width || py >= g.height) continue;
+          // The G-buffer's rows are top row first (scene/gbuffer.h): ndc y = 1 is row 0. Range
+          // checked as floats before the conversion (a point near the camera plane projects far).
+          const float fx = std::floor((c.x / c.w * 0.5f + 0.5f) * float(g.width));
+          const float fy = std::floor((0.5f - c.y / c.w * 0.5f) * float(g.height));
+          if (!(fx >= 0.0f && fy >= 0.0f && fx < float(g.width) && fy < float(g.height))) continue;
+          const int px = int(fx), py = int(fy);
           const std::size_t j = std::size_t(py) * g.width + px;
           const float tolerance = 0.01f * glm::length(g.position[i] - eye);
           if (!h.valid[j] || glm::length(h.position[j] - p) > tolerance || glm::dot(h.normal[j], g.normal[i]) < 0.9f)
