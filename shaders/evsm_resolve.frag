@@ -27,10 +27,11 @@ REAL litBound(REAL m1, REAL m2, REAL t, REAL floorVar) {
 
 vec2 boxShadow(ivec2 a, ivec2 b, float uf) {
   REAL area = REAL((b.x - a.x + 1) * (b.y - a.y + 1));
-  REAL4 m = boxSum(a, b) / area;
-  // The table's rounding in each mean square (relative to the corner sums it protects; a flat
-  // box has no variance and its rounding would read as one).
+  // The box's corner sums, once: its means, and the table's rounding in each mean square
+  // (relative to the corner sums it protects; a flat box has no variance and its rounding would
+  // read as one).
   REAL4 c0 = satAt(b.x, b.y), c1 = satAt(a.x - 1, b.y), c2 = satAt(b.x, a.y - 1), c3 = satAt(a.x - 1, a.y - 1);
+  REAL4 m = (c0 - c1 - c2 + c3) / area;
   REAL path = sqrt(REAL(b.x + b.y + 2)) * REAL(SAT_EPSILON) / area;
   REAL floorPos = path * (abs(c0.y) + abs(c1.y) + abs(c2.y) + abs(c3.y));
   REAL floorNeg = path * (abs(c0.w) + abs(c1.w) + abs(c2.w) + abs(c3.w));

@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/log.h"
 #include "gl/objects.h"
 #include "pipeline/renderer.h"
 #include "techniques/raytrace/embree_reference.h"
@@ -99,6 +100,10 @@ class RaytraceDenoised final : public Technique {
     const CpuGBuffer& g = pass.cpuGBuffer();
     const LightSampleSet& set = pass.samples;
     const int n = set.count, spp = std::min(o_.spp, n);
+    if (spp < o_.spp && !warned_) {
+      PLOG_WARN("raytrace-denoised: spp {} exceeds light '{}''s {} samples: {} rays a pixel", o_.spp, pass.light.name, n, spp);
+      warned_ = true;
+    }
     History& h = histories_[pass.lightIndex];
     SparseResult r = pass.timer.time("trace", [&] {
       return reference_->sparseSamples(g, set, spp, h.frame * std::uint32_t(spp));
@@ -220,6 +225,7 @@ class RaytraceDenoised final : public Technique {
   std::unique_ptr<EmbreeReference> reference_;
   std::map<int, History> histories_;
   double meanRadius_ = 0.0, meanHistory_ = 0.0;
+  bool warned_ = false;
 };
 
 }  // namespace
