@@ -8,6 +8,7 @@ penumbra_add_gl_test(test_render
   ${CMAKE_CURRENT_SOURCE_DIR}/render_pcss_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_msm_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_denoised_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/render_shipped_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_robustness_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/gl_program_test.cpp
 
