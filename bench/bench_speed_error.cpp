@@ -8,7 +8,7 @@
 // (DIR/headline.svg, DIR/headline.md).
 //
 //   penumbra_bench_speed_error -o DIR [--scenes default,scenes/engine.json,...] [-W 128]
-//       [--samples 8,16,32] [--techniques hard-sv,dcs,...] [--frames 3] [--warmup 1] [--backend egl]
+//       [--samples 8,16,32,64] [--techniques hard-sv,dcs,...] [--frames 3] [--warmup 1] [--backend egl]
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -151,12 +151,28 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
         md += fmt::format("| {} | {} | {:.1f} | {:.2f} | {:.4f} | {}/{} | {} |\n", t, n, ms, ratio, err, a.front, a.n, ran);
         CompareRun run;
         run.technique = t, run.preset = pi, run.reference = t == "raytrace";
+        run.family = findTechnique(t).family;
         run.total = {ms, ms, ms};
         TechniqueErrors e;
         e.visibility.rmse = err;
         run.converged = e;
         headline.runs.push_back(run);
       }
+    // Which technique when, across the scenes (the same summary as each scene's report): the
+    // headline's front and families' best, and the techniques that failed somewhere.
+    for (auto& [key, a] : acc)
+      if (!a.failedOn.empty()) {
+        CompareRun failed;
+        failed.technique = key.first, failed.family = findTechnique(key.first).family, failed.failed = true;
+        failed.preset = std::size_t(std::find_if(headline.presets.begin(), headline.presets.end(),
+                                                 [&](auto& p) { return p.samples == key.second; }) - headline.presets.begin());
+        failed.failure = fmt::format("on {} (that scene's report says why)", fmt::join(a.failedOn, ", "));
+        if (failed.preset < headline.presets.size()) headline.runs.push_back(failed);
+      }
+    std::string summary;
+    for (const std::string& line : whichTechniqueWhen(headline)) summary += "- " + line + "\n";
+    std::fprintf(out, "\nWhich technique when (geometric means over the scenes):\n%s", summary.c_str());
+    std::ofstream(fs::path(outDir) / "summary.md") << summary;
     std::ofstream(fs::path(outDir) / "headline.md") << md;
     std::ofstream(fs::path(outDir) / "headline.svg") << speedErrorSvg(headline);
     if (failures > 0) std::fprintf(out, "\n%d technique runs failed (named above and in their scenes' reports)\n", failures);

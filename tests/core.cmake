@@ -4,5 +4,6 @@ penumbra_add_test(test_core
   ${CMAKE_CURRENT_SOURCE_DIR}/core_image_io_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/core_png_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/core_metrics_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/core_flip_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/core_timer_test.cpp
   LIBS penumbra_core OpenEXR::OpenEXR PNG::PNG)

@@ -1,8 +1,11 @@
 #!/bin/sh
-# The HTML report in headless Chromium (issue 7): `compare` with a sweep and --frames writes
-# index.html; Chromium loads it from disk (no network), every image loads (the page's own check
-# sets data-images="loaded/total"), the plot has a point per plotted run, and the console stays
-# empty (no script errors). Usage: report_html_test.sh PENUMBRA SRCDIR
+# The HTML report in headless Chromium (issues 7 and 18): `compare` with a sweep and --frames
+# writes index.html; Chromium loads it from disk (no network), every image loads (the page's own
+# check sets data-images="loaded/total"), the plot has a point per plotted run, every point has
+# its label (a <text> with the technique's name, shown or on hover), no colour is shared by two
+# families, FLIP is in the table and the JSON, and the console stays empty (no script errors).
+# Then the default scene with every technique: the labels the page shows by default do not
+# overlap (its script measures them). Usage: report_html_test.sh PENUMBRA SRCDIR
 # Exits 77 (skipped) without a GL context or without chromium (setup.sh installs it).
 P="$1"; SRC="$2"; T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 CHROMIUM=$(command -v chromium || command -v chromium-browser || true)
@@ -13,7 +16,8 @@ fail=0
 rc=$?
 if [ "$rc" -eq 77 ] || grep -q "no GL context\|cannot create.*context" "$T/err"; then cat "$T/err"; exit 77; fi
 [ "$rc" -eq 0 ] || { echo "FAIL: compare exit $rc"; cat "$T/err"; exit 1; }
-for f in index.html report.json report.csv table.txt plot.svg raytrace__samples-4.png mvr__samples-8_heat.png; do
+for f in index.html report.json report.csv table.txt plot.svg raytrace__samples-4.png mvr__samples-8_heat.png \
+  mvr__samples-8_flip.png; do
   test -s "$T/out/$f" || { echo "FAIL: compare did not write $f"; fail=1; }
 done
 # 2 presets x (raytrace + 3 techniques) = 8 runs, all plotted (the converged reference gives
@@ -21,6 +25,14 @@ done
 rows=$(($(wc -l < "$T/out/report.csv") - 1))
 [ "$rows" -eq 8 ] || { echo "FAIL: report.csv has $rows runs, want 8"; fail=1; }
 grep -q '"flicker"' "$T/out/report.json" || { echo "FAIL: report.json lacks flicker"; fail=1; }
+flips=$(grep -c '"against": "converged"' "$T/out/report.json")
+[ "$flips" -eq 8 ] || { echo "FAIL: report.json has FLIP for $flips runs, want 8"; fail=1; }
+grep -q '<th>FLIP (mean)</th>' "$T/out/index.html" || { echo "FAIL: the table has no FLIP column"; fail=1; }
+grep -q ' FLIP ' "$T/out/table.txt" || { echo "FAIL: table.txt has no FLIP column"; fail=1; }
+head -1 "$T/out/report.csv" | grep -q ',flip,' || { echo "FAIL: report.csv has no flip column"; fail=1; }
+for a in 'data-technique="mvr"' 'data-family="multi-view maps"' 'data-family="single map"' '<text class="label'; do
+  grep -q "$a" "$T/out/plot.svg" || { echo "FAIL: plot.svg lacks $a"; fail=1; }
+done
 imgs=$(grep -o '<img src=' "$T/out/index.html" | wc -l)
 
 # --virtual-time-budget lets the load handler run before the DOM is dumped.
@@ -31,7 +43,11 @@ rc=$?
 [ "$rc" -eq 0 ] || { echo "FAIL: chromium exit $rc"; tail -20 "$T/chromium.err"; exit 1; }
 loaded=$(sed -n 's/.*data-images="\([0-9]*\/[0-9]*\)".*/\1/p' "$T/dom.html" | head -1)
 points=$(sed -n 's/.*data-plot-points="\([0-9]*\)".*/\1/p' "$T/dom.html" | head -1)
-echo "chromium: images loaded $loaded (page has $imgs), plot points $points"
+unlabelled=$(sed -n 's/.*data-unlabelled-points="\([0-9]*\)".*/\1/p' "$T/dom.html" | head -1)
+clashes=$(sed -n 's/.*data-family-colour-clashes="\([0-9]*\)".*/\1/p' "$T/dom.html" | head -1)
+echo "chromium: images loaded $loaded (page has $imgs), plot points $points, unlabelled $unlabelled, colour clashes $clashes"
+[ "$unlabelled" = 0 ] || { echo "FAIL: $unlabelled plot points without their label"; fail=1; }
+[ "$clashes" = 0 ] || { echo "FAIL: $clashes colours shared by two families"; fail=1; }
 [ "$loaded" = "$imgs/$imgs" ] && [ "$imgs" -gt 0 ] || { echo "FAIL: not every image loaded: $loaded"; fail=1; }
 [ "$points" = 8 ] || { echo "FAIL: plot shows $points points, want 8"; fail=1; }
 if grep -q ':CONSOLE' "$T/chromium.err"; then
@@ -43,5 +59,24 @@ HOME="$T" timeout 120 "$CHROMIUM" --headless=new --no-sandbox --disable-gpu --no
   --user-data-dir="$T/profile" --virtual-time-budget=10000 --dump-dom "file://$T/out/index.html" >"$T/dom2.html" 2>/dev/null
 broken=$(sed -n 's/.*data-images="\([0-9]*\/[0-9]*\)".*/\1/p' "$T/dom2.html" | head -1)
 [ "$broken" = "$((imgs - 1))/$imgs" ] || { echo "FAIL: a missing image was not detected ($broken)"; fail=1; }
+
+# The default scene with every technique (the first report a user opens, smaller): the labels
+# shown by default do not overlap, each point is labelled, the families keep their colours.
+"$P" compare --techniques all --samples 8 -W 96 -H 96 --timing-frames 1 --warmup 0 -o "$T/default" 2>"$T/err2" ||
+  { echo "FAIL: compare of the default scene"; tail -5 "$T/err2"; fail=1; }
+HOME="$T" timeout 120 "$CHROMIUM" --headless=new --no-sandbox --disable-gpu --no-first-run --disable-extensions \
+  --user-data-dir="$T/profile" --enable-logging=stderr --v=0 --virtual-time-budget=10000 \
+  --dump-dom "file://$T/default/index.html" >"$T/dom3.html" 2>"$T/chromium3.err"
+attr() { sed -n "s/.*data-$1=\"\([0-9]*\)\".*/\1/p" "$T/dom3.html" | head -1; }
+echo "default scene: points $(attr plot-points), labels shown $(attr labels-shown), overlapping $(attr label-overlaps)," \
+  "unlabelled $(attr unlabelled-points), colour clashes $(attr family-colour-clashes)"
+[ "$(attr plot-points)" -ge 20 ] || { echo "FAIL: the default scene's plot has $(attr plot-points) points"; fail=1; }
+[ "$(attr labels-shown)" -ge 5 ] || { echo "FAIL: only $(attr labels-shown) labels shown"; fail=1; }
+[ "$(attr label-overlaps)" = 0 ] || { echo "FAIL: $(attr label-overlaps) pairs of shown labels overlap"; fail=1; }
+[ "$(attr unlabelled-points)" = 0 ] || { echo "FAIL: unlabelled points on the default scene"; fail=1; }
+[ "$(attr family-colour-clashes)" = 0 ] || { echo "FAIL: families share colours on the default scene"; fail=1; }
+if grep -q ':CONSOLE' "$T/chromium3.err"; then
+  echo "FAIL: console messages:"; grep ':CONSOLE' "$T/chromium3.err"; fail=1
+fi
 [ "$fail" -eq 0 ] && echo "ok: report loads in chromium"
 exit "$fail"

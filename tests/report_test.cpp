@@ -150,6 +150,52 @@ TEST(Report, PlotAndPageShowEveryRun) {
   EXPECT_NE(table.find("conv img"), std::string::npos) << "the shaded error against the converged reference";
 }
 
+// Issue 18: points carry their technique and family, each has a <text> label with the
+// technique's name (the Pareto front's and each family's best shown, the rest hidden until
+// hovered), families differ in colour, and the shaded and FLIP axes plot their own errors.
+TEST(Report, PlotLabelsFamiliesAndAxes) {
+  CompareResult r = handMade();
+  for (auto& run : r.runs) {
+    run.family = run.technique == "fast" ? TechniqueFamily::SingleMap : TechniqueFamily::ExactPerSample;
+    run.flip = run.converged->visibility.rmse * 2;
+    run.converged->shaded.rmse = run.converged->visibility.rmse / 2;
+  }
+  const std::string svg = speedErrorSvg(r);
+  EXPECT_EQ(count(svg, "class=\"point\" data-technique=\""), 6u);
+  EXPECT_EQ(count(svg, "data-family=\"single map\""), 2u * 3u);  // the group, the point, the label
+  EXPECT_EQ(count(svg, "<text class=\"label"), 6u);
+  EXPECT_NE(svg.find("data-technique=\"fast\" data-family=\"single map\" x="), std::string::npos);
+  EXPECT_NE(svg.find(">fast<tspan fill=\"#555\"> N=4</tspan></text>"), std::string::npos) << "the label holds the name";
+  // Five of the six are on the front (all but slow @ 4), each family's best among them: shown
+  // where there is room, at least three of them here.
+  EXPECT_GE(count(svg, "<text class=\"label\""), 3u);
+  EXPECT_NE(svg.find("fill=\"#E69F00\""), std::string::npos);  // single map: orange
+  EXPECT_NE(svg.find("fill=\"#0072B2\""), std::string::npos);  // exact: blue
+  EXPECT_NE(svg.find(">exact per sample</text>"), std::string::npos) << "the legend groups by family";
+  EXPECT_NE(speedErrorSvg(r, ErrorAxis::Flip).find("mean HDR-FLIP vs converged reference"), std::string::npos);
+  EXPECT_NE(speedErrorSvg(r, ErrorAxis::Shaded).find("shaded-image RMSE"), std::string::npos);
+  EXPECT_NE(speedErrorSvg(r, ErrorAxis::Flip).find("mean HDR-FLIP vs converged reference 0.42"), std::string::npos)
+      << "fast @ 4: flip 2 x 0.21";
+  const std::string html = reportHtml(r);
+  EXPECT_EQ(count(html, "<div class=\"plot\""), 3u);
+  EXPECT_EQ(count(html, "<div class=\"plot\" data-axis=\"visibility\">"), 1u) << "the visibility plot shown first";
+  EXPECT_NE(html.find("<th>FLIP (mean)</th>"), std::string::npos);
+
+  const auto summary = whichTechniqueWhen(r);
+  ASSERT_GE(summary.size(), 3u);
+  EXPECT_EQ(summary[0].rfind("Fastest at each error level", 0), 0u) << summary[0];
+  EXPECT_NE(summary[0].find("fast @ samples=4 (1.0 ms, 0.2100)"), std::string::npos) << summary[0];
+  EXPECT_NE(summary[0].find("slow @ samples=8 (90.0 ms, 0.0290)"), std::string::npos) << summary[0];
+  EXPECT_EQ(summary[1].rfind("exact per sample: most accurate slow @ samples=8", 0), 0u) << summary[1];
+  EXPECT_EQ(summary[2].rfind("single map: most accurate fast @ samples=8 (1.5 ms, 0.1200), fastest fast @ samples=4", 0), 0u)
+      << summary[2];
+  EXPECT_EQ(summary.back(), "No technique failed or left a pixel unshadowed.");
+  CompareRun broken;
+  broken.technique = "broken", broken.failed = true, broken.failure = "it broke";
+  r.runs.push_back(broken);
+  EXPECT_EQ(whichTechniqueWhen(r).back(), "broken @ samples=4 failed: it broke");
+}
+
 // Issue 14: a failed run is a row in every output (the reason, no numbers, no point), with
 // the CSV's columns unchanged; the other runs are as before.
 TEST(Report, AFailedRunIsARowEverywhere) {
@@ -183,7 +229,7 @@ TEST(Report, AFailedRunIsARowEverywhere) {
   }
   EXPECT_EQ(ok, 6);
   // 23 measured columns, then the 9 of the harness and the pipeline statistics: all empty.
-  EXPECT_EQ(last, "s<&>,broken,0,samples=8,map=1000,8,8,8,modulate,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,failed,"
+  EXPECT_EQ(last, "s<&>,broken,0,samples=8,map=1000,8,8,8,modulate,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,failed,"
                   "broken: map size 1000 <is> not a power of two");
 
   nlohmann::json j = r.json();

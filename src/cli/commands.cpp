@@ -170,7 +170,7 @@ int listTechniques(bool asJson, bool withParams, const std::string& format) {
   if (asJson || format == "json") {
     json j = json::array();
     for (auto& t : techniqueTable()) {
-      json e = {{"name", t.name}, {"description", t.description}};
+      json e = {{"name", t.name}, {"family", toString(t.family)}, {"description", t.description}};
       if (withParams) {
         e["params"] = json::array();
         for (auto& p : t.params)
@@ -271,6 +271,8 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
   if (c.warmup < 0 || c.warmup > 100) throw Error("--warmup", "must be in 0..100", ExitCode::Usage);
   if (c.frames < 1 || c.frames > 10000) throw Error("--frames", "must be in 1..10000", ExitCode::Usage);
   if (!(c.fps > 0.0f) || !std::isfinite(c.fps)) throw Error("--fps", "must be positive", ExitCode::Usage);
+  if (!(c.pixelsPerDegree > 0.0) || !std::isfinite(c.pixelsPerDegree) || c.pixelsPerDegree > 1000.0)
+    throw Error("--ppd", fmt::format("must be in (0, 1000] pixels per degree, got {}", c.pixelsPerDegree), ExitCode::Usage);
   if (c.maxError && !(std::isfinite(*c.maxError) && *c.maxError >= 0.0))
     throw Error("--max-error", fmt::format("must be a finite RMSE >= 0, got {}", *c.maxError), ExitCode::Usage);
   checkTime(o.time);
@@ -278,6 +280,7 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
   options.converged = c.converged;
   options.timingFrames = c.timingFrames, options.warmup = c.warmup;
   options.frames = c.frames, options.fps = c.fps;
+  options.pixelsPerDegree = c.pixelsPerDegree;
 
   Scene scene = loadSceneFor(o);
   scene.makeCameraRelative();  // in place: each Renderer would otherwise translate a copy

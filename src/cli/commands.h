@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/flip.h"
 #include "pipeline/renderer.h"
 
 namespace penumbra::cli {
@@ -38,6 +39,7 @@ struct CompareCliOptions {
   bool converged = false;
   int timingFrames = 3, warmup = 1, frames = 1;
   float fps = 30.0f;
+  double pixelsPerDegree = kFlipDefaultPixelsPerDegree;  // FLIP's observer
 };
 // Renders the references and the techniques (CompareOptions) and writes the report
 // (compare/report.h) into the output folder.

@@ -79,6 +79,9 @@ int main(int argc, char** argv) {
   compare->add_option("--warmup", cmp.warmup, "untimed frames first")->capture_default_str();
   compare->add_option("--frames", cmp.frames, "frames of the scene's animation, for temporal flicker")->capture_default_str();
   compare->add_option("--fps", cmp.fps, "frames per second of --frames")->capture_default_str();
+  compare->add_option("--ppd", cmp.pixelsPerDegree,
+                      "FLIP's pixels per degree (default: 0.7 m from a 0.7 m wide 3840-pixel monitor, the FLIP paper's)")
+      ->capture_default_str();
 
   cli::BenchOptions benchOptions;
   auto* bench = app.add_subcommand("bench", "run the benchmark studies; tables, reports and plots into bench/results/<machine>/");

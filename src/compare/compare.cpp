@@ -19,8 +19,30 @@ PipelineCounts totalCounts(const CompareRun& run) {
   return sum;
 }
 
+const char* toString(ErrorAxis a) {
+  switch (a) {
+    case ErrorAxis::Visibility: return "visibility";
+    case ErrorAxis::Shaded: return "shaded";
+    case ErrorAxis::Flip: return "flip";
+  }
+  return "?";
+}
+
+double CompareRun::errorOn(ErrorAxis axis) const {
+  switch (axis) {
+    case ErrorAxis::Visibility: return plotError();
+    case ErrorAxis::Shaded: return converged ? converged->shaded.rmse : errors.shaded.rmse;
+    case ErrorAxis::Flip: return flip;
+  }
+  return -1.0;
+}
+
 bool CompareResult::hasConverged() const {
   return std::any_of(runs.begin(), runs.end(), [](auto& r) { return r.converged.has_value(); });
+}
+
+bool CompareResult::hasFlip() const {
+  return std::any_of(runs.begin(), runs.end(), [](auto& r) { return r.flip >= 0.0; });
 }
 
 bool CompareResult::hasTemporal() const {
@@ -79,6 +101,9 @@ class Comparison {
     FrameResult frame;
     std::vector<FrameVisibility> frames;
     const FrameResult* converged = nullptr;
+    // FLIP's reference side for the techniques' shaded images: the converged reference's, or
+    // without it the same-sample reference's.
+    std::unique_ptr<HdrFlipReference> flip;
   };
 
   // Presets that do not change what a technique renders are dropped; a parameter no technique
@@ -150,10 +175,19 @@ class Comparison {
     return first;
   }
 
-  void writeImages(const std::string& base, const FrameResult& f, const FrameResult* against, CompareRun& run) {
+  void writeImages(const std::string& base, const FrameResult& f, const FrameResult* against, const Image* flip,
+                   CompareRun& run) {
     if (o_.outDir.empty()) return;
     writeRunImages({o_.outDir, o_.writeExr, o_.writeImages, presetIndex_ == 0 ? result_.insets : std::vector<Inset>{}},
-                   base + result_.presets[presetIndex_].fileSuffix(), f, against, run);
+                   base + result_.presets[presetIndex_].fileSuffix(), f, against, flip, run);
+  }
+
+  // The shaded image's HDR-FLIP against the references' (CompareRun::flip): its mean over
+  // surface pixels into `run`, the map returned for the heat map.
+  static Image measureFlip(const FrameResult& f, const References& refs, CompareRun& run) {
+    Image map = refs.flip->against(f.color);
+    run.flip = meanOf(map, (refs.converged ? *refs.converged : refs.frame).gbuffer.valid);
+    return map;
   }
 
   std::string at() const {
@@ -168,6 +202,7 @@ class Comparison {
     progress.step("reference: " + o_.reference.name + at());
     CompareRun run;
     run.technique = o_.reference.name, run.preset = presetIndex_, run.reference = true;
+    run.family = o_.reference.family;
     auto tech = o_.reference.make(TechniqueParams{});
     try {
       refs.frame = renderRun(*tech, run, preset_.shading, frames_ > 1 ? &refs.frames : nullptr);
@@ -193,7 +228,10 @@ class Comparison {
       run.converged = measureErrors(refs.frame, *refs.converged);
     }
     run.errors = measureErrors(refs.frame, refs.frame);
-    writeImages(o_.reference.name, refs.frame, refs.converged, run);
+    refs.flip = std::make_unique<HdrFlipReference>((refs.converged ? *refs.converged : refs.frame).color, o_.pixelsPerDegree);
+    Image flip;
+    if (refs.converged) flip = measureFlip(refs.frame, refs, run);
+    writeImages(o_.reference.name, refs.frame, refs.converged, refs.converged ? &flip : nullptr, run);
     result_.runs.push_back(std::move(run));
     return refs;
   }
@@ -203,6 +241,7 @@ class Comparison {
   void renderTechnique(const Job& job, const References& refs) {
     CompareRun run;
     run.technique = job.technique->name, run.preset = presetIndex_, run.params = job.read;
+    run.family = job.technique->family;
     std::vector<FrameVisibility> kept;
     FrameResult f;
     try {
@@ -215,6 +254,7 @@ class Comparison {
     } catch (const std::exception& e) {
       CompareRun failed;
       failed.technique = run.technique, failed.preset = presetIndex_, failed.params = job.read;
+      failed.family = run.family;
       failed.shading = run.shading;
       failed.failed = true;
       failed.failure = e.what();
@@ -228,7 +268,8 @@ class Comparison {
       const TemporalErrors t = measureTemporal(kept, refs.frames);
       run.flicker = t.flicker, run.referenceMotion = t.referenceMotion, run.meanFrameRmse = t.meanFrameRmse;
     }
-    writeImages(run.technique, f, refs.converged ? refs.converged : &refs.frame, run);
+    const Image flip = measureFlip(f, refs, run);
+    writeImages(run.technique, f, refs.converged ? refs.converged : &refs.frame, &flip, run);
     result_.runs.push_back(std::move(run));
   }
 
@@ -276,6 +317,7 @@ class Comparison {
     for (auto& a : o_.sweeps) sweeps.push_back({{"key", a.key}, {"values", a.values}});
     j["sweeps"] = sweeps;
     j["convergedReference"] = converged_;
+    j["flipPixelsPerDegree"] = o_.pixelsPerDegree;
     return j;
   }
 

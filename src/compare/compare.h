@@ -18,6 +18,7 @@
 #include "compare/measure.h"
 #include "compare/output.h"
 #include "compare/presets.h"
+#include "core/flip.h"
 #include "gl/context.h"
 #include "pipeline/renderer.h"
 #include "pipeline/timing.h"
@@ -44,11 +45,18 @@ struct CompareOptions {
   bool writeImages = true;  // PNG images, heat maps and insets
   bool writeExr = true;     // float images with the visibility layers
   int progress = -1;   // Progress's `interactive`: -1 from isatty
+  // FLIP's observer (core/flip.h): pixels per degree of visual angle, the papers' default.
+  double pixelsPerDegree = kFlipDefaultPixelsPerDegree;
 };
+
+// What a speed-against-error plot puts on its error axis.
+enum class ErrorAxis { Visibility, Shaded, Flip };
+const char* toString(ErrorAxis a);
 
 // One technique (or a reference) at one preset.
 struct CompareRun {
   std::string technique;
+  TechniqueFamily family = TechniqueFamily::ExactPerSample;
   std::size_t preset = 0;           // index into CompareResult::presets
   bool reference = false;           // raytrace (same samples) or raytrace-converged
   std::vector<std::string> params;  // key=value of the given parameters this technique read
@@ -70,17 +78,25 @@ struct CompareRun {
   // - the reference's change), i.e. flicker the reference does not have; the reference's own
   // RMS change; the mean visibility RMSE over the frames.
   double flicker = -1.0, referenceMotion = -1.0, meanFrameRmse = -1.0;
+  // Mean HDR-FLIP (core/flip.h) of the shaded image over surface pixels against the converged
+  // reference (or, without one, the same-sample reference; the same-sample reference itself
+  // then has none): -1 where not measured.
+  double flip = -1.0;
   // The technique failed (an Error or another exception while it was created or rendered):
   // `failure` says why; no timings, errors or images. The other runs go on; a failed reference
   // ends the comparison (compareTechniques throws).
   bool failed = false;
   std::string failure;
   std::string image, heat;  // file names in the output folder, "" if not written
+  std::string flipHeat;     // the FLIP map in magma, "" if not written
   std::string unshadowedMask;  // white where frame 0 left a pixel unshadowed in any light, "" if none
   std::vector<std::string> insetImages;
   // The error the plot uses: visibility RMSE against the converged reference if measured,
   // else against the same-sample one.
   double plotError() const { return converged ? converged->visibility.rmse : errors.visibility.rmse; }
+  // The error the plot's other axes use (ErrorAxis): the shaded image's RMSE against the same
+  // reference as plotError, or the mean FLIP.
+  double errorOn(ErrorAxis axis) const;
 };
 
 // The sum of a run's pipeline statistics over its stages.
@@ -94,6 +110,7 @@ struct CompareResult {
   std::string insetSource;  // "given" or "chosen"
   bool hasConverged() const;
   bool hasTemporal() const;
+  bool hasFlip() const;
   nlohmann::json json() const;  // report.json
 };
 

@@ -68,7 +68,7 @@ nlohmann::json errorsJson(const TechniqueErrors& e) {
 }
 
 void writeRunImages(const RunImages& out, const std::string& base, const FrameResult& f, const FrameResult* against,
-                    CompareRun& run) {
+                    const Image* flip, CompareRun& run) {
   namespace fs = std::filesystem;
   fs::path dir(out.dir);
   if (out.exr) writeFrame((dir / (base + ".exr")).string(), f);
@@ -78,6 +78,10 @@ void writeRunImages(const RunImages& out, const std::string& base, const FrameRe
   if (against) {
     writePng((dir / (base + "_heat.png")).string(), errorHeatMap(f.lights[0].visibility, against->lights[0].visibility, 0.25f));
     run.heat = base + "_heat.png";
+  }
+  if (flip) {
+    writePng((dir / (base + "_flip.png")).string(), flipHeatMap(*flip));
+    run.flipHeat = base + "_flip.png";
   }
   // Pixels left unshadowed by design (outside the shadow maps' frustum), white on black.
   std::vector<std::uint8_t> any(f.gbuffer.valid.size(), 0);
@@ -119,6 +123,7 @@ nlohmann::json CompareResult::json() const {
     nlohmann::json harness = nlohmann::json::object();
     for (auto& [k, v] : r.harnessStages) harness[k] = v.median;
     nlohmann::json t{{"name", r.technique},
+                     {"family", toString(r.family)},
                      {"preset", presets[r.preset].label},
                      {"presetIndex", r.preset},
                      {"reference", r.reference},
@@ -140,6 +145,7 @@ nlohmann::json CompareResult::json() const {
                      {"errors", errorsJson(r.errors)},
                      {"image", r.image},
                      {"heat", r.heat},
+                     {"flipHeat", r.flipHeat},
                      {"unshadowedMask", r.unshadowedMask},
                      {"insets", r.insetImages},
                      {"status", r.failed ? "failed" : "ok"}};
@@ -156,6 +162,7 @@ nlohmann::json CompareResult::json() const {
       t["pipelineStatistics"] = {{"stages", counts}, {"total", countsJson(totalCounts(r))}};
     }
     if (r.converged) t["convergedErrors"] = errorsJson(*r.converged);
+    if (r.flip >= 0.0) t["flip"] = {{"mean", r.flip}, {"against", r.converged ? "converged" : "same-sample"}};
     if (r.flicker >= 0.0)
       t["temporal"] = {{"flicker", r.flicker}, {"referenceMotion", r.referenceMotion}, {"meanVisibilityRmse", r.meanFrameRmse}};
     runsJson.push_back(t);

@@ -27,10 +27,10 @@ struct RunImages {
   bool images = true;        // <base>.png, <base>_heat.png, <base>_unshadowed.png, insets
   std::vector<Inset> insets; // crops (first preset only: empty for the others)
 };
-// Writes `frame`'s images as `base` (+ "_heat" against `against`, if given) and records their
-// file names in `run`.
+// Writes `frame`'s images as `base` (+ "_heat" against `against`, and "_flip", the FLIP map
+// in magma, if given) and records their file names in `run`.
 void writeRunImages(const RunImages& out, const std::string& base, const FrameResult& frame,
-                    const FrameResult* against, CompareRun& run);
+                    const FrameResult* against, const Image* flip, CompareRun& run);
 
 nlohmann::json frameSummary(const FrameResult& frame);
 // {"primitives": .., "vertex": .., "geometry": .., "rasterized": .., "fragment": .., "compute": ..}

@@ -16,26 +16,6 @@ namespace penumbra {
 const std::map<std::string, std::string>& embeddedTemplates();
 namespace {
 
-// Distinct on white and for common colour-vision deficiencies first (Okabe-Ito), then more.
-constexpr const char* kPalette[] = {"#0072B2", "#E69F00", "#009E73", "#D55E00", "#CC79A7", "#56B4E9",
-                                    "#000000", "#F0E442", "#8C564B", "#7F7F7F", "#1F3A93", "#BCBD22",
-                                    "#17BECF", "#9467BD", "#2CA02C", "#FF7F0E"};
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
 std::string csvField(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
   std::string out = "\"";
@@ -47,11 +27,6 @@ std::string join(const std::vector<std::string>& v, const std::string& sep) {
   std::string out;
   for (auto& s : v) out += (out.empty() ? "" : sep) + s;
   return out;
-}
-
-std::string runLabel(const CompareResult& r, const CompareRun& run) {
-  const std::string& p = r.presets[run.preset].label;
-  return run.technique + (run.reference ? " (ref)" : "") + (p.empty() ? "" : " @ " + p);
 }
 
 std::string stagesText(const CompareRun& run) {
@@ -88,182 +63,51 @@ std::string countsText(const CompareRun& run) {
   return join(parts, "; ");
 }
 
-// Technique names in first-appearance order (colours follow it).
-std::vector<std::string> techniqueOrder(const CompareResult& r, const std::vector<std::size_t>& runs) {
-  std::vector<std::string> names;
-  for (auto i : runs)
-    if (std::find(names.begin(), names.end(), r.runs[i].technique) == names.end()) names.push_back(r.runs[i].technique);
-  return names;
-}
-
-// Decade ticks of [lo, hi] (log10 values), with 2 and 5 (or every digit) in between when the
-// range is short.
-std::vector<double> logTicks(double lo, double hi) {
-  std::vector<double> ticks;
-  const std::vector<double> mantissas = hi - lo < 1.2   ? std::vector<double>{1, 2, 3, 4, 5, 6, 7, 8, 9}
-                                        : hi - lo < 2.5 ? std::vector<double>{1, 2, 5}
-                                                        : std::vector<double>{1};
-  for (int e = int(std::floor(lo)); e <= int(std::ceil(hi)); ++e)
-    for (double m : mantissas) {
-      double t = e + std::log10(m);
-      if (t >= lo - 1e-9 && t <= hi + 1e-9) ticks.push_back(t);
-    }
-  return ticks;
-}
-
-std::string tickLabel(double log10v) {
-  double v = std::pow(10.0, log10v);
-  if (v >= 1000) return fmt::format("{:.0f}", v);
-  if (v >= 1) return fmt::format("{:g}", std::round(v * 100) / 100);
-  return fmt::format("{:.2g}", v);
-}
-
 }  // namespace
 
-std::vector<std::size_t> paretoFront(const std::vector<std::pair<double, double>>& pts) {
-  std::vector<std::size_t> order(pts.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return pts[a].first != pts[b].first ? pts[a].first < pts[b].first : pts[a].second < pts[b].second;
-  });
-  // A point joins the front when it is more accurate than everything at least as fast by more
-  // than kTie (relative): dcs equals the same-sample reference up to float rounding, and being
-  // 1e-9 "better" must not put the slower of two equal results on the front.
-  constexpr double kTie = 1e-3;
-  std::vector<std::size_t> front;
-  double best = INFINITY;
-  for (std::size_t i : order)
-    if (pts[i].second < best * (1.0 - kTie)) {
-      front.push_back(i);
-      best = pts[i].second;
+std::vector<std::string> whichTechniqueWhen(const CompareResult& r) {
+  std::vector<std::string> out;
+  const auto plotted = plottedRuns(r);
+  std::vector<std::pair<double, double>> pts;
+  for (auto i : plotted) pts.emplace_back(r.runs[i].total.median, r.runs[i].plotError());
+  auto point = [&](std::size_t i) {
+    return fmt::format("{} ({:.1f} ms, {:.4f})", runLabel(r, r.runs[i]), r.runs[i].total.median, r.runs[i].plotError());
+  };
+  if (!plotted.empty()) {
+    std::vector<std::string> front;
+    for (auto k : paretoFront(pts)) front.push_back(point(plotted[k]));
+    out.push_back("Fastest at each error level (the Pareto front, " + errorAxisName(r, ErrorAxis::Visibility) +
+                  ", from fast and coarse to slow and accurate): " + join(front, "; ") + ".");
+    for (TechniqueFamily f : kTechniqueFamilies) {
+      std::size_t best = plotted.size(), fastest = plotted.size();
+      for (std::size_t k = 0; k < plotted.size(); ++k) {
+        if (r.runs[plotted[k]].family != f) continue;
+        if (best == plotted.size() || pts[k].second < pts[best].second) best = k;
+        if (fastest == plotted.size() || pts[k].first < pts[fastest].first) fastest = k;
+      }
+      if (best == plotted.size()) continue;
+      std::string line = std::string(toString(f)) + ": most accurate " + point(plotted[best]);
+      if (fastest != best) line += ", fastest " + point(plotted[fastest]);
+      out.push_back(line + ".");
     }
-  return front;
-}
-
-std::vector<std::size_t> plottedRuns(const CompareResult& r) {
-  std::vector<std::size_t> out;
-  for (std::size_t i = 0; i < r.runs.size(); ++i) {
-    const CompareRun& run = r.runs[i];
-    if (run.failed || (run.reference && !run.converged)) continue;
-    if (!(run.total.median > 0.0) || !std::isfinite(run.plotError())) continue;
-    out.push_back(i);
   }
+  bool trouble = false;
+  for (auto& run : r.runs) {
+    if (run.failed) {
+      out.push_back(runLabel(r, run) + " failed: " + run.failure);
+      trouble = true;
+    } else if (run.errors.unshadowedPixels > 0) {
+      out.push_back(fmt::format("{} left {} pixels unshadowed (outside its shadow maps; visibility RMSE {:.4f} without them).",
+                                runLabel(r, run), run.errors.unshadowedPixels, run.errors.visibilityExceptUnshadowed.rmse));
+      trouble = true;
+    }
+  }
+  if (!trouble) out.push_back("No technique failed or left a pixel unshadowed.");
   return out;
 }
 
-std::string speedErrorSvg(const CompareResult& r) {
-  const auto runs = plottedRuns(r);
-  const auto names = techniqueOrder(r, runs);
-  const double left = 70, right = 190, top = 30, bottom = 50, W = 760;
-  const double H = std::max(460.0, top + 15.0 * double(names.size()) + 40.0 + bottom);  // room for the legend
-  const double pw = W - left - right, ph = H - top - bottom;
-  // Exact techniques (dcs against the same-sample reference: float rounding, ~1e-8) would
-  // stretch the axis over decades of nothing: errors below kExact sit on a floor labelled so.
-  constexpr double kExact = 1e-4;
-  bool anyExact = false;
-  for (auto i : runs) anyExact |= r.runs[i].plotError() < kExact;
-  auto errorOf = [&](std::size_t i) { return std::max(r.runs[i].plotError(), kExact); };
-  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-  for (auto i : runs) {
-    x0 = std::min(x0, std::log10(r.runs[i].total.median)), x1 = std::max(x1, std::log10(r.runs[i].total.median));
-    y0 = std::min(y0, std::log10(errorOf(i))), y1 = std::max(y1, std::log10(errorOf(i)));
-  }
-  if (runs.empty()) x0 = 0, x1 = 1, y0 = -3, y1 = 0;
-  auto pad = [](double& lo, double& hi) {
-    if (hi - lo < 0.5) {
-      double mid = 0.5 * (lo + hi);
-      lo = mid - 0.25, hi = mid + 0.25;
-    }
-    double p = 0.06 * (hi - lo);
-    lo -= p, hi += p;
-  };
-  pad(x0, x1), pad(y0, y1);
-  auto X = [&](double ms) { return left + (std::log10(ms) - x0) / (x1 - x0) * pw; };
-  auto Y = [&](double e) { return top + (1.0 - (std::log10(e) - y0) / (y1 - y0)) * ph; };
-  const std::string errorName = r.hasConverged() ? "visibility RMSE vs converged reference" : "visibility RMSE vs same-sample reference";
-
-  std::string s = fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
-      "font-family=\"sans-serif\" font-size=\"12\" role=\"img\" aria-label=\"speed against error\">\n"
-      "<rect width=\"{0}\" height=\"{1}\" fill=\"white\"/>\n",
-      W, H);
-  s += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">Speed against error: {}</text>\n", left,
-                   escape(r.info.value("sceneName", std::string("scene"))));
-  // Grid and ticks.
-  for (double t : logTicks(x0, x1)) {
-    double x = left + (t - x0) / (x1 - x0) * pw;
-    s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
-                     "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>\n",
-                     x, top, top + ph, top + ph + 16, tickLabel(t));
-  }
-  for (double t : logTicks(y0, y1)) {
-    double y = top + (1.0 - (t - y0) / (y1 - y0)) * ph;
-    bool exact = anyExact && std::abs(t - std::log10(kExact)) < 1e-9;
-    s += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>"
-                     "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
-                     left, y, left + pw, left - 6, y + 4, exact ? "&#8804;1e-4" : tickLabel(t));
-  }
-  s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#333\"/>\n", left, top, pw, ph);
-  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">median ms per frame (log)</text>\n", left + pw / 2, H - 10);
-  s += fmt::format("<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\">{} (log)</text>\n", top + ph / 2,
-                   errorName);
-
-  // Pareto front (dashed steps), then one curve and the points per technique.
-  std::vector<std::pair<double, double>> pts;
-  for (auto i : runs) pts.emplace_back(r.runs[i].total.median, errorOf(i));
-  auto front = paretoFront(pts);
-  if (front.size() > 1) {
-    std::string path;
-    for (std::size_t k = 0; k < front.size(); ++k) {
-      double x = X(pts[front[k]].first), y = Y(pts[front[k]].second);
-      if (k == 0) path += fmt::format("M{:.1f},{:.1f}", x, y);
-      else path += fmt::format(" H{:.1f} V{:.1f}", x, y);
-    }
-    s += "<path class=\"pareto\" d=\"" + path + "\" fill=\"none\" stroke=\"#888\" stroke-dasharray=\"5,4\"/>\n";
-  }
-  for (std::size_t t = 0; t < names.size(); ++t) {
-    // Colours cycle; past the palette the markers turn from circles to squares.
-    const char* colour = kPalette[t % std::size(kPalette)];
-    const bool square = (t / std::size(kPalette)) % 2 == 1;
-    auto marker = [square](double x, double y, double r, const std::string& attrs, const std::string& body) {
-      if (square)
-        return fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" {}>{}</rect>\n", x - r, y - r,
-                           2 * r, 2 * r, attrs, body);
-      return fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{}\" {}>{}</circle>\n", x, y, r, attrs, body);
-    };
-    std::vector<std::size_t> mine;
-    for (std::size_t k = 0; k < runs.size(); ++k)
-      if (r.runs[runs[k]].technique == names[t]) mine.push_back(k);
-    std::sort(mine.begin(), mine.end(), [&](auto a, auto b) { return pts[a].first < pts[b].first; });
-    if (mine.size() > 1) {
-      std::string path;
-      for (std::size_t k = 0; k < mine.size(); ++k)
-        path += fmt::format("{}{:.1f},{:.1f}", k ? " L" : "M", X(pts[mine[k]].first), Y(pts[mine[k]].second));
-      s += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.5\"/>\n", path, colour);
-    }
-    for (auto k : mine) {
-      const CompareRun& run = r.runs[runs[k]];
-      bool onFront = std::find(front.begin(), front.end(), k) != front.end();
-      s += marker(X(pts[k].first), Y(pts[k].second), onFront ? 5 : 4,
-                  fmt::format("class=\"point\" fill=\"{}\" stroke=\"{}\" stroke-width=\"{}\"", colour,
-                              onFront ? "#000" : "white", onFront ? 1.5 : 1),
-                  fmt::format("<title>{}: {:.2f} ms, RMSE {:.4g}{}</title>", escape(runLabel(r, run)), run.total.median,
-                              run.plotError(), onFront ? " (Pareto front)" : ""));
-    }
-    double ly = top + 8 + 15.0 * double(t);
-    s += marker(left + pw + 14, ly, 4, fmt::format("fill=\"{}\"", colour), "") +
-         fmt::format("<text x=\"{}\" y=\"{:.1f}\">{}</text>\n", left + pw + 24, ly + 4, escape(names[t]));
-  }
-  double ly = top + 8 + 15.0 * double(names.size()) + 6;
-  s += fmt::format("<line x1=\"{}\" y1=\"{:.1f}\" x2=\"{}\" y2=\"{:.1f}\" stroke=\"#888\" stroke-dasharray=\"5,4\"/>"
-                   "<text x=\"{}\" y=\"{:.1f}\">Pareto front</text>\n",
-                   left + pw + 8, ly, left + pw + 20, ly, left + pw + 24, ly + 4);
-  s += "</svg>\n";
-  return s;
-}
-
 std::string reportTable(const CompareResult& r) {
-  const bool conv = r.hasConverged(), temporal = r.hasTemporal();
+  const bool conv = r.hasConverged(), temporal = r.hasTemporal(), flip = r.hasFlip();
   const bool counted = std::any_of(r.runs.begin(), r.runs.end(), [](const CompareRun& x) { return !x.counts.empty(); });
   std::string t;
   // Totals are the technique's time; the harness's readbacks and uploads are the "harness" column.
@@ -272,6 +116,7 @@ std::string reportTable(const CompareResult& r) {
   t += fmt::format("{:<32} {:>9} {:>17} {:>9} {:>8} {:>9} {:>8} {:>9} {:>10}", "technique", "total ms",
                    "(min-max)", "harness", "MiB", "vis RMSE", "vis max", "img RMSE", "misclass");
   if (conv) t += fmt::format(" {:>10} {:>10}", "conv vis", "conv img");
+  if (flip) t += fmt::format(" {:>8}", "FLIP");
   if (temporal) t += fmt::format(" {:>9}", "flicker");
   if (counted) t += fmt::format(" {:>9} {:>9} {:>9} {:>9}", "fragments", "geometry", "compute", "prims");
   t += "  stages ms\n";
@@ -291,6 +136,7 @@ std::string reportTable(const CompareResult& r) {
     if (conv)
       t += run.converged ? fmt::format(" {:>10.4f} {:>10.4g}", run.converged->visibility.rmse, run.converged->shaded.rmse)
                          : fmt::format(" {:>10} {:>10}", "-", "-");
+    if (flip) t += run.flip >= 0.0 ? fmt::format(" {:>8.4f}", run.flip) : fmt::format(" {:>8}", "-");
     if (temporal) t += run.flicker >= 0.0 ? fmt::format(" {:>9.4f}", run.flicker) : fmt::format(" {:>9}", "-");
     if (counted) {
       const PipelineCounts c = totalCounts(run);
@@ -308,7 +154,7 @@ std::string reportCsv(const CompareResult& r) {
   std::string c =
       "scene,technique,reference,preset,params,samples,width,height,shading,total_ms_median,total_ms_min,total_ms_max,"
       "prepare_ms,stages_ms,memory_bytes,vis_rmse,vis_mean,vis_max,vis_rmse_outside_band,misclassified_pixels,"
-      "sample_agreement,img_rmse,img_mean,img_max,conv_vis_rmse,conv_vis_mean,conv_vis_max,conv_img_rmse,flicker,"
+      "sample_agreement,img_rmse,img_mean,img_max,conv_vis_rmse,conv_vis_mean,conv_vis_max,conv_img_rmse,flip,flicker,"
       "reference_motion,mean_frame_rmse,harness_ms_median,harness_stages_ms,primitives,vertex_invocations,"
       "geometry_invocations,rasterized_primitives,fragment_invocations,compute_invocations,pipeline_statistics,"
       "image,status,error\n";
@@ -321,7 +167,7 @@ std::string reportCsv(const CompareResult& r) {
       std::vector<std::string> f = {csvField(scene), csvField(run.technique), run.reference ? "1" : "0", csvField(p.label),
                                     csvField(join(run.params, " ")), std::to_string(p.samples), std::to_string(p.width),
                                     std::to_string(p.height), run.shading};
-      f.insert(f.end(), 23 + 9, "");
+      f.insert(f.end(), 24 + 9, "");
       f.push_back("failed");
       f.push_back(csvField(run.failure));
       c += join(f, ",") + "\n";
@@ -344,6 +190,7 @@ std::string reportCsv(const CompareResult& r) {
     } else {
       f.insert(f.end(), 4, "");
     }
+    f.push_back(run.flip >= 0.0 ? num(run.flip) : "");
     for (double v : {run.flicker, run.referenceMotion, run.meanFrameRmse}) f.push_back(v >= 0.0 ? num(v) : "");
     std::vector<std::string> harness;
     for (auto& [k, v] : run.harnessStages) harness.push_back(k + "=" + fmt::format("{:.3f}", v.median));
@@ -365,35 +212,54 @@ std::string reportCsv(const CompareResult& r) {
 
 std::string reportHtml(const CompareResult& r) {
   const auto& info = r.info;
-  const bool conv = r.hasConverged(), temporal = r.hasTemporal();
+  const bool conv = r.hasConverged(), temporal = r.hasTemporal(), flip = r.hasFlip();
   std::string h;
-  h += "<h1>penumbra compare: " + escape(info.value("sceneName", std::string())) + "</h1>\n";
+  h += "<h1>penumbra compare: " + escapeMarkup(info.value("sceneName", std::string())) + "</h1>\n";
   h += fmt::format("<p class=\"meta\">scene <code>{}</code> ({} triangles, {} lights) &middot; {}x{} &middot; {} samples, {} / {} "
                    "(seed {}) &middot; shading {} &middot; renderer {} ({}) &middot; timing: median of {} frames after {} "
                    "warm-up (glFinish + steady clock) &middot; {}</p>\n",
-                   escape(info.value("scene", std::string())), info.value("triangles", 0), info.value("lights", 0),
+                   escapeMarkup(info.value("scene", std::string())), info.value("triangles", 0), info.value("lights", 0),
                    info.value("width", 0), info.value("height", 0), info.value("samples", 0),
-                   escape(info.value("strategy", std::string())), escape(info.value("pattern", std::string())),
-                   info.value("seed", 0u), escape(info.value("shading", std::string())),
-                   escape(info.value("renderer", std::string())), escape(info.value("glVersion", std::string())),
-                   info.value("timingFrames", 0), info.value("warmupFrames", 0), escape(info.value("date", std::string())));
+                   escapeMarkup(info.value("strategy", std::string())), escapeMarkup(info.value("pattern", std::string())),
+                   info.value("seed", 0u), escapeMarkup(info.value("shading", std::string())),
+                   escapeMarkup(info.value("renderer", std::string())), escapeMarkup(info.value("glVersion", std::string())),
+                   info.value("timingFrames", 0), info.value("warmupFrames", 0), escapeMarkup(info.value("date", std::string())));
   h += "<p class=\"meta\">total: the technique's stages (G-buffer, visibility, shading); the harness's readbacks and "
-       "uploads apart &middot; pipeline statistics: " + escape(info.value("pipelineStatistics", std::string("-"))) + "</p>\n";
+       "uploads apart &middot; pipeline statistics: " + escapeMarkup(info.value("pipelineStatistics", std::string("-"))) + "</p>\n";
   if (!info.value("params", std::vector<std::string>{}).empty())
-    h += "<p class=\"meta\">parameters: <code>" + escape(join(info["params"].get<std::vector<std::string>>(), " ")) + "</code></p>\n";
+    h += "<p class=\"meta\">parameters: <code>" + escapeMarkup(join(info["params"].get<std::vector<std::string>>(), " ")) + "</code></p>\n";
   if (r.presets.size() > 1) {
     std::vector<std::string> labels;
     for (auto& p : r.presets) labels.push_back(p.label);
-    h += "<p class=\"meta\">presets (sweep): " + escape(join(labels, " | ")) + "</p>\n";
+    h += "<p class=\"meta\">presets (sweep): " + escapeMarkup(join(labels, " | ")) + "</p>\n";
   }
 
-  h += "<h2>Speed against error</h2>\n<div class=\"plot\">\n" + speedErrorSvg(r) + "</div>\n";
+  // The plots: one per error axis, the visibility's shown; the page's script switches them and
+  // the "all labels" toggle.
+  std::vector<ErrorAxis> axes = {ErrorAxis::Visibility, ErrorAxis::Shaded};
+  if (r.hasFlip()) axes.push_back(ErrorAxis::Flip);
+  h += "<h2>Speed against error</h2>\n<p class=\"controls\">error axis:";
+  for (ErrorAxis a : axes)
+    h += fmt::format(" <label><input type=\"radio\" name=\"axis\" value=\"{0}\"{1}> {2}</label>", toString(a),
+                     a == ErrorAxis::Visibility ? " checked" : "", escapeMarkup(errorAxisName(r, a)));
+  h += " &middot; <label><input type=\"checkbox\" id=\"all-labels\"> all labels</label></p>\n";
+  for (ErrorAxis a : axes)
+    h += fmt::format("<div class=\"plot\" data-axis=\"{}\"{}>\n{}</div>\n", toString(a),
+                     a == ErrorAxis::Visibility ? "" : " hidden", speedErrorSvg(r, a));
   h += std::string("<p class=\"note\">Each point is one technique at one preset: the median time per frame against the "
-                   "visibility RMSE (all lights, surface pixels) against the ") +
+                   "error (visibility: all lights' buffers; shaded: the linear image; both RMSE over surface pixels; FLIP: "
+                   "the mean HDR-FLIP of the shaded image, Andersson et al. 2020/2021, at ") +
+       fmt::format("{:.1f}", info.value("flipPixelsPerDegree", kFlipDefaultPixelsPerDegree)) + " pixels per degree) against the " +
        (conv ? "converged reference (raytrace-converged, 1024 stratified samples per pixel)"
              : "ray-traced reference with the same light samples") +
-       ". Points on the dashed Pareto front (outlined) are faster than every more accurate point. Hover a point for its "
-       "numbers.</p>\n";
+       ". Colour: the technique's family; shape and shade: the variant. Points on the dashed Pareto front (outlined) are "
+       "faster than every more accurate point; the front and each family's best point are labelled, hover a point (or tick "
+       "\"all labels\") for the rest.</p>\n";
+
+  // Which technique when, from this run's measurements.
+  h += "<h2>Which technique when</h2>\n<ul class=\"summary\">\n";
+  for (const std::string& line : whichTechniqueWhen(r)) h += "<li>" + escapeMarkup(line) + "</li>\n";
+  h += "</ul>\n";
 
   // The table.
   const auto plotted = plottedRuns(r);
@@ -406,6 +272,7 @@ std::string reportHtml(const CompareResult& r) {
        "<th>memory MiB</th><th>vis RMSE</th><th>vis mean</th><th>vis max</th><th>misclassified px</th>"
        "<th>img RMSE</th><th>img mean</th><th>img max</th>";
   if (conv) h += "<th>vis RMSE vs converged</th><th>img RMSE vs converged</th>";
+  if (flip) h += "<th>FLIP (mean)</th>";
   if (temporal) h += "<th>flicker</th><th>reference motion</th><th>mean frame RMSE</th>";
   h += "</tr>\n";
   for (std::size_t i = 0; i < r.runs.size(); ++i) {
@@ -413,11 +280,11 @@ std::string reportHtml(const CompareResult& r) {
     const ComparePreset& p = r.presets[run.preset];
     bool front = std::find(frontRuns.begin(), frontRuns.end(), i) != frontRuns.end();
     std::vector<std::string> stageList;
-    for (auto& [k, v] : run.stages) stageList.push_back(fmt::format("{}&nbsp;{:.2f}", escape(k), v.median));
+    for (auto& [k, v] : run.stages) stageList.push_back(fmt::format("{}&nbsp;{:.2f}", escapeMarkup(k), v.median));
     std::string stages = join(stageList, " &middot; ");
     if (!run.harnessStages.empty()) {  // the harness's readbacks and uploads, not in the total
       std::vector<std::string> harness;
-      for (auto& [k, v] : run.harnessStages) harness.push_back(fmt::format("{}&nbsp;{:.2f}", escape(k), v.median));
+      for (auto& [k, v] : run.harnessStages) harness.push_back(fmt::format("{}&nbsp;{:.2f}", escapeMarkup(k), v.median));
       stages += fmt::format("<br><i>harness {:.2f}: {}</i>", run.harness.median, join(harness, " &middot; "));
     }
     if (!run.counts.empty()) {
@@ -427,17 +294,17 @@ std::string reportHtml(const CompareResult& r) {
                             countText(pc.computeInvocations), countText(pc.primitivesSubmitted));
     }
     if (run.failed) {
-      const int rest = 12 + (conv ? 2 : 0) + (temporal ? 3 : 0);
+      const int rest = 12 + (conv ? 2 : 0) + (flip ? 1 : 0) + (temporal ? 3 : 0);
       h += fmt::format("<tr class=\"failed\"><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td>"
                        "<td class=\"l st\" colspan=\"{}\"><b>failed:</b> {}</td></tr>\n",
-                       escape(run.technique), escape(p.label), escape(join(run.params, " ")), p.samples, rest,
-                       escape(run.failure));
+                       escapeMarkup(run.technique), escapeMarkup(p.label), escapeMarkup(join(run.params, " ")), p.samples, rest,
+                       escapeMarkup(run.failure));
       continue;
     }
     h += fmt::format("<tr class=\"{}\"><td class=\"l\">{}{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td>"
                      "<td>{:.2f}</td><td>{:.2f}&ndash;{:.2f}</td><td class=\"l st\">{}</td><td>{:.1f}</td><td>{:.2f}</td>",
-                     run.reference ? "ref" : (front ? "front" : ""), escape(run.technique), run.reference ? " (reference)" : "",
-                     escape(p.label), escape(join(run.params, " ")), p.samples, run.total.median, run.total.min,
+                     run.reference ? "ref" : (front ? "front" : ""), escapeMarkup(run.technique), run.reference ? " (reference)" : "",
+                     escapeMarkup(p.label), escapeMarkup(join(run.params, " ")), p.samples, run.total.median, run.total.min,
                      run.total.max, stages, run.prepareMs, double(run.memoryBytes) / 1048576.0);
     const TechniqueErrors& e = run.errors;
     if (run.reference) h += "<td>-</td><td>-</td><td>-</td><td>-</td><td>-</td><td>-</td><td>-</td>";
@@ -448,6 +315,7 @@ std::string reportHtml(const CompareResult& r) {
     if (conv)
       h += run.converged ? fmt::format("<td>{:.4f}</td><td>{:.4g}</td>", run.converged->visibility.rmse, run.converged->shaded.rmse)
                          : "<td>-</td><td>-</td>";
+    if (flip) h += run.flip >= 0.0 ? fmt::format("<td>{:.4f}</td>", run.flip) : "<td>-</td>";
     if (temporal)
       h += run.flicker >= 0.0
                ? fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td>", run.flicker, run.referenceMotion, run.meanFrameRmse)
@@ -463,23 +331,26 @@ std::string reportHtml(const CompareResult& r) {
   h += "</p>\n";
 
   // Images, one gallery per preset.
-  h += "<h2>Images</h2>\n<p class=\"note\">Left: the shaded image; right: the visibility error of the first light against the "
-       "" + std::string(conv ? "converged" : "same-sample") + " reference (heat map, black 0 to yellow 0.25 or more).</p>\n";
+  h += "<h2>Images</h2>\n<p class=\"note\">Left: the shaded image; middle: the visibility error of the first light against the "
+       "" + std::string(conv ? "converged" : "same-sample") + " reference (heat map, black 0 to yellow 0.25 or more); right: "
+       "the shaded image's HDR-FLIP against it (magma, black 0 to pale yellow 1, the FLIP papers' colour map).</p>\n";
   for (std::size_t p = 0; p < r.presets.size(); ++p) {
     h += fmt::format("<details{}><summary>{}</summary>\n<div class=\"gallery\">\n", p == 0 ? " open" : "",
-                     r.presets[p].label.empty() ? "all techniques" : escape(r.presets[p].label));
+                     r.presets[p].label.empty() ? "all techniques" : escapeMarkup(r.presets[p].label));
     // Small renders are shown enlarged (pixelated), at least 192 px wide.
     const int zoom = std::max(1, 192 / std::max(1, r.presets[p].width));
     const std::string size = fmt::format(" width=\"{}\" height=\"{}\"", r.presets[p].width * zoom, r.presets[p].height * zoom);
     for (auto& run : r.runs) {
       if (run.preset != p || run.image.empty()) continue;
-      h += "<figure><div class=\"pair\"><img src=\"" + escape(run.image) + "\"" + size + " alt=\"" + escape(run.technique) + "\">";
+      h += "<figure><div class=\"pair\"><img src=\"" + escapeMarkup(run.image) + "\"" + size + " alt=\"" + escapeMarkup(run.technique) + "\">";
       if (!run.heat.empty())
-        h += "<img src=\"" + escape(run.heat) + "\"" + size + " alt=\"" + escape(run.technique) + " error\">";
+        h += "<img src=\"" + escapeMarkup(run.heat) + "\"" + size + " alt=\"" + escapeMarkup(run.technique) + " error\">";
+      if (!run.flipHeat.empty())
+        h += "<img src=\"" + escapeMarkup(run.flipHeat) + "\"" + size + " alt=\"" + escapeMarkup(run.technique) + " FLIP\">";
       if (!run.unshadowedMask.empty())
-        h += "<img src=\"" + escape(run.unshadowedMask) + "\"" + size + " alt=\"" + escape(run.technique) +
+        h += "<img src=\"" + escapeMarkup(run.unshadowedMask) + "\"" + size + " alt=\"" + escapeMarkup(run.technique) +
              " pixels left unshadowed\">";
-      h += "</div><figcaption><b>" + escape(run.technique) + (run.reference ? " (reference)" : "") + "</b> " +
+      h += "</div><figcaption><b>" + escapeMarkup(run.technique) + (run.reference ? " (reference)" : "") + "</b> " +
            fmt::format("{:.1f} ms", run.total.median);
       if (!run.reference) h += fmt::format(", vis RMSE {:.4f}", run.errors.visibility.rmse);
       if (run.errors.unshadowedPixels > 0)
@@ -487,6 +358,7 @@ std::string reportHtml(const CompareResult& r) {
                          "without them",
                          run.errors.unshadowedPixels, run.errors.visibilityExceptUnshadowed.rmse);
       if (run.converged) h += fmt::format(", vs converged {:.4f}", run.converged->visibility.rmse);
+      if (run.flip >= 0.0) h += fmt::format(", FLIP {:.4f}", run.flip);
       h += "</figcaption></figure>\n";
     }
     h += "</div></details>\n";
@@ -500,8 +372,8 @@ std::string reportHtml(const CompareResult& r) {
                        r.insetSource == "given" ? "given with --inset" : "most penumbra pixels of the reference");
       for (auto& run : r.runs) {
         if (run.preset != 0 || k >= run.insetImages.size()) continue;
-        h += "<figure><img src=\"" + escape(run.insetImages[k]) + "\" alt=\"" + escape(run.technique) + " inset\"><figcaption>" +
-             escape(run.technique) + "</figcaption></figure>\n";
+        h += "<figure><img src=\"" + escapeMarkup(run.insetImages[k]) + "\" alt=\"" + escapeMarkup(run.technique) + " inset\"><figcaption>" +
+             escapeMarkup(run.technique) + "</figcaption></figure>\n";
       }
       h += "</div>\n";
     }
@@ -513,7 +385,7 @@ std::string reportHtml(const CompareResult& r) {
   const std::string& page = embeddedTemplates().at("report.html");
   const std::size_t body = page.find("@BODY@");
   std::string out = page.substr(0, body);
-  out.replace(out.find("@TITLE@"), 7, escape(info.value("sceneName", std::string())));
+  out.replace(out.find("@TITLE@"), 7, escapeMarkup(info.value("sceneName", std::string())));
   return out + h + page.substr(body + 6);
 }
 

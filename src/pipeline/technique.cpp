@@ -79,6 +79,17 @@ std::string ParamSpec::rangeText() const {
   return {};
 }
 
+const char* toString(TechniqueFamily f) {
+  switch (f) {
+    case TechniqueFamily::ExactPerSample: return "exact per sample";
+    case TechniqueFamily::MultiView: return "multi-view maps";
+    case TechniqueFamily::SingleMap: return "single map";
+    case TechniqueFamily::Denoised: return "denoised rays";
+    case TechniqueFamily::Hard: return "hard / unshadowed";
+  }
+  return "?";
+}
+
 const ParamSpec& TechniqueArgs::spec(const std::string& key) const {
   for (auto& p : declared_)
     if (p.key == key) return p;

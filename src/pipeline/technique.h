@@ -164,12 +164,27 @@ class TechniqueArgs {
   std::string technique_;
 };
 
+// The families the report colours and groups techniques by (issue 18): how a technique finds
+// visibility, not its code.
+enum class TechniqueFamily {
+  ExactPerSample,  // a result per light sample equal to ray tracing's (raytrace, dcs*)
+  MultiView,       // a depth map per light sample (mvr*, vwss*, reproject*)
+  SingleMap,       // one map from the light centre, filtered (pcss*, vssm*, msm*, evsm)
+  Denoised,        // few rays per pixel, filtered in space and time (raytrace-denoised)
+  Hard,            // unshadowed or hard shadows from the light centre (none, hard-sv)
+};
+inline constexpr TechniqueFamily kTechniqueFamilies[] = {TechniqueFamily::ExactPerSample, TechniqueFamily::MultiView,
+                                                        TechniqueFamily::SingleMap, TechniqueFamily::Denoised,
+                                                        TechniqueFamily::Hard};
+const char* toString(TechniqueFamily f);
+
 // A technique by name: what the table (techniques/registry.h) holds and what compare is handed.
 struct TechniqueInfo {
   std::string name;
   std::string description;  // one line for `penumbra list`
   std::vector<ParamSpec> params;  // every parameter it reads, with its defaults
   std::function<std::unique_ptr<Technique>(const TechniqueArgs&)> create;
+  TechniqueFamily family = TechniqueFamily::ExactPerSample;
   // create() with `given` read through this technique's declarations.
   std::unique_ptr<Technique> make(const TechniqueParams& given) const { return create(TechniqueArgs(given, params, name)); }
 };

@@ -26,27 +26,32 @@ DcsOptions dcsPreset(SilhouetteMode silhouettes, dcs::OpacityMode opacity, int c
 }
 TechniqueInfo dcsEntry(std::string name, std::string description, DcsOptions preset) {
   return {std::move(name), std::move(description), dcsParams(preset),
-          [](const TechniqueArgs& a) { return makeDepthComplexitySampling(readDcsOptions(a)); }};
+          [](const TechniqueArgs& a) { return makeDepthComplexitySampling(readDcsOptions(a)); },
+          TechniqueFamily::ExactPerSample};
 }
 // A technique that is a preset of a family: the family's declarations with the preset's
 // defaults, and its factory.
 template <class Preset>
 TechniqueInfo presetEntry(std::string name, std::string description, std::vector<ParamSpec> params, Preset preset,
-                          std::unique_ptr<Technique> (*make)(const TechniqueArgs&, Preset)) {
+                          std::unique_ptr<Technique> (*make)(const TechniqueArgs&, Preset), TechniqueFamily family) {
   return {std::move(name), std::move(description), std::move(params),
-          [preset, make](const TechniqueArgs& a) { return make(a, preset); }};
+          [preset, make](const TechniqueArgs& a) { return make(a, preset); }, family};
 }
 TechniqueInfo pcssEntry(std::string name, std::string description, PcssOptions preset) {
-  return presetEntry(std::move(name), std::move(description), pcssParams(preset), preset, makePercentageCloserSoftShadows);
+  return presetEntry(std::move(name), std::move(description), pcssParams(preset), preset, makePercentageCloserSoftShadows,
+                     TechniqueFamily::SingleMap);
 }
 TechniqueInfo vssmEntry(std::string name, std::string description, VssmOptions preset) {
-  return presetEntry(std::move(name), std::move(description), vssmParams(preset), preset, makeVarianceSoftShadowMapping);
+  return presetEntry(std::move(name), std::move(description), vssmParams(preset), preset, makeVarianceSoftShadowMapping,
+                     TechniqueFamily::SingleMap);
 }
 TechniqueInfo vwssEntry(std::string name, std::string description, VwssMode mode) {
-  return presetEntry(std::move(name), std::move(description), vwssParams(mode), mode, makeViewWarpedSoftShadows);
+  return presetEntry(std::move(name), std::move(description), vwssParams(mode), mode, makeViewWarpedSoftShadows,
+                     TechniqueFamily::MultiView);
 }
 TechniqueInfo msmEntry(std::string name, std::string description, MsmOptions preset) {
-  return presetEntry(std::move(name), std::move(description), msmParams(preset), preset, makeMomentShadowMapping);
+  return presetEntry(std::move(name), std::move(description), msmParams(preset), preset, makeMomentShadowMapping,
+                     TechniqueFamily::SingleMap);
 }
 MsmOptions msmPreset(bool soft) {
   MsmOptions o;
@@ -64,9 +69,9 @@ VssmOptions vssmPreset(bool exactSat, int shadowLevels) {
 const std::vector<TechniqueInfo>& techniqueTable() {
   using dcs::OpacityMode;
   static const std::vector<TechniqueInfo> table = {
-      {"none", "unshadowed direct lighting", {}, [](const TechniqueArgs&) { return makeUnshadowed(); }},
+      {"none", "unshadowed direct lighting", {}, [](const TechniqueArgs&) { return makeUnshadowed(); }, TechniqueFamily::Hard},
       {"hard-sv", "hard shadows from the light centre, z-fail shadow volumes (float counter)", {},
-       [](const TechniqueArgs&) { return makeHardShadowVolumes(); }},
+       [](const TechniqueArgs&) { return makeHardShadowVolumes(); }, TechniqueFamily::Hard},
       dcsEntry("dcs", "depth complexity sampling: per-sample occluder counts, accurate silhouettes (exact; semi-opaque layers multiply)",
                dcsPreset(SilhouetteMode::Accurate, OpacityMode::Product, PENUMBRA_DCS_COVERAGE_EXACT)),
       dcsEntry("dcs-standard", "depth complexity sampling with standard silhouettes (from the light centre)",
@@ -78,9 +83,9 @@ const std::vector<TechniqueInfo>& techniqueTable() {
       dcsEntry("dcs-lut", "dcs with the paper's edge LUT (cube-map sectors & line table, approximate)",
                dcsPreset(SilhouetteMode::Accurate, OpacityMode::Product, PENUMBRA_DCS_COVERAGE_LUT)),
       {"mvr", "multi-view rasterisation: a depth map per light sample, one draw each, PCF (VWSS paper's reference)",
-       mvrParams(), [](const TechniqueArgs& a) { return makeMultiViewRasterisation(a, false); }},
+       mvrParams(), [](const TechniqueArgs& a) { return makeMultiViewRasterisation(a, false); }, TechniqueFamily::MultiView},
       {"mvr-layered", "mvr in one instanced draw, a geometry shader routing instances to map layers", mvrParams(),
-       [](const TechniqueArgs& a) { return makeMultiViewRasterisation(a, true); }},
+       [](const TechniqueArgs& a) { return makeMultiViewRasterisation(a, true); }, TechniqueFamily::MultiView},
       vwssEntry("vwss", "view-warped soft shadows: points from one enlarged central view, compute splat (buffered)",
                 VwssMode::Buffered),
       vwssEntry("vwss-unbuffered", "vwss splatting from the point-generation fragment shader (no point buffer)",
@@ -88,9 +93,9 @@ const std::vector<TechniqueInfo>& techniqueTable() {
       vwssEntry("vwss-graphics", "vwss's points drawn as GL_POINTS, a draw per map, depth-tested (graphics pipeline)",
                 VwssMode::Graphics),
       {"reproject", "fragment reprojection: the central z-buffered map reprojected into every map (atomics)",
-       reprojectParams(), [](const TechniqueArgs& a) { return makeFragmentReprojection(a, true); }},
+       reprojectParams(), [](const TechniqueArgs& a) { return makeFragmentReprojection(a, true); }, TechniqueFamily::MultiView},
       {"reproject-unsync", "fragment reprojection without synchronisation (last writer wins)", reprojectParams(),
-       [](const TechniqueArgs& a) { return makeFragmentReprojection(a, false); }},
+       [](const TechniqueArgs& a) { return makeFragmentReprojection(a, false); }, TechniqueFamily::MultiView},
       pcssEntry("pcss", "percentage-closer soft shadows, one map from the light centre, Vogel disk + noise (Sterna: 32 blocker, 16 PCF samples)",
                 pcssPreset(PcssMode::Regular, false, false)),
       pcssEntry("pcss-ultra", "pcss with the 'Ultra' preset the VWSS paper compares with (64 blocker, 96 PCF samples)",
@@ -114,13 +119,13 @@ const std::vector<TechniqueInfo>& techniqueTable() {
       msmEntry("msm-soft", "moment soft shadows: PCSS blocker search and filtering from four-moment summed-area tables (4MSM)",
                msmPreset(true)),
       presetEntry("evsm", "exponential variance shadow maps (two exponents, four moments) with vssm's PCSS summed-area penumbra",
-                  evsmParams(EvsmOptions{}), EvsmOptions{}, makeExponentialVarianceShadowMaps),
+                  evsmParams(EvsmOptions{}), EvsmOptions{}, makeExponentialVarianceShadowMaps, TechniqueFamily::SingleMap),
       {"raytrace", "Embree reference with the same light samples as every technique (per sample)", {},
-       [](const TechniqueArgs&) { return makeRaytraceSameSamples(); }},
+       [](const TechniqueArgs&) { return makeRaytraceSameSamples(); }, TechniqueFamily::ExactPerSample},
       {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility and the shaded image)", {},
-       [](const TechniqueArgs&) { return makeRaytraceConverged(1024); }},
+       [](const TechniqueArgs&) { return makeRaytraceConverged(1024); }, TechniqueFamily::ExactPerSample},
       {"raytrace-denoised", "1-4 shadow rays per pixel through Embree, temporal accumulation and a penumbra-sized cross-bilateral filter (NRD SIGMA style)",
-       denoisedParams(), makeRaytraceDenoised},
+       denoisedParams(), makeRaytraceDenoised, TechniqueFamily::Denoised},
   };
   return table;
 }

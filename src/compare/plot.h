@@ -1,0 +1,39 @@
+// The speed-against-error plot (issue 18): x = median total ms per frame, y = an error
+// (ErrorAxis: the visibility RMSE, the shaded image's RMSE or the mean FLIP), both logarithmic.
+// Colour by technique family (Okabe-Ito, colour-blind safe), marker shape and shade by variant
+// within the family, the legend grouped by family; one curve per technique (its sweep presets,
+// by time); the Pareto front dashed. Every point is labelled: a <text> with the technique's name
+// beside it, shown by default for the Pareto front and each family's best point where a greedy
+// placement finds room without overlapping another label or point (the rest appear on hover or
+// with the page's "all labels" toggle, the class "show-all" on the <svg>).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "compare/compare.h"
+
+namespace penumbra {
+
+// Indices of the points on the Pareto front of (time, error), both to be minimised: a point is
+// on it when every point at least as fast is less accurate (by more than 0.1%, so that results
+// equal up to float rounding count as ties and the faster one wins). Sorted by time.
+std::vector<std::size_t> paretoFront(const std::vector<std::pair<double, double>>& timeError);
+
+// The plotted runs on `axis`: every technique run with a finite time and error, plus the
+// same-sample reference when the converged reference gives it an error.
+std::vector<std::size_t> plottedRuns(const CompareResult& r, ErrorAxis axis = ErrorAxis::Visibility);
+
+// A standalone SVG document (also inlined in index.html).
+std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis = ErrorAxis::Visibility);
+
+// Shared with report.cpp: text escaped for HTML and SVG; a run's name with its preset.
+std::string escapeMarkup(const std::string& s);
+std::string runLabel(const CompareResult& r, const CompareRun& run);
+
+// The axis's error name, e.g. "visibility RMSE vs converged reference".
+std::string errorAxisName(const CompareResult& r, ErrorAxis axis);
+
+}  // namespace penumbra
