@@ -119,6 +119,8 @@ expect 2 "\-\-time: must be a finite number of seconds, got nan" -- "$P" render 
 expect 2 "\-\-time: must be a finite number of seconds, got inf" -- "$P" compare -W 32 -H 32 --time inf --techniques none -o "$T/cmpn"
 expect 2 "\-\-max-error: must be a finite RMSE >= 0, got -1" -- "$P" compare -W 32 -H 32 --techniques none --max-error -1 -o "$T/cmpn"
 expect 2 "\-\-max-error: must be a finite RMSE >= 0, got nan" -- "$P" compare -W 32 -H 32 --techniques none --max-error nan -o "$T/cmpn"
+expect 2 "\-\-ppd: must be in .* pixels per degree, got 0" -- "$P" compare -W 32 -H 32 --techniques none --ppd 0 -o "$T/cmpn"
+expect 2 "\-\-ppd: must be in .* pixels per degree, got inf" -- "$P" compare -W 32 -H 32 --techniques none --ppd inf -o "$T/cmpn"
 test ! -e "$T/n.png" || { echo "FAIL: an image was written for --time nan"; fail=1; }
 # One technique's failure (vssm refuses a map that is not a power of two when it renders) is its
 # row in every output; the others go on; the run ends with exit 1 naming it.
