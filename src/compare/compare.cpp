@@ -32,7 +32,7 @@ double CompareRun::errorOn(ErrorAxis axis) const {
   switch (axis) {
     case ErrorAxis::Visibility: return plotError();
     case ErrorAxis::Shaded: return converged ? converged->shaded.rmse : errors.shaded.rmse;
-    case ErrorAxis::Flip: return flip;
+    case ErrorAxis::Flip: return flip ? *flip : -1.0;
   }
   return -1.0;
 }
@@ -42,7 +42,7 @@ bool CompareResult::hasConverged() const {
 }
 
 bool CompareResult::hasFlip() const {
-  return std::any_of(runs.begin(), runs.end(), [](auto& r) { return r.flip >= 0.0; });
+  return std::any_of(runs.begin(), runs.end(), [](auto& r) { return r.flip.has_value(); });
 }
 
 bool CompareResult::hasTemporal() const {

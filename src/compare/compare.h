@@ -80,8 +80,8 @@ struct CompareRun {
   double flicker = -1.0, referenceMotion = -1.0, meanFrameRmse = -1.0;
   // Mean HDR-FLIP (core/flip.h) of the shaded image over surface pixels against the converged
   // reference (or, without one, the same-sample reference; the same-sample reference itself
-  // then has none): -1 where not measured.
-  double flip = -1.0;
+  // then has none); NaN where an image had a non-finite pixel.
+  std::optional<double> flip;
   // The technique failed (an Error or another exception while it was created or rendered):
   // `failure` says why; no timings, errors or images. The other runs go on; a failed reference
   // ends the comparison (compareTechniques throws).

@@ -162,7 +162,7 @@ nlohmann::json CompareResult::json() const {
       t["pipelineStatistics"] = {{"stages", counts}, {"total", countsJson(totalCounts(r))}};
     }
     if (r.converged) t["convergedErrors"] = errorsJson(*r.converged);
-    if (r.flip >= 0.0) t["flip"] = {{"mean", r.flip}, {"against", r.converged ? "converged" : "same-sample"}};
+    if (r.flip) t["flip"] = {{"mean", *r.flip}, {"against", r.converged ? "converged" : "same-sample"}};
     if (r.flicker >= 0.0)
       t["temporal"] = {{"flicker", r.flicker}, {"referenceMotion", r.referenceMotion}, {"meanVisibilityRmse", r.meanFrameRmse}};
     runsJson.push_back(t);

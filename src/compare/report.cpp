@@ -136,7 +136,7 @@ std::string reportTable(const CompareResult& r) {
     if (conv)
       t += run.converged ? fmt::format(" {:>10.4f} {:>10.4g}", run.converged->visibility.rmse, run.converged->shaded.rmse)
                          : fmt::format(" {:>10} {:>10}", "-", "-");
-    if (flip) t += run.flip >= 0.0 ? fmt::format(" {:>8.4f}", run.flip) : fmt::format(" {:>8}", "-");
+    if (flip) t += run.flip ? fmt::format(" {:>8.4f}", *run.flip) : fmt::format(" {:>8}", "-");
     if (temporal) t += run.flicker >= 0.0 ? fmt::format(" {:>9.4f}", run.flicker) : fmt::format(" {:>9}", "-");
     if (counted) {
       const PipelineCounts c = totalCounts(run);
@@ -190,7 +190,7 @@ std::string reportCsv(const CompareResult& r) {
     } else {
       f.insert(f.end(), 4, "");
     }
-    f.push_back(run.flip >= 0.0 ? num(run.flip) : "");
+    f.push_back(run.flip ? num(*run.flip) : "");
     for (double v : {run.flicker, run.referenceMotion, run.meanFrameRmse}) f.push_back(v >= 0.0 ? num(v) : "");
     std::vector<std::string> harness;
     for (auto& [k, v] : run.harnessStages) harness.push_back(k + "=" + fmt::format("{:.3f}", v.median));
@@ -315,7 +315,7 @@ std::string reportHtml(const CompareResult& r) {
     if (conv)
       h += run.converged ? fmt::format("<td>{:.4f}</td><td>{:.4g}</td>", run.converged->visibility.rmse, run.converged->shaded.rmse)
                          : "<td>-</td><td>-</td>";
-    if (flip) h += run.flip >= 0.0 ? fmt::format("<td>{:.4f}</td>", run.flip) : "<td>-</td>";
+    if (flip) h += run.flip ? fmt::format("<td>{:.4f}</td>", *run.flip) : "<td>-</td>";
     if (temporal)
       h += run.flicker >= 0.0
                ? fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td>", run.flicker, run.referenceMotion, run.meanFrameRmse)
@@ -358,7 +358,7 @@ std::string reportHtml(const CompareResult& r) {
                          "without them",
                          run.errors.unshadowedPixels, run.errors.visibilityExceptUnshadowed.rmse);
       if (run.converged) h += fmt::format(", vs converged {:.4f}", run.converged->visibility.rmse);
-      if (run.flip >= 0.0) h += fmt::format(", FLIP {:.4f}", run.flip);
+      if (run.flip) h += fmt::format(", FLIP {:.4f}", *run.flip);
       h += "</figcaption></figure>\n";
     }
     h += "</div></details>\n";
