@@ -65,7 +65,7 @@ int shading(const StudyRun& r, std::FILE* out) {
 
 const std::vector<Study>& studyTable() {
   static const std::vector<Study> table = {
-      {"speed-error", "speed against error on every shipped scene, the headline table and plot", speedError},
+      {"speed-error", "speed against error on the shipped scenes, the headline table and plot", speedError},
       {"dcs", "DCS paper: covered-sample modes, sample counts, shading modes, interleaving, semi-opaque", dcs},
       {"multiview", "VWSS paper tables 1-2, figures 8 and 13, map-resolution convergence", multiview},
       {"single-map", "Sterna table 1, VSSM against PCSS as the light grows, VSSM stages, single-map errors", singleMap},

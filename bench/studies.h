@@ -15,7 +15,7 @@
 
 namespace penumbra::bench {
 
-// Speed against error on every shipped scene (bench_speed_error.cpp): compare reports with a
+// Speed against error on the shipped scenes but the bunny crowd (bench_speed_error.cpp): compare reports with a
 // samples sweep against the converged reference, and the cross-scene headline table.
 struct SpeedErrorOptions {
   std::vector<std::string> scenes = {"default",
