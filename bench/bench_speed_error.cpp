@@ -92,11 +92,8 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
           ++failures;
         }
 
-      auto plotted = plottedRuns(r);
-      std::vector<std::pair<double, double>> pts;
-      for (auto i : plotted) pts.emplace_back(r.runs[i].total.median, r.runs[i].plotError());
-      std::vector<std::size_t> front;
-      for (auto k : paretoFront(pts)) front.push_back(plotted[k]);
+      const auto plotted = plottedRuns(r);
+      const std::vector<std::size_t> front = paretoRuns(r);
       std::string frontText;
       for (auto i : front)
         frontText += fmt::format("{}{} @ {} ({:.1f} ms, {:.4f})", frontText.empty() ? "" : ", ", r.runs[i].technique,

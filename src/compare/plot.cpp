@@ -155,6 +155,15 @@ std::vector<std::size_t> plottedRuns(const CompareResult& r, ErrorAxis axis) {
   return out;
 }
 
+std::vector<std::size_t> paretoRuns(const CompareResult& r, ErrorAxis axis) {
+  const auto runs = plottedRuns(r, axis);
+  std::vector<std::pair<double, double>> pts;
+  for (auto i : runs) pts.emplace_back(r.runs[i].total.median, std::max(r.runs[i].errorOn(axis), kExactErrorFloor));
+  std::vector<std::size_t> front;
+  for (auto k : paretoFront(pts)) front.push_back(runs[k]);
+  return front;
+}
+
 std::string errorAxisName(const CompareResult& r, ErrorAxis axis) {
   const std::string against = r.hasConverged() ? "converged reference" : "same-sample reference";
   switch (axis) {
@@ -187,9 +196,7 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
   const double legendHeight = line * double(names.size() + std::size_t(familiesShown)) + 30.0;
   const double H = std::max(480.0, top + legendHeight + bottom);
   const double pw = W - left - right, ph = H - top - bottom;
-  // Exact techniques (dcs against the same-sample reference: float rounding, ~1e-8) would
-  // stretch the axis over decades of nothing: errors below kExact sit on a floor labelled so.
-  constexpr double kExact = 1e-4;
+  constexpr double kExact = kExactErrorFloor;
   bool anyExact = false;
   for (auto i : runs) anyExact |= r.runs[i].errorOn(axis) < kExact;
   auto errorOf = [&](std::size_t i) { return std::max(r.runs[i].errorOn(axis), kExact); };
@@ -241,7 +248,8 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
   // Pareto front (dashed steps), then one curve per technique.
   std::vector<std::pair<double, double>> pts;
   for (auto i : runs) pts.emplace_back(r.runs[i].total.median, errorOf(i));
-  const auto front = paretoFront(pts);
+  std::vector<std::size_t> front;  // indices into `runs`
+  for (auto i : paretoRuns(r, axis)) front.push_back(std::size_t(std::find(runs.begin(), runs.end(), i) - runs.begin()));
   if (front.size() > 1) {
     std::string path;
     for (std::size_t k = 0; k < front.size(); ++k) {

@@ -26,6 +26,15 @@ std::vector<std::size_t> paretoFront(const std::vector<std::pair<double, double>
 // same-sample reference when the converged reference gives it an error.
 std::vector<std::size_t> plottedRuns(const CompareResult& r, ErrorAxis axis = ErrorAxis::Visibility);
 
+// Errors below this sit on one floor, on the plot and for the front: exact techniques (dcs
+// against the same-sample reference: float rounding, ~1e-8) would otherwise stretch the axis over
+// decades of nothing, and put the slower of two exact results on the front.
+inline constexpr double kExactErrorFloor = 1e-4;
+
+// The runs (indices into r.runs, by time) on the Pareto front of `axis` among plottedRuns, the
+// errors floored at kExactErrorFloor: the plot's, the table's and the summary's front.
+std::vector<std::size_t> paretoRuns(const CompareResult& r, ErrorAxis axis = ErrorAxis::Visibility);
+
 // A standalone SVG document (also inlined in index.html).
 std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis = ErrorAxis::Visibility);
 

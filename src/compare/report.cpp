@@ -68,22 +68,21 @@ std::string countsText(const CompareRun& run) {
 std::vector<std::string> whichTechniqueWhen(const CompareResult& r) {
   std::vector<std::string> out;
   const auto plotted = plottedRuns(r);
-  std::vector<std::pair<double, double>> pts;
-  for (auto i : plotted) pts.emplace_back(r.runs[i].total.median, r.runs[i].plotError());
   auto point = [&](std::size_t i) {
     return fmt::format("{} ({:.1f} ms, {:.4f})", runLabel(r, r.runs[i]), r.runs[i].total.median, r.runs[i].plotError());
   };
   if (!plotted.empty()) {
     std::vector<std::string> front;
-    for (auto k : paretoFront(pts)) front.push_back(point(plotted[k]));
+    for (auto i : paretoRuns(r)) front.push_back(point(i));
     out.push_back("Fastest at each error level (the Pareto front, " + errorAxisName(r, ErrorAxis::Visibility) +
                   ", from fast and coarse to slow and accurate): " + join(front, "; ") + ".");
     for (TechniqueFamily f : kTechniqueFamilies) {
       std::size_t best = plotted.size(), fastest = plotted.size();
       for (std::size_t k = 0; k < plotted.size(); ++k) {
-        if (r.runs[plotted[k]].family != f) continue;
-        if (best == plotted.size() || pts[k].second < pts[best].second) best = k;
-        if (fastest == plotted.size() || pts[k].first < pts[fastest].first) fastest = k;
+        const CompareRun& run = r.runs[plotted[k]];
+        if (run.family != f) continue;
+        if (best == plotted.size() || run.plotError() < r.runs[plotted[best]].plotError()) best = k;
+        if (fastest == plotted.size() || run.total.median < r.runs[plotted[fastest]].total.median) fastest = k;
       }
       if (best == plotted.size()) continue;
       std::string line = std::string(toString(f)) + ": most accurate " + point(plotted[best]);
@@ -262,11 +261,7 @@ std::string reportHtml(const CompareResult& r) {
   h += "</ul>\n";
 
   // The table.
-  const auto plotted = plottedRuns(r);
-  std::vector<std::pair<double, double>> pts;
-  for (auto i : plotted) pts.emplace_back(r.runs[i].total.median, r.runs[i].plotError());
-  std::vector<std::size_t> frontRuns;
-  for (auto k : paretoFront(pts)) frontRuns.push_back(plotted[k]);
+  const std::vector<std::size_t> frontRuns = paretoRuns(r);
   h += "<h2>Table</h2>\n<table>\n<tr><th class=\"l\">technique</th><th class=\"l\">preset</th><th class=\"l\">parameters</th>"
        "<th>samples</th><th>total ms<br>median</th><th>min&ndash;max</th><th class=\"l\">stages ms (median)</th><th>prepare ms</th>"
        "<th>memory MiB</th><th>vis RMSE</th><th>vis mean</th><th>vis max</th><th>misclassified px</th>"

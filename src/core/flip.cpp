@@ -295,7 +295,6 @@ Image HdrFlipReference::against(const Image& test) const {
 }
 
 Image hdrFlip(const Image& test, const Image& reference, double ppd, FlipExposures* used) {
-  checkPair(test, reference, "HDR-FLIP");
   HdrFlipReference r(reference, ppd);
   if (used) *used = r.exposures();
   return r.against(test);
