@@ -36,19 +36,27 @@ layout(std430, binding = PENUMBRA_SSBO_DCS_INCIDENCES) readonly buffer DcsIncide
   DcsIncidence dcsIncidences[];
 };
 
+// The polytope around the light (dcs.cpp lightCorners(): a planar light's polygon in cyclic order).
+uniform vec3 lightCorners[8];
+uniform int lightCornerCount;  // 1 (point), 4 (a planar light's polygon) or 8 (a sphere's cube)
+
 #ifdef DCS_PROFILE
 // Where the wedge pass spends its fragments (dcs.cpp reads them into the statistics). An image,
 // not a storage block: written by the geometry and the fragment stage (shared.h, bindings).
 layout(binding = PENUMBRA_IMAGE_DCS_PROFILE, r32ui) uniform coherent uimage2D dcsProfile;
 const int profRectangleEdges = 0;  // edges drawn as their screen rectangle (dcs_wedge.geom fallback)
 const int profWedgeEdges = 1;      // edges drawn as their wedge polyhedron
-const int profFragments = 2;       // wedge fragments that passed the depth test on a surface
+const int profFragments = 2;       // wedge fragments that passed the depth test on a surface (compute
+                                   // path: pixels whose point is inside the solid)
 const int profInPlane = 3;         // ... whose plane(p, e) crosses the light
 const int profWeighted = 4;        // ... with m_e(p) != 0
 const int profUpdating = 5;        // ... that change at least one counter
+const int profCandidates = 6;      // compute path: (pixel, edge) pairs its tiles kept (dcs_wedge.comp)
 #define PROFILE_COUNT(x) imageAtomicAdd(dcsProfile, ivec2(x, 0), 1u)
+#define PROFILE_ADD(x, n) imageAtomicAdd(dcsProfile, ivec2(x, 0), n)
 #else
 #define PROFILE_COUNT(x)
+#define PROFILE_ADD(x, n)
 #endif
 
 int signOf(float x) { return x > 0.0 ? 1 : (x < 0.0 ? -1 : 0); }

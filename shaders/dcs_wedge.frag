@@ -14,18 +14,18 @@
 #include "common_light.glsl"
 #include "common_dcs.glsl"
 #include "common_dcs_lut.glsl"
+#ifdef BOUND
+const int MASK_WORDS = (PENUMBRA_MAX_SAMPLES + 31) / 32;
+#else
+const int MASK_WORDS = (DCS_TARGETS * 4 * DIGITS + 31) / 32;
+#endif
+#include "common_dcs_update.glsl"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 uniform vec3 eyePosition;
-uniform float lightRadius;  // bounding radius of the light around its centre
-uniform vec3 lightCorners[8];  // dcs.cpp lightCorners(): a planar light's 4 in cyclic order
-uniform int lightCornerCount;
 uniform uint passFirst;     // first sample of this pass
 uniform uint passCount;     // samples in this pass
-#ifndef BOUND
-const int MASK_WORDS = (DCS_TARGETS * 4 * DIGITS + 31) / 32;
-#endif
 
 // With the profile's atomic counters the depth test would run after the shader (its side
 // effects forbid the driver's early test) and every rasterised fragment would be counted:
@@ -69,87 +69,21 @@ void main() {
   // The point is moved off its surface towards the camera, where the reference's rays start
   // (shared.h): its own triangle then lies clearly on one side of every plane(p, e).
   vec3 p = penumbraShadowOrigin(gp.xyz, texelFetch(gNormal, px, 0).xyz, eyePosition);
-  DcsEdge e = dcsEdges[gEdge];
-  vec3 a = e.v0.xyz, b = e.v1.xyz;
-  // n_e and the light centre's side of plane(p, e), bit for bit as the shadow-volume count
-  // decides the point's side of the volume side through e (common_volume.glsl).
-  vec3 ne;
-  float dc = edgePlaneDistance(a, b, lightPosition, p, ne);
-  float len = length(ne);
-  if (len == 0.0) discard;
-  if (abs(dc) > lightRadius * len) discard;  // the whole light on one side of plane(p, e)
-  PROFILE_COUNT(profInPlane);
-  float cSide = dc >= 0.0 ? 1.0 : -1.0;
-  int m = dcsEdgeWeight(e, p);
-  // sign(n_e . (s - p)) = -cSide for every covered sample; m_e(p) crossings of the mesh's
-  // surface, each worth the mesh's units (1 unless semi-opaque occluders are coded, opacity.h).
-  int delta = -int(cSide) * m * e.meta.w;
+  uint mask[MASK_WORDS];
 #ifdef BOUND
-  if (delta <= 0) discard;
-#else
-  if (delta == 0) discard;
-#endif
-  if (lightCornerCount == 4) {
-    vec3 corners[4] = vec3[4](lightCorners[0], lightCorners[1], lightCorners[2], lightCorners[3]);
-    if (!dcsEdgeMeetsLightPyramid(p, a, b, lightPosition, corners)) discard;
-  }
-  PROFILE_COUNT(profWeighted);
-  // The covered samples: the paper's 2D modes where the edge projects onto a planar light
-  // (DCS_COVERAGE naive / lut, common_dcs.glsl), else the exact 3D test.
-  bool exact = true;
-#if DCS_COVERAGE != PENUMBRA_DCS_COVERAGE_EXACT
-  vec2 q0, q1;
-  int projected = dcsProjectEdge(p, a, b, lightPosition, q0, q1);
-  if (projected == 0) discard;
-  uvec4 field = uvec4(0u);
-  if (projected > 0) {
-    exact = false;
-    field = dcsCoveredField(q0, q1, pixelSampleBase(px) / sampleCount, sampleCount);
-  }
-#endif
-#ifdef BOUND
+  int delta = dcsEdgeUpdate(px, p, gEdge, 0u, sampleCount, true, true, mask);
   bool hit = false;
-#if DCS_COVERAGE != PENUMBRA_DCS_COVERAGE_EXACT
-  hit = !exact && field != uvec4(0u);
-#endif
-  if (exact) {
-    DcsCoverage cov = dcsCoverageSetup(p, a, b, lightPosition, ne, dc);
-    uint first = pixelSampleBase(px);
-    for (uint k = 0u; k < sampleCount && !hit; ++k) hit = dcsCovered(cov, samplePositions[first + k].xyz - lightPosition);
-  }
-  if (!hit) discard;
+  for (int w = 0; w < MASK_WORDS; ++w) hit = hit || mask[w] != 0u;
+  if (delta == 0 || !hit) discard;
   outBound = vec4(float(delta), 0.0, 0.0, 0.0);
 #else
-  // The covered samples of the pass as a bit mask, then the packed values from it with
-  // compile-time indices only (dynamic indexing of the outputs is slow on CPU drivers).
-  uint base = pixelSampleBase(px) + passFirst;
-  uint mask[MASK_WORDS];
+  int delta = dcsEdgeUpdate(px, p, gEdge, passFirst, passCount, false, false, mask);
   int covered = 0;
-  if (exact) {
-    DcsCoverage cov = dcsCoverageSetup(p, a, b, lightPosition, ne, dc);
-    for (int w = 0; w < MASK_WORDS; ++w) {
-      uint bits = 0u;
-      for (uint k = 0u; k < 32u; ++k) {
-        uint j = uint(w) * 32u + k;
-        if (j >= passCount) break;
-        if (dcsCovered(cov, samplePositions[base + j].xyz - lightPosition)) bits |= 1u << k;
-      }
-      mask[w] = bits;
-    }
-  }
-#if DCS_COVERAGE != PENUMBRA_DCS_COVERAGE_EXACT
-  else {
-    for (int w = 0; w < MASK_WORDS; ++w) {
-      uint j0 = uint(w) * 32u;
-      uint left = passCount - min(passCount, j0);  // samples of the pass from j0 on
-      uint bits = left > 0u ? dcsBitsFrom(field, passFirst + j0) : 0u;
-      mask[w] = left < 32u ? bits & ((1u << left) - 1u) : bits;
-    }
-  }
-#endif
   for (int w = 0; w < MASK_WORDS; ++w) covered += bitCount(mask[w]);
-  if (covered == 0) discard;
+  if (delta == 0 || covered == 0) discard;
   PROFILE_COUNT(profUpdating);
+  // The packed values from the mask with compile-time indices only (dynamic indexing of the
+  // outputs is slow on CPU drivers).
   vec4 acc[DCS_TARGETS];
   for (int t = 0; t < DCS_TARGETS; ++t) {
     for (int ch = 0; ch < 4; ++ch) {

@@ -15,6 +15,13 @@
 // checksum of all updates; a mismatch cannot be an overflow (the bound excludes it) and is
 // reported (see below).
 //
+// The compute path (`path=compute`, issue 19) replaces step (4)'s rasterised wedges: the solids
+// of the selected edges (shaders/dcs_solids.comp), then per 16x16 tile the edges whose solid
+// meets the bounding box of the tile's visible points, evaluated per pixel inside the solid with
+// the raster path's update function (shaders/dcs_wedge.comp). It adds each pixel's counts once,
+// so the packing holds the final counts only: it needs no bound pass, and its bound is the true
+// maximum count, measured exactly (a count past its digit is seen and rendered again).
+//
 // Semi-opaque occluders add opacity units instead of 1 (dcs/opacity.h); the covered samples
 // come from the exact 3D test or the paper's 2D naive loop or edge LUT (dcs/edge_lut.h).
 //
@@ -68,6 +75,11 @@ glm::vec4 trianglePlane(const std::vector<glm::vec3>& P, const glm::uvec3& tri) 
   glm::dvec3 n = glm::cross(b - a, c - a);
   return glm::vec4(glm::vec3(n), float(-glm::dot(n, a)));
 }
+// shaders/dcs_solid.glsl DcsSolidPlanes (the compute path's solids).
+struct GpuSolid {
+  glm::vec4 plane[5];
+  glm::ivec4 meta;
+};
 struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
   std::uint32_t boundMax = 0;  // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
@@ -76,6 +88,8 @@ struct GpuStatus {
 
 // Bias of every counter digit (shaders/dcs_init.frag).
 constexpr int kBias = 2;
+// The counts the compute path's first frame of a light plans for (base 64 with the bias).
+constexpr int kComputeFirstCount = 61;
 // The largest count the widest layout (one counter per float channel) holds: float adds
 // integers exactly below 2^24 (packing.h).
 constexpr std::int64_t kMaxExactCount = std::int64_t(dcs::kLayouts[dcs::kLayoutCount - 1].base) - 1;
@@ -202,7 +216,7 @@ class DepthComplexitySampling final : public Technique {
     for (auto& m : volumes_.meshes()) edgeRules_.push_back(m.rule);
     incidenceBuffer_ = gl::Buffer(incidences);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
-    profileImage_ = gl::Texture::make2D(GL_R32UI, 6, 1);
+    profileImage_ = gl::Texture::make2D(GL_R32UI, 7, 1);
     bound_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
     boundFbo_ = gl::Framebuffer({&bound_}, &gpu.depth());
     checksum_ = gl::Texture::make2D(GL_RG32F, gpu.width(), gpu.height());
@@ -277,7 +291,8 @@ class DepthComplexitySampling final : public Technique {
       const Profile& p = stats_.profile;
       for (auto [name, value] : {std::pair{"profileRectangleEdges", p.rectangleEdges}, {"profileWedgeEdges", p.wedgeEdges},
                                  {"profileFragments", p.fragments}, {"profileInPlane", p.inPlane},
-                                 {"profileWeighted", p.weighted}, {"profileUpdating", p.updating}})
+                                 {"profileWeighted", p.weighted}, {"profileUpdating", p.updating},
+                                 {"profileCandidates", p.candidates}})
         out.emplace_back(name, double(value));
     }
     return out;
@@ -286,6 +301,7 @@ class DepthComplexitySampling final : public Technique {
  private:
   struct Programs {
     const gl::Program &init, &wedge, &resolve, &resolvePerSample;
+    const gl::Program* tiles;  // the compute path's (shaders/dcs_wedge.comp), else null
   };
 
   using GpuLut = dcs::GpuEdgeLut;
@@ -395,8 +411,70 @@ class DepthComplexitySampling final : public Technique {
 
   // Every selected edge's wedge (shaders/dcs_wedge.*) with `prog`.
   void drawWedges(const gl::Program& prog, const LightPass& pass, const LightFrame& f) {
+    if (f.light.shape == LightShape::Point) return;  // every sample is the centre: D(s) = D(c)
+    setWedgeUniforms(prog, pass, f);
+    f.idVao.bind();
+    glDrawArrays(GL_POINTS, 0, GLsizei(f.edgeIds.size()));
+  }
+
+  // The compute path's wedges (shaders/dcs_wedge.comp) for one pass's samples, after the init
+  // pass: their updates added into the counters and the checksum. The solids go in dispatches of
+  // kComputeChunks chunks (llvmpipe cuts a long loop short), the running counts in a buffer
+  // between them, and every tile's completed chunks are checked.
+  void computeWedges(const gl::Program& prog, const LightPass& pass, const LightFrame& f, const dcs::PackingPlan& plan) {
+    if (f.light.shape == LightShape::Point || f.edgeIds.empty()) return;
+    constexpr unsigned kTile = 16, kChunk = kTile * kTile, kComputeChunks = 4;
+    const unsigned tilesX = (unsigned(pass.gpu.width()) + kTile - 1) / kTile, tilesY = (unsigned(pass.gpu.height()) + kTile - 1) / kTile;
+    const std::size_t bytes = sizeof(std::uint32_t) * (1 + std::size_t(pass.gpu.width()) * std::size_t(pass.gpu.height()) *
+                                                               std::size_t(plan.samplesPerPass));
+    if (computeCounts_.size() != bytes) computeCounts_ = gl::Buffer(bytes, nullptr);
+    std::vector<std::uint32_t> zero(bytes / sizeof(std::uint32_t), 0u);
+    computeCounts_.write(zero.data(), bytes);
+    setWedgeUniforms(prog, pass, f);
+    solids_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_SOLIDS);
+    computeCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_COUNTS);
+    counters_.bindImage(PENUMBRA_IMAGE_DCS_COUNTERS, GL_READ_WRITE);
+    checksum_.bindImage(PENUMBRA_IMAGE_DCS_CHECKSUM, GL_READ_WRITE);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    const unsigned total = unsigned(f.edgeIds.size());
+    std::uint64_t expected = 0;
+    for (unsigned first = 0; first < total; first += kComputeChunks * kChunk) {
+      const unsigned end = std::min(total, first + kComputeChunks * kChunk);
+      prog.set("solidFirst", first);
+      prog.set("solidEnd", end);
+      prog.set("finalDispatch", end == total ? 1 : 0);
+      glDispatchCompute(tilesX, tilesY, 1);
+      glMemoryBarrier(GL_ALL_BARRIER_BITS);
+      expected += std::uint64_t(tilesX) * tilesY * ((end - first + kChunk - 1) / kChunk);
+    }
+    std::uint32_t done = 0;
+    computeCounts_.read(&done, sizeof done);
+    if (done != expected)
+      throw Error("dcs", fmt::format("light '{}': the compute path's tiles completed {} of their {} chunks of wedges (the "
+                                     "driver cut a shader loop short): the counts would be wrong",
+                                     f.light.name, done, expected));
+  }
+
+  // The compute path's solids of the selected edges (shaders/dcs_solids.comp), once a light.
+  void buildSolids(LightPass& pass, const LightFrame& f) {
+    if (f.light.shape == LightShape::Point || f.edgeIds.empty()) return;
+    pass.timer.time("dcs solids", [&] {
+      const std::size_t bytes = f.edgeIds.size() * sizeof(GpuSolid);
+      if (solids_.size() < bytes) solids_ = gl::Buffer(bytes, nullptr);
+      const gl::Program& prog = programs_.get({"dcs_solids.comp"}, options_.profile ? std::vector<std::string>{"DCS_PROFILE"}
+                                                                                     : std::vector<std::string>{});
+      setWedgeUniforms(prog, pass, f);
+      prog.set("solidCount", unsigned(f.edgeIds.size()));
+      f.idBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGE_IDS);
+      solids_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_SOLIDS);
+      glDispatchCompute(GLuint((f.edgeIds.size() + 63) / 64), 1, 1);
+      glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    });
+  }
+
+  // What the wedge stages read: the light, its polytope, the camera and the margin.
+  void setWedgeUniforms(const gl::Program& prog, const LightPass& pass, const LightFrame& f) {
     const Light& light = f.light;
-    if (light.shape == LightShape::Point) return;  // every sample is the centre: D(s) = D(c)
     prog.use();
     setLightUniforms(prog, light, pass.samples);
     prog.set("clipFromWorld", pass.gpu.clipFromWorld());
@@ -416,8 +494,6 @@ class DepthComplexitySampling final : public Technique {
       f.lut->line.bind(PENUMBRA_UNIT_DCS_LINE_LUT);
       f.lut->packed.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PACKED);
     }
-    f.idVao.bind();
-    glDrawArrays(GL_POINTS, 0, GLsizei(f.edgeIds.size()));
   }
 
   // Pass 3, the counter plan's bound. Adaptive sampling (5.3): the counter base must hold the
@@ -432,6 +508,11 @@ class DepthComplexitySampling final : public Technique {
     auto cached = boundCache_.find(pass.lightIndex);
     if (cached != boundCache_.end()) return cached->second;
     if (options_.firstFrameBound >= 0) return options_.firstFrameBound + kBias + f.maxPathGain;
+    // The compute path adds each count once: the packing must hold the final counts only, and
+    // its pass measures their maximum exactly (shaders/dcs_wedge.comp). Its first frame plans
+    // for counts up to kComputeFirstCount and renders again, with the base the measured
+    // maximum needs, when they go higher.
+    if (options_.computePath) return kComputeFirstCount + kBias + f.maxPathGain;
     return pass.timer.time("dcs bound", [&] {
       boundFbo_.bind();
       const float zero[4] = {0, 0, 0, 0};
@@ -498,6 +579,7 @@ class DepthComplexitySampling final : public Technique {
     profileImage_.bindImage(PENUMBRA_IMAGE_DCS_PROFILE, GL_READ_WRITE);
     const Programs progs = programsFor(plan, f.coverage);
     ensureCounters(plan, pass.gpu);
+    if (progs.tiles) buildSolids(pass, f);
     const gl::Program& resolve = pass.perSample ? progs.resolvePerSample : progs.resolve;
     double w = 1.0, sum = 0.0;  // sum of B^d over a channel's digits
     for (int d = 0; d < plan.counters.digits; ++d, w *= plan.counters.base) sum += w;
@@ -523,6 +605,12 @@ class DepthComplexitySampling final : public Technique {
         }
         emptyVao_.bind();
         glDrawArrays(GL_TRIANGLES, 0, 3);
+        if (progs.tiles) {
+          progs.tiles->set("passFirst", first);
+          progs.tiles->set("passCount", count);
+          computeWedges(*progs.tiles, pass, f, plan);
+          return;
+        }
         beginWedgeState();
         progs.wedge.set("passFirst", first);
         progs.wedge.set("passCount", count);
@@ -554,7 +642,7 @@ class DepthComplexitySampling final : public Technique {
     statusBuffer_.read(&status, sizeof status);
     if (options_.profile) {
       const std::vector<std::uint32_t> c = profileImage_.readUint();  // shaders/common_dcs.glsl prof*
-      stats_.profile = {c[0], c[1], c[2], c[3], c[4], c[5]};
+      stats_.profile = {c[0], c[1], c[2], c[3], c[4], c[5], c[6]};
     }
     return status;
   }
@@ -634,6 +722,7 @@ class DepthComplexitySampling final : public Technique {
   // shaders/common_dcs.glsl, dcsProfile (texel k: prof* = k).
   struct Profile {
     std::uint32_t rectangleEdges = 0, wedgeEdges = 0, fragments = 0, inPlane = 0, weighted = 0, updating = 0;
+    std::uint32_t candidates = 0;  // compute path: (pixel, edge) pairs its tiles kept
   };
   struct Stats {
     Profile profile;
@@ -692,7 +781,8 @@ class DepthComplexitySampling final : public Technique {
     return {programs_.get({"fullscreen.vert", "dcs_init.frag"}, defs),
             programs_.get({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, defs),
             programs_.get({"fullscreen.vert", "dcs_resolve.frag"}, defs),
-            programs_.get({"fullscreen.vert", "dcs_resolve.frag"}, perSample)};
+            programs_.get({"fullscreen.vert", "dcs_resolve.frag"}, perSample),
+            options_.computePath ? &programs_.get({"dcs_wedge.comp"}, defs) : nullptr};
   }
 
   const gl::Program& boundProgramFor(int coverage) {
@@ -748,6 +838,8 @@ class DepthComplexitySampling final : public Technique {
   std::vector<GpuEdge> edges_;             // edgeBuffer_'s contents
   std::vector<geo::VolumeRule> edgeRules_;  // the rule per mesh edgeBuffer_ holds
   gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (shaders/dcs_init.frag)
+  gl::Buffer solids_;  // the compute path's wedge solids (shaders/dcs_solids.comp)
+  gl::Buffer computeCounts_;  // its running counts between dispatches (shaders/dcs_wedge.comp)
   gl::Texture bound_, checksum_, counters_;
   gl::Framebuffer boundFbo_, counterFbo_;
   gl::ProgramCache programs_;  // by shaders and defines (counter layout, coverage, opacity coding)

@@ -19,6 +19,9 @@ struct DcsOptions {
   int maxTargets = 4;  // packed RGBA32F counter targets per pass (paper: 4; up to 7 here)
   std::uint32_t minBase = 8;  // narrowest counter base allowed (8, 16, 64, 256, 4096, 2^24)
   bool gpuSilhouettes = false;  // accurate silhouettes by a compute shader instead of the CPU
+  // The counter pass's wedges: rasterised (their solids' front faces, shaders/dcs_wedge.geom) or
+  // binned into screen tiles by a compute shader and evaluated per pixel (shaders/dcs_wedge.comp).
+  bool computePath = false;
   // Count where the wedge pass's fragments go (statistics "profile*"); atomics slow it down.
   // A debugging aid, also switched on by the environment variable PENUMBRA_DCS_PROFILE=1.
   bool profile = false;

@@ -15,6 +15,7 @@ namespace penumbra {
 namespace {
 const std::vector<std::string> kSilhouetteChoices = {"accurate", "standard"};
 const std::vector<std::string> kCoverageChoices = {"exact", "naive", "lut"};  // PENUMBRA_DCS_COVERAGE_*
+const std::vector<std::string> kPathChoices = {"raster", "compute"};
 const std::vector<std::string> kOpacityChoices = {"sum", "product"};          // dcs::OpacityMode
 std::vector<std::string> baseChoices() {
   std::vector<std::string> out;
@@ -31,6 +32,11 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
                         "standard (from the light centre, DCS paper Fig. 4; misses edges)"),
       ParamSpec::boolean("gpu-silhouettes", o.gpuSilhouettes,
                          "accurate silhouettes by a compute shader (shaders/dcs_silhouette.comp) instead of the CPU"),
+      ParamSpec::choice("path", kPathChoices[o.computePath ? 1 : 0], kPathChoices,
+                        "the wedge pass: raster (each edge's wedge solid rasterised, its front faces depth-tested) or "
+                        "compute (wedges binned into 16x16 tiles by the bounds of their visible points and evaluated "
+                        "per pixel inside the solid; counts added once, so the packing holds the final counts only and "
+                        "no bound pass runs)"),
       ParamSpec::choice("coverage", kCoverageChoices[std::size_t(o.coverage)], kCoverageChoices,
                         "covered-sample test: exact (3D, per sample), naive (the paper's loop over 8-bit packed "
                         "positions, 7.1) or lut (the paper's edge LUT, 7.3); the 2D modes serve rect and disk lights, "
@@ -68,6 +74,7 @@ DcsOptions readDcsOptions(const TechniqueArgs& args) {
   DcsOptions o;
   o.silhouettes = args.text("silhouettes") == "accurate" ? SilhouetteMode::Accurate : SilhouetteMode::Standard;
   o.gpuSilhouettes = args.boolean("gpu-silhouettes");
+  o.computePath = args.text("path") == "compute";
   o.coverage = index(kCoverageChoices, args.text("coverage"));
   o.opacity = args.text("opacity") == "sum" ? dcs::OpacityMode::Sum : dcs::OpacityMode::Product;
   o.opacityTolerance = args.number("opacity-tolerance");
