@@ -278,7 +278,6 @@ bool dcsSolidCase(int k, DcsEdge e, inout DcsSolid s) {
 DcsSolid dcsSolid(DcsEdge e) {
   DcsSolid s = dcsNoSolid();
   if (!dcsSolidBegin(e)) return s;
-  // Unrolled, as in dcs_wedge.geom (where a loop fell back to the rectangle more often).
   if (dcsSolidCase(1, e, s) || dcsSolidCase(2, e, s) || dcsSolidCase(3, e, s)) return s;
   s.kind = DCS_SOLID_RECT;
   s.rect = screenRectangle(e.v0.xyz, e.v1.xyz);
