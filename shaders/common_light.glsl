@@ -9,13 +9,17 @@ uniform int lightTextured;      // 1: an emission texture modulates the light
 uniform vec3 lightEmission;     // colour * intensity
 uniform float lightScale;       // area (rect, disk), pi R^2 (sphere), 1 (point): eq. 3 power
 uniform float sampleWeight;     // LightSampleSet::sampleWeight (eq. 6)
-uniform uint sampleCount;       // N
 uniform uint samplePattern;     // PENUMBRA_PATTERN_*
 uniform uint sampleSets;        // number of sets
 uniform uint sampleK;           // interleave K
 uniform uint sampleSeed;
 
+// N is read from the sample buffer, not a uniform: the loops over a pixel's samples are bounded
+// by it, and Mesa 22.3's lavapipe (under zink) compiles a new shader, never freed, at every draw
+// of a program whose loop bounds are uniforms (common_dcs_pass.glsl).
 layout(std430, binding = PENUMBRA_SSBO_LIGHT_SAMPLES) readonly buffer LightSamples {
+  uint sampleCount;        // N (renderer.cpp sampleBufferOf)
+  uint sampleHeaderPad[3];
   vec4 samplePositions[];  // [set * N + k], xyz world
 };
 layout(std430, binding = PENUMBRA_SSBO_SAMPLE_RADIANCE) readonly buffer SampleLuminance {

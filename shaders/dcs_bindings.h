@@ -15,6 +15,7 @@
 #define PENUMBRA_SSBO_DCS_EDGES 2       // dcs: edges (endpoints, incidence range, rule)
 #define PENUMBRA_SSBO_DCS_INCIDENCES 3  // dcs: incident triangles (third vertex, plane normal)
 #define PENUMBRA_SSBO_DCS_STATUS 4      // dcs: resolve status (overflowing pixels)
+#define PENUMBRA_SSBO_DCS_PASS 5        // dcs: the pass's sample range (common_dcs_pass.glsl)
 #define PENUMBRA_SSBO_DCS_PACKED 6      // dcs: packed sample positions (edge_lut.h), naive mode
 #define PENUMBRA_SSBO_DCS_PATH_FIRST 11  // dcs: per light sample, the first of its path crossings (then the end)
 #define PENUMBRA_SSBO_DCS_PATH 12        // dcs: path crossings (triangle plane, sides, rule, units)

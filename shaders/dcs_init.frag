@@ -12,13 +12,12 @@
 // them per sample digit.
 #include "dcs_bindings.h"
 #include "common_light.glsl"
+#include "common_dcs_pass.glsl"
 // Every digit carries a bias (DCS_BIAS), so that a count that ends slightly negative (the
 // shadow-volume count and the wedges disagree about a point on a volume's side: the edge band)
 // is still decoded instead of borrowing from its neighbour.
 layout(binding = PENUMBRA_UNIT_COUNTER) uniform sampler2D integrationConstant;
 uniform float digitSum;  // sum of B^d over the digits of a channel
-uniform uint passFirst;
-uniform uint passCount;
 uniform int pathCrossings;  // 1: the light has path crossings (PENUMBRA_SSBO_DCS_PATH)
 uniform vec3 eyePosition;
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;

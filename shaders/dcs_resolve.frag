@@ -6,6 +6,7 @@
 // (the plain sum of all updates) detects it, and the pixel is reported.
 #include "dcs_bindings.h"
 #include "common_light.glsl"
+#include "common_dcs_pass.glsl"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
@@ -23,8 +24,6 @@ layout(std430, binding = PENUMBRA_SSBO_DCS_STATUS) buffer DcsStatus {
   uint firstNegative;    // the first pixel (y * width + x, rows from the top) with a negative count
 };
 
-uniform uint passFirst;
-uniform uint passCount;
 uniform float counterBase;
 uniform float opaqueUnits;  // dcs/opacity.h: units of an opaque surface (Q or U)
 uniform float unitLog;      // product coding: -ln T of one unit

@@ -14,6 +14,7 @@
 // 0, which the resolve reports as a negative count.
 #include "common_light.glsl"
 #include "common_dcs.glsl"
+#include "common_dcs_pass.glsl"
 #include "common_dcs_lut.glsl"
 const int PASS_SAMPLES = DCS_TARGETS * 4 * DIGITS;
 const int MASK_WORDS = (PASS_SAMPLES + 31) / 32;
@@ -28,9 +29,6 @@ layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 layout(binding = PENUMBRA_IMAGE_DCS_COUNTERS, rgba32f) uniform image2DArray counterImage;
 layout(binding = PENUMBRA_IMAGE_DCS_CHECKSUM, rg32f) uniform image2D checksumImage;
 layout(std430, binding = PENUMBRA_SSBO_DCS_SOLIDS) readonly buffer DcsSolids { DcsSolidPlanes dcsSolids[]; };
-uniform uint solidFirst;  // this dispatch's solids: [solidFirst, solidEnd)
-uniform uint solidEnd;
-uniform int finalDispatch;  // 1: the last dispatch of the pass adds the counts to the counters
 uniform vec3 eyePosition;
 // The running counts of the pass between dispatches, PASS_SAMPLES a pixel, and the chunks the
 // tiles completed (dcs.cpp checks them: llvmpipe cuts long loops short, see below).
@@ -38,8 +36,6 @@ layout(std430, binding = PENUMBRA_SSBO_DCS_COUNTS) buffer DcsCounts {
   uint chunksDone;
   int dcsCounts[];
 };
-uniform uint passFirst;
-uniform uint passCount;
 
 // Floats as unsigned integers in the same order (for the shared atomics of the box).
 uint orderedBits(float f) {

@@ -13,6 +13,7 @@
 // target, before any counter exists (the first frame of a light).
 #include "common_light.glsl"
 #include "common_dcs.glsl"
+#include "common_dcs_pass.glsl"
 #include "common_dcs_lut.glsl"
 #ifdef BOUND
 const int MASK_WORDS = (PENUMBRA_MAX_SAMPLES + 31) / 32;
@@ -24,8 +25,6 @@ const int MASK_WORDS = (DCS_TARGETS * 4 * DIGITS + 31) / 32;
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 uniform vec3 eyePosition;
-uniform uint passFirst;     // first sample of this pass
-uniform uint passCount;     // samples in this pass
 
 // With the profile's atomic counters the depth test would run after the shader (its side
 // effects forbid the driver's early test) and every rasterised fragment would be counted:
@@ -71,7 +70,7 @@ void main() {
   vec3 p = penumbraShadowOrigin(gp.xyz, texelFetch(gNormal, px, 0).xyz, eyePosition);
   uint mask[MASK_WORDS];
 #ifdef BOUND
-  int delta = dcsEdgeUpdate(px, p, gEdge, 0u, sampleCount, true, true, mask);
+  int delta = dcsEdgeUpdate(px, p, gEdge, passFirst, passCount, true, true, mask);  // all the samples
   bool hit = false;
   for (int w = 0; w < MASK_WORDS; ++w) hit = hit || mask[w] != 0u;
   if (delta == 0 || !hit) discard;

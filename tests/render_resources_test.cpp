@@ -135,11 +135,15 @@ TEST(RenderResources, FreshRenderersLeakNothing) {
 
 // One Renderer and technique rendering frame after frame (benchmarks, animation): the live
 // counts stay where the first frame left them, the memory stays put, the image is identical.
+// The bound holds on zink too: there dcs grew by 1.2 MiB a frame (19.9 MiB over the 16, CI
+// 2026-12-03) while its GL objects stayed put, because Mesa 22.3's lavapipe compiled a new
+// shader, never freed, at each draw of a program whose loops are bounded by uniforms. Those
+// bounds are read from buffers now (shaders/common_dcs_pass.glsl, common_light.glsl): measured
+// on zink over 32 frames, dcs +116 KiB (was +39.8 MiB), hard-sv +456 KiB (was +4.0 MiB).
 TEST(RenderResources, ReusedRendererIsStable) {
   context();
   Scene scene = loadScene(scenePath("scenes/hard/15-two-plates.json"));
   const std::vector<long> baseline = liveCounts();
-  long rssGrowth = 0;
   for (auto& c : kCases) {
     {
       Renderer renderer(context(), scene, settings(kSize, kSamples));
@@ -153,13 +157,12 @@ TEST(RenderResources, ReusedRendererIsStable) {
         EXPECT_TRUE(sameBits(f.color, first.color)) << c.technique << " frame " << i + 2;
         EXPECT_EQ(liveCounts(), after) << c.technique << " frame " << i + 2 << ": " << describe(liveCounts());
       }
-      rssGrowth = std::max(rssGrowth, rssKiB() - rss0);
+      const long rssGrowth = rssKiB() - rss0;
+      std::printf("[ resources ] reused renderer, %s: VmRSS growth over 16 frames %ld KiB (bound %ld%s)\n", c.technique,
+                  rssGrowth, kRssBoundKiB, kCheckRss ? "" : ", not checked under ASan");
+      if (kCheckRss) EXPECT_LT(rssGrowth, kRssBoundKiB) << c.technique;
     }
     EXPECT_EQ(liveCounts(), baseline) << c.technique << " destroyed: " << describe(liveCounts());
-  }
-  std::printf("[ resources ] reused renderers: largest VmRSS growth over 16 frames %ld KiB\n", rssGrowth);
-  if (kCheckRss) {
-    EXPECT_LT(rssGrowth, kRssBoundKiB);
   }
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }

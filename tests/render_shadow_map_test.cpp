@@ -355,8 +355,8 @@ TEST(MultiView, SplatIgnoresPointsBehindTheCameraAndNonFinitePoints) {
   f.zNear = 0.01f;
   f.size = 8;
   f.layers = 2;
-  std::vector<glm::vec4> samples = {{0, 4, 0, 1}, {0.5f, 4, 0, 1}};
-  gl::Buffer sampleBuffer(samples);
+  std::vector<glm::vec3> samples = {{0, 4, 0}, {0.5f, 4, 0}};
+  gl::Buffer sampleBuffer = lightSampleBuffer(samples, int(samples.size()));
   sampleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   std::vector<glm::vec3> pts = {

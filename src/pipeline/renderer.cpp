@@ -41,6 +41,16 @@ glm::mat4 clipFromViewReversedInfinite(const Camera& camera, float aspect) {
   return m;
 }
 
+gl::Buffer lightSampleBuffer(const std::vector<glm::vec3>& positions, int samplesPerSet) {
+  const glm::uvec4 header(std::uint32_t(samplesPerSet), 0u, 0u, 0u);
+  std::vector<glm::vec4> pos(positions.size());
+  for (std::size_t i = 0; i < pos.size(); ++i) pos[i] = glm::vec4(positions[i], 1.0f);
+  gl::Buffer b(sizeof header + pos.size() * sizeof(glm::vec4), nullptr);
+  b.write(&header, sizeof header);
+  if (!pos.empty()) b.write(pos.data(), pos.size() * sizeof(glm::vec4), sizeof header);
+  return b;
+}
+
 void setLightUniforms(const gl::Program& prog, const Light& light, const LightSampleSet& s) {
   static_assert(int(LightShape::Point) == PENUMBRA_LIGHT_POINT && int(LightShape::Sphere) == PENUMBRA_LIGHT_SPHERE);
   prog.set("lightShape", int(light.shape));
@@ -56,7 +66,6 @@ void setLightUniforms(const gl::Program& prog, const Light& light, const LightSa
   if (light.shape == LightShape::Sphere) scale = float(M_PI) * light.size.x * light.size.x;
   prog.set("lightScale", scale);
   prog.set("sampleWeight", s.sampleWeight);
-  prog.set("sampleCount", unsigned(s.count));
   prog.set("samplePattern", unsigned(s.pattern));
   prog.set("sampleSets", unsigned(s.setCount));
   prog.set("sampleK", unsigned(s.interleaveK));
@@ -417,10 +426,9 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
     if (!finite(light.position) || !std::all_of(samples.positions.begin(), samples.positions.end(), finite))
       throw Error(name, fmt::format("light '{}': its position or light samples are NaN or infinite", light.name));
-    std::vector<glm::vec4> pos(samples.positions.size()), lum(samples.luminance.size());
-    for (std::size_t i = 0; i < pos.size(); ++i) pos[i] = glm::vec4(samples.positions[i], 1.0f);
+    std::vector<glm::vec4> lum(samples.luminance.size());
     for (std::size_t i = 0; i < lum.size(); ++i) lum[i] = glm::vec4(samples.luminance[i], 1.0f);
-    gl::Buffer posBuf(pos), lumBuf(lum);
+    gl::Buffer posBuf = lightSampleBuffer(samples.positions, samples.count), lumBuf(lum);
     posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
     lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
 

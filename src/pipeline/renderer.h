@@ -192,6 +192,9 @@ namespace penumbra {
 // Sets the uniforms of shaders/common_light.glsl on `program` for `light` and its samples. The
 // sample buffers themselves are bound by the pipeline before each light's visibility stage.
 void setLightUniforms(const gl::Program& program, const Light& light, const LightSampleSet& samples);
+// The light-sample storage buffer of shaders/common_light.glsl (PENUMBRA_SSBO_LIGHT_SAMPLES):
+// N, the samples a set, in a 16-byte header, then the positions (set after set).
+gl::Buffer lightSampleBuffer(const std::vector<glm::vec3>& positions, int samplesPerSet);
 
 // Runs a full-screen fragment program (fullscreen.vert + a resolve shader) into
 // pass.visibility, with the G-buffer bound and the light uniforms set.

@@ -80,6 +80,11 @@ struct GpuSolid {
   glm::vec4 plane[5];
   glm::ivec4 meta;
 };
+// shaders/common_dcs_pass.glsl: a pass's sample range, the compute path's dispatch.
+struct GpuPass {
+  std::uint32_t first = 0, count = 0, solidFirst = 0, solidEnd = 0;
+  std::int32_t finalDispatch = 0;
+};
 struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
   std::uint32_t boundMax = 0;  // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
@@ -216,6 +221,7 @@ class DepthComplexitySampling final : public Technique {
     for (auto& m : volumes_.meshes()) edgeRules_.push_back(m.rule);
     incidenceBuffer_ = gl::Buffer(incidences);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
+    passBuffer_ = gl::Buffer(sizeof(GpuPass), nullptr);
     profileImage_ = gl::Texture::make2D(GL_R32UI, 7, 1);
     bound_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
     boundFbo_ = gl::Framebuffer({&bound_}, &gpu.depth());
@@ -421,7 +427,8 @@ class DepthComplexitySampling final : public Technique {
   // pass: their updates added into the counters and the checksum. The solids go in dispatches of
   // kComputeChunks chunks (llvmpipe cuts a long loop short), the running counts in a buffer
   // between them, and every tile's completed chunks are checked.
-  void computeWedges(const gl::Program& prog, const LightPass& pass, const LightFrame& f, const dcs::PackingPlan& plan) {
+  void computeWedges(const gl::Program& prog, const LightPass& pass, const LightFrame& f, const dcs::PackingPlan& plan,
+                     const GpuPass& range) {
     if (f.light.shape == LightShape::Point || f.edgeIds.empty()) return;
     constexpr unsigned kTile = 16, kChunk = kTile * kTile, kComputeChunks = 4;
     const unsigned tilesX = (unsigned(pass.gpu.width()) + kTile - 1) / kTile, tilesY = (unsigned(pass.gpu.height()) + kTile - 1) / kTile;
@@ -440,9 +447,7 @@ class DepthComplexitySampling final : public Technique {
     std::uint64_t expected = 0;
     for (unsigned first = 0; first < total; first += kComputeChunks * kChunk) {
       const unsigned end = std::min(total, first + kComputeChunks * kChunk);
-      prog.set("solidFirst", first);
-      prog.set("solidEnd", end);
-      prog.set("finalDispatch", end == total ? 1 : 0);
+      writePass({range.first, range.count, first, end, end == total ? 1 : 0});
       glDispatchCompute(tilesX, tilesY, 1);
       glMemoryBarrier(GL_ALL_BARRIER_BITS);
       expected += std::uint64_t(tilesX) * tilesY * ((end - first + kChunk - 1) / kChunk);
@@ -453,6 +458,13 @@ class DepthComplexitySampling final : public Technique {
       throw Error("dcs", fmt::format("light '{}': the compute path's tiles completed {} of their {} chunks of wedges (the "
                                      "driver cut a shader loop short): the counts would be wrong",
                                      f.light.name, done, expected));
+  }
+
+  // The pass's sample range (and the compute path's dispatch) for the next draws, in the buffer
+  // shaders/common_dcs_pass.glsl reads.
+  void writePass(const GpuPass& range) {
+    passBuffer_.write(&range, sizeof range);
+    passBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PASS);
   }
 
   // The compute path's solids of the selected edges (shaders/dcs_solids.comp), once a light.
@@ -518,6 +530,7 @@ class DepthComplexitySampling final : public Technique {
       const float zero[4] = {0, 0, 0, 0};
       glClearNamedFramebufferfv(boundFbo_.id(), GL_COLOR, 0, zero);
       pass.gpu.bindGBuffer();
+      writePass({0, std::uint32_t(pass.samples.count)});
       beginWedgeState();
       drawWedges(boundProgramFor(f.coverage), pass, f);
       endWedgeState();
@@ -586,6 +599,8 @@ class DepthComplexitySampling final : public Technique {
     for (int pi = 0; pi < plan.passes; ++pi) {
       unsigned first = unsigned(pi * plan.samplesPerPass);
       unsigned count = unsigned(std::min(plan.samplesPerPass, N - int(first)));
+      const GpuPass range{first, count};
+      writePass(range);
       pass.timer.time("dcs wedges", [&] {
         counterFbo_.bind();
         glDisable(GL_BLEND);
@@ -594,8 +609,6 @@ class DepthComplexitySampling final : public Technique {
         pass.gpu.bindGBuffer();
         progs.init.use();
         progs.init.set("digitSum", float(sum));
-        progs.init.set("passFirst", first);
-        progs.init.set("passCount", count);
         progs.init.set("pathCrossings", hasPathCrossings ? 1 : 0);
         if (hasPathCrossings) {
           setLightUniforms(progs.init, light, pass.samples);
@@ -606,14 +619,10 @@ class DepthComplexitySampling final : public Technique {
         emptyVao_.bind();
         glDrawArrays(GL_TRIANGLES, 0, 3);
         if (progs.tiles) {
-          progs.tiles->set("passFirst", first);
-          progs.tiles->set("passCount", count);
-          computeWedges(*progs.tiles, pass, f, plan);
+          computeWedges(*progs.tiles, pass, f, plan, range);
           return;
         }
         beginWedgeState();
-        progs.wedge.set("passFirst", first);
-        progs.wedge.set("passCount", count);
         drawWedges(progs.wedge, pass, f);  // outer and inner updates together (shaders/dcs_wedge.frag)
         endWedgeState();
       });
@@ -622,8 +631,6 @@ class DepthComplexitySampling final : public Technique {
         counters_.bind(PENUMBRA_UNIT_DCS_COUNTERS);
         checksum_.bind(PENUMBRA_UNIT_DCS_CHECKSUM);
         if (pass.perSample) pass.perSample->bindImage(PENUMBRA_IMAGE_SAMPLE_VIS, GL_WRITE_ONLY);
-        resolve.set("passFirst", first);
-        resolve.set("passCount", count);
         resolve.set("counterBase", float(plan.counters.base));
         resolve.set("opaqueUnits", float(coding_.opaqueUnits));
         resolve.set("unitLog", coding_.unitLog);
@@ -834,6 +841,7 @@ class DepthComplexitySampling final : public Technique {
   std::vector<std::uint32_t> edgeOffset_;
   float wedgeMargin_ = 0.0f;
   gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_;
+  gl::Buffer passBuffer_;  // the pass's sample range (shaders/common_dcs_pass.glsl)
   gl::Texture profileImage_;
   std::vector<GpuEdge> edges_;             // edgeBuffer_'s contents
   std::vector<geo::VolumeRule> edgeRules_;  // the rule per mesh edgeBuffer_ holds
