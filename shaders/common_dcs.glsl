@@ -68,16 +68,39 @@ int signOf(float x) { return x > 0.0 ? 1 : (x < 0.0 ? -1 : 0); }
 // t's three edges agree on it when p lies (nearly) in t's plane: computed per edge, sigma_t
 // and w_t disagreed between the edges of a triangle seen edge-on (dcs-silhouettes, a floor
 // point 1e-6 off a sphere triangle's plane: a count of -1).
+// t's term w_t sigma_t of m_e(p), from f = n_t . p + d_t (only its sign matters).
+int dcsIncidenceWeight(DcsEdge e, DcsIncidence t, float f) {
+  int sigma = -int(t.third.w) * signOf(f);
+  int w = e.meta.z != 0 ? int(f < 0.0) : 1;
+  return w * sigma;
+}
+
 int dcsEdgeWeight(DcsEdge e, vec3 p) {
   int m = 0;
   for (int k = 0; k < e.meta.y; ++k) {
     DcsIncidence t = dcsIncidences[e.meta.x + k];
     precise float f = dot(t.normal.xyz, p) + t.normal.w;
-    int sigma = -int(t.third.w) * signOf(f);
-    int w = e.meta.z != 0 ? int(f < 0.0) : 1;
-    m += w * sigma;
+    m += dcsIncidenceWeight(e, t, f);
   }
   return m;
+}
+
+// Is m_e(p) = 0 at every point p of the box centre +- extent (the compute path's tile cull,
+// dcs_wedge.comp)? m_e depends only on p's side of each incident triangle's plane, so where the
+// box lies strictly on one side of every such plane, m_e is the same at all its points. The
+// margin covers the rounding of f at the points (dcsEdgeWeight) and of the box: relative to the
+// magnitude of the terms of f, never to the scene's size. false when a plane cuts the box.
+bool dcsEdgeWeighsNothingInBox(DcsEdge e, vec3 centre, vec3 extent) {
+  int m = 0;
+  for (int k = 0; k < e.meta.y; ++k) {
+    DcsIncidence t = dcsIncidences[e.meta.x + k];
+    vec3 n = t.normal.xyz;
+    float f = dot(n, centre) + t.normal.w;
+    float margin = 1e-5 * (dot(abs(n), abs(centre) + extent) + abs(t.normal.w));
+    if (abs(f) <= dot(abs(n), extent) + margin) return false;
+    m += dcsIncidenceWeight(e, t, f);
+  }
+  return m == 0;
 }
 
 // Can e separate any two points of a planar light (corners x_0..x_3, grown a little, in cyclic

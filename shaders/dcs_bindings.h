@@ -12,6 +12,7 @@
 #define PENUMBRA_IMAGE_DCS_PROFILE 5    // R32UI 7 x 1: dcs wedge counters (PENUMBRA_DCS_PROFILE=1)
 #define PENUMBRA_IMAGE_DCS_COUNTERS 6   // RGBA32F 2D array: the packed counters, compute path (read-write)
 #define PENUMBRA_IMAGE_DCS_CHECKSUM 7   // RG32F: the checksum target, compute path (read-write)
+#define PENUMBRA_DCS_TILE 8            // dcs compute path: a work group's tile is TILE x TILE pixels
 #define PENUMBRA_SSBO_DCS_EDGES 2       // dcs: edges (endpoints, incidence range, rule)
 #define PENUMBRA_SSBO_DCS_INCIDENCES 3  // dcs: incident triangles (third vertex, plane normal)
 #define PENUMBRA_SSBO_DCS_STATUS 4      // dcs: resolve status (overflowing pixels)

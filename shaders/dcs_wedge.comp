@@ -21,7 +21,7 @@ const int MASK_WORDS = (PASS_SAMPLES + 31) / 32;
 #include "common_dcs_update.glsl"
 #include "dcs_solid.glsl"
 
-#define TILE 16
+#define TILE PENUMBRA_DCS_TILE
 layout(local_size_x = TILE, local_size_y = TILE) in;
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
@@ -111,7 +111,9 @@ void main() {
     if (lid == 0u) listCount = 0u;
     barrier();
     uint i = first + lid;
-    if (i < solidEnd && meetsTile(dcsSolids[i], centre, extent, tileNdc)) list[atomicAdd(listCount, 1u)] = i;
+    if (i < solidEnd && meetsTile(dcsSolids[i], centre, extent, tileNdc) &&
+        !dcsEdgeWeighsNothingInBox(dcsEdges[dcsSolids[i].meta.y], centre, extent))
+      list[atomicAdd(listCount, 1u)] = i;
     barrier();
     uint n = listCount;
     if (valid) {

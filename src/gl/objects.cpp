@@ -137,6 +137,11 @@ void Buffer::write(const void* data, std::size_t bytes, std::size_t offset) cons
   glNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), data);
 }
 
+void Buffer::clear() const {
+  PENUMBRA_CHECK(size_ % 4 == 0, "buffer clear of a size that is not a multiple of 4");
+  glClearNamedBufferData(id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+}
+
 void Buffer::read(void* data, std::size_t bytes, std::size_t offset) const {
   PENUMBRA_CHECK(offset + bytes <= size_, "buffer read out of range");
   glGetNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), data);

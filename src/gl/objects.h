@@ -84,6 +84,7 @@ class Buffer : public Object<Kind::Buffer> {
   void bindBase(GLenum target, GLuint index) const;
   void write(const void* data, std::size_t bytes, std::size_t offset = 0) const;
   void read(void* data, std::size_t bytes, std::size_t offset = 0) const;
+  void clear() const;  // every byte 0 (size a multiple of 4)
 
  private:
   std::size_t size_ = 0;

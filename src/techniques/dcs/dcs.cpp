@@ -16,7 +16,7 @@
 // reported (see below).
 //
 // The compute path (`path=compute`, issue 19) replaces step (4)'s rasterised wedges: the solids
-// of the selected edges (shaders/dcs_solids.comp), then per 16x16 tile the edges whose solid
+// of the selected edges (shaders/dcs_solids.comp), then per 8x8 tile the edges whose solid
 // meets the bounding box of the tile's visible points, evaluated per pixel inside the solid with
 // the raster path's update function (shaders/dcs_wedge.comp). It adds each pixel's counts once,
 // so the packing holds the final counts only: it needs no bound pass, and its bound is the true
@@ -46,7 +46,9 @@
 #include "gl/program_cache.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
+#include "techniques/dcs/compute_wedges.h"
 #include "techniques/dcs/edge_lut_gpu.h"
+#include "techniques/dcs/gpu_silhouette.h"
 #include "techniques/dcs/packing.h"
 #include "techniques/shadow_volume/shadow_volume.h"
 #include "dcs_bindings.h"  // NOLINT: shared with GLSL
@@ -75,16 +77,6 @@ glm::vec4 trianglePlane(const std::vector<glm::vec3>& P, const glm::uvec3& tri) 
   glm::dvec3 n = glm::cross(b - a, c - a);
   return glm::vec4(glm::vec3(n), float(-glm::dot(n, a)));
 }
-// shaders/dcs_solid.glsl DcsSolidPlanes (the compute path's solids).
-struct GpuSolid {
-  glm::vec4 plane[5];
-  glm::ivec4 meta;
-};
-// shaders/common_dcs_pass.glsl: a pass's sample range, the compute path's dispatch.
-struct GpuPass {
-  std::uint32_t first = 0, count = 0, solidFirst = 0, solidEnd = 0;
-  std::int32_t finalDispatch = 0;
-};
 struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
   std::uint32_t boundMax = 0;  // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
@@ -221,7 +213,6 @@ class DepthComplexitySampling final : public Technique {
     for (auto& m : volumes_.meshes()) edgeRules_.push_back(m.rule);
     incidenceBuffer_ = gl::Buffer(incidences);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
-    passBuffer_ = gl::Buffer(sizeof(GpuPass), nullptr);
     profileImage_ = gl::Texture::make2D(GL_R32UI, 7, 1);
     bound_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
     boundFbo_ = gl::Framebuffer({&bound_}, &gpu.depth());
@@ -270,7 +261,7 @@ class DepthComplexitySampling final : public Technique {
     std::size_t lutBytes = 0;
     for (auto& [hash, l] : luts_) lutBytes += l.bytes();
     return volumes_.counter().bytes() + bound_.bytes() + checksum_.bytes() + (counters_ ? counters_.bytes() : 0) +
-           edgeBuffer_.size() + incidenceBuffer_.size() + lutBytes;
+           edgeBuffer_.size() + incidenceBuffer_.size() + lutBytes + compute_.memoryBytes();
   }
 
   std::vector<std::pair<std::string, double>> statistics() const override {
@@ -306,7 +297,8 @@ class DepthComplexitySampling final : public Technique {
 
  private:
   struct Programs {
-    const gl::Program &init, &wedge, &resolve, &resolvePerSample;
+    const gl::Program &init, &resolve, &resolvePerSample;
+    const gl::Program* wedge;  // the raster path's (shaders/dcs_wedge.*), else null
     const gl::Program* tiles;  // the compute path's (shaders/dcs_wedge.comp), else null
   };
 
@@ -389,7 +381,8 @@ class DepthComplexitySampling final : public Technique {
     pass.timer.time("dcs edges", [&] {
       geo::LightExtent extent = extentOf(unshifted);
       if (options_.gpuSilhouettes && options_.silhouettes == SilhouetteMode::Accurate) {
-        edgeIds = gpuAccurateSilhouette(extent);
+        edgeIds = dcs::gpuAccurateSilhouette(programs_.get({"dcs_silhouette.comp"}), edgeBuffer_, incidenceBuffer_,
+                                             std::uint32_t(edgeBuffer_.size() / sizeof(GpuEdge)), extent);
         return;
       }
       const auto& meshes = volumes_.meshes();
@@ -424,63 +417,23 @@ class DepthComplexitySampling final : public Technique {
   }
 
   // The compute path's wedges (shaders/dcs_wedge.comp) for one pass's samples, after the init
-  // pass: their updates added into the counters and the checksum. The solids go in dispatches of
-  // kComputeChunks chunks (llvmpipe cuts a long loop short), the running counts in a buffer
-  // between them, and every tile's completed chunks are checked.
+  // pass: their updates added into the counters and the checksum (compute_wedges.h).
   void computeWedges(const gl::Program& prog, const LightPass& pass, const LightFrame& f, const dcs::PackingPlan& plan,
-                     const GpuPass& range) {
+                     const dcs::GpuPass& range) {
     if (f.light.shape == LightShape::Point || f.edgeIds.empty()) return;
-    constexpr unsigned kTile = 16, kChunk = kTile * kTile, kComputeChunks = 4;
-    const unsigned tilesX = (unsigned(pass.gpu.width()) + kTile - 1) / kTile, tilesY = (unsigned(pass.gpu.height()) + kTile - 1) / kTile;
-    const std::size_t bytes = sizeof(std::uint32_t) * (1 + std::size_t(pass.gpu.width()) * std::size_t(pass.gpu.height()) *
-                                                               std::size_t(plan.samplesPerPass));
-    if (computeCounts_.size() != bytes) computeCounts_ = gl::Buffer(bytes, nullptr);
-    std::vector<std::uint32_t> zero(bytes / sizeof(std::uint32_t), 0u);
-    computeCounts_.write(zero.data(), bytes);
     setWedgeUniforms(prog, pass, f);
-    solids_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_SOLIDS);
-    computeCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_COUNTS);
-    counters_.bindImage(PENUMBRA_IMAGE_DCS_COUNTERS, GL_READ_WRITE);
-    checksum_.bindImage(PENUMBRA_IMAGE_DCS_CHECKSUM, GL_READ_WRITE);
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    const unsigned total = unsigned(f.edgeIds.size());
-    std::uint64_t expected = 0;
-    for (unsigned first = 0; first < total; first += kComputeChunks * kChunk) {
-      const unsigned end = std::min(total, first + kComputeChunks * kChunk);
-      writePass({range.first, range.count, first, end, end == total ? 1 : 0});
-      glDispatchCompute(tilesX, tilesY, 1);
-      glMemoryBarrier(GL_ALL_BARRIER_BITS);
-      expected += std::uint64_t(tilesX) * tilesY * ((end - first + kChunk - 1) / kChunk);
-    }
-    std::uint32_t done = 0;
-    computeCounts_.read(&done, sizeof done);
-    if (done != expected)
-      throw Error("dcs", fmt::format("light '{}': the compute path's tiles completed {} of their {} chunks of wedges (the "
-                                     "driver cut a shader loop short): the counts would be wrong",
-                                     f.light.name, done, expected));
-  }
-
-  // The pass's sample range (and the compute path's dispatch) for the next draws, in the buffer
-  // shaders/common_dcs_pass.glsl reads.
-  void writePass(const GpuPass& range) {
-    passBuffer_.write(&range, sizeof range);
-    passBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PASS);
+    compute_.run(passRange_, range, pass.gpu.width(), pass.gpu.height(), plan.samplesPerPass, f.edgeIds.size(), counters_,
+                 checksum_, f.light.name);
   }
 
   // The compute path's solids of the selected edges (shaders/dcs_solids.comp), once a light.
   void buildSolids(LightPass& pass, const LightFrame& f) {
     if (f.light.shape == LightShape::Point || f.edgeIds.empty()) return;
     pass.timer.time("dcs solids", [&] {
-      const std::size_t bytes = f.edgeIds.size() * sizeof(GpuSolid);
-      if (solids_.size() < bytes) solids_ = gl::Buffer(bytes, nullptr);
       const gl::Program& prog = programs_.get({"dcs_solids.comp"}, options_.profile ? std::vector<std::string>{"DCS_PROFILE"}
                                                                                      : std::vector<std::string>{});
       setWedgeUniforms(prog, pass, f);
-      prog.set("solidCount", unsigned(f.edgeIds.size()));
-      f.idBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGE_IDS);
-      solids_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_SOLIDS);
-      glDispatchCompute(GLuint((f.edgeIds.size() + 63) / 64), 1, 1);
-      glMemoryBarrier(GL_ALL_BARRIER_BITS);
+      compute_.buildSolids(prog, f.idBuffer, f.edgeIds.size());
     });
   }
 
@@ -530,7 +483,7 @@ class DepthComplexitySampling final : public Technique {
       const float zero[4] = {0, 0, 0, 0};
       glClearNamedFramebufferfv(boundFbo_.id(), GL_COLOR, 0, zero);
       pass.gpu.bindGBuffer();
-      writePass({0, std::uint32_t(pass.samples.count)});
+      passRange_.write({0, std::uint32_t(pass.samples.count)});
       beginWedgeState();
       drawWedges(boundProgramFor(f.coverage), pass, f);
       endWedgeState();
@@ -599,8 +552,8 @@ class DepthComplexitySampling final : public Technique {
     for (int pi = 0; pi < plan.passes; ++pi) {
       unsigned first = unsigned(pi * plan.samplesPerPass);
       unsigned count = unsigned(std::min(plan.samplesPerPass, N - int(first)));
-      const GpuPass range{first, count};
-      writePass(range);
+      const dcs::GpuPass range{first, count};
+      passRange_.write(range);
       pass.timer.time("dcs wedges", [&] {
         counterFbo_.bind();
         glDisable(GL_BLEND);
@@ -623,7 +576,7 @@ class DepthComplexitySampling final : public Technique {
           return;
         }
         beginWedgeState();
-        drawWedges(progs.wedge, pass, f);  // outer and inner updates together (shaders/dcs_wedge.frag)
+        drawWedges(*progs.wedge, pass, f);  // outer and inner updates together (shaders/dcs_wedge.frag)
         endWedgeState();
       });
       pass.timer.time("resolve", [&] {
@@ -690,35 +643,6 @@ class DepthComplexitySampling final : public Technique {
                plan.describe(), status.overflowPixels);
   }
 
-  // The accurate silhouette on the GPU (shaders/dcs_silhouette.comp), sorted to compare with the
-  // CPU path; the order does not matter to the rendering.
-  std::vector<int> gpuAccurateSilhouette(const geo::LightExtent& l) {
-    std::uint32_t total = std::uint32_t(edgeBuffer_.size() / sizeof(GpuEdge));
-    gl::Buffer out(sizeof(std::uint32_t) * (1 + std::size_t(total)), nullptr);
-    std::uint32_t zero = 0;
-    out.write(&zero, sizeof zero);
-    edgeBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGES);
-    incidenceBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
-    out.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_STATUS);
-    const gl::Program& p = programs_.get({"dcs_silhouette.comp"});
-    p.use();
-    p.set("totalEdges", total);
-    p.set("lightKind", int(l.kind));
-    p.set("lightCentre", glm::vec3(l.centre));
-    p.set("lightNormal", glm::vec3(l.normal));
-    p.set("lightTangent", glm::vec3(l.tangent));
-    p.set("lightBitangent", glm::vec3(l.bitangent));
-    p.set("lightHalfSize", glm::vec2(float(l.halfWidth), float(l.halfHeight)));
-    p.set("lightRadius", float(l.radius));
-    glDispatchCompute((total + 63) / 64, 1, 1);
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    std::uint32_t count = 0;
-    out.read(&count, sizeof count);
-    std::vector<std::uint32_t> ids(count);
-    if (count) out.read(ids.data(), sizeof(std::uint32_t) * count, sizeof(std::uint32_t));
-    std::sort(ids.begin(), ids.end());
-    return std::vector<int>(ids.begin(), ids.end());
-  }
   // A light whose counts (its depth complexity times the units of a crossing) pass what a float
   // counter holds exactly: refused, never rendered with rounded counts.
   [[noreturn]] void refuseDepth(const Light& light, double count) const {
@@ -785,11 +709,12 @@ class DepthComplexitySampling final : public Technique {
     if (options_.profile) defs.push_back("DCS_PROFILE");
     std::vector<std::string> perSample = defs;
     perSample.push_back("PER_SAMPLE_OUT");
+    const bool compute = options_.computePath;
     return {programs_.get({"fullscreen.vert", "dcs_init.frag"}, defs),
-            programs_.get({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, defs),
             programs_.get({"fullscreen.vert", "dcs_resolve.frag"}, defs),
             programs_.get({"fullscreen.vert", "dcs_resolve.frag"}, perSample),
-            options_.computePath ? &programs_.get({"dcs_wedge.comp"}, defs) : nullptr};
+            compute ? nullptr : &programs_.get({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"}, defs),
+            compute ? &programs_.get({"dcs_wedge.comp"}, defs) : nullptr};
   }
 
   const gl::Program& boundProgramFor(int coverage) {
@@ -841,13 +766,12 @@ class DepthComplexitySampling final : public Technique {
   std::vector<std::uint32_t> edgeOffset_;
   float wedgeMargin_ = 0.0f;
   gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_;
-  gl::Buffer passBuffer_;  // the pass's sample range (shaders/common_dcs_pass.glsl)
+  dcs::PassRange passRange_;  // the pass's sample range (shaders/common_dcs_pass.glsl)
   gl::Texture profileImage_;
   std::vector<GpuEdge> edges_;             // edgeBuffer_'s contents
   std::vector<geo::VolumeRule> edgeRules_;  // the rule per mesh edgeBuffer_ holds
   gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (shaders/dcs_init.frag)
-  gl::Buffer solids_;  // the compute path's wedge solids (shaders/dcs_solids.comp)
-  gl::Buffer computeCounts_;  // its running counts between dispatches (shaders/dcs_wedge.comp)
+  dcs::ComputeWedges compute_;  // the compute path's solids and counts (path=compute)
   gl::Texture bound_, checksum_, counters_;
   gl::Framebuffer boundFbo_, counterFbo_;
   gl::ProgramCache programs_;  // by shaders and defines (counter layout, coverage, opacity coding)

@@ -34,7 +34,7 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
                          "accurate silhouettes by a compute shader (shaders/dcs_silhouette.comp) instead of the CPU"),
       ParamSpec::choice("path", kPathChoices[o.computePath ? 1 : 0], kPathChoices,
                         "the wedge pass: raster (each edge's wedge solid rasterised, its front faces depth-tested) or "
-                        "compute (wedges binned into 16x16 tiles by the bounds of their visible points and evaluated "
+                        "compute (wedges binned into 8x8 tiles by the bounds of their visible points and evaluated "
                         "per pixel inside the solid; counts added once, so the packing holds the final counts only and "
                         "no bound pass runs)"),
       ParamSpec::choice("coverage", kCoverageChoices[std::size_t(o.coverage)], kCoverageChoices,

@@ -1,0 +1,53 @@
+// The compute path of dcs's wedge pass (`path=compute`, issue 19): the solids of the selected
+// edges (shaders/dcs_solids.comp), then per screen tile the edges whose solid meets the bounding
+// box of the tile's visible points, evaluated per pixel inside the solid with the raster path's
+// update function (shaders/dcs_wedge.comp); the counts are added to the initialised counters
+// once, at the end of the pass. Also the buffer both paths read a pass's sample range from
+// (shaders/common_dcs_pass.glsl).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "gl/objects.h"
+#include "gl/program.h"
+
+namespace penumbra::dcs {
+
+// shaders/common_dcs_pass.glsl DcsPass: a counter pass's sample range and, for the compute
+// path, one dispatch's solids.
+struct GpuPass {
+  std::uint32_t first = 0, count = 0, solidFirst = 0, solidEnd = 0;
+  std::int32_t finalDispatch = 0;
+};
+
+// The DcsPass buffer: written and bound (PENUMBRA_SSBO_DCS_PASS) before the draws that read it.
+class PassRange {
+ public:
+  void write(const GpuPass& range);
+
+ private:
+  gl::Buffer buffer_;
+};
+
+class ComputeWedges {
+ public:
+  // The solids of the `edges` edges whose ids `edgeIds` holds, with `prog` (dcs_solids.comp,
+  // the wedge uniforms set and in use).
+  void buildSolids(const gl::Program& prog, const gl::Buffer& edgeIds, std::size_t edges);
+  // One counter pass's updates by the program in use (dcs_wedge.comp, its wedge uniforms set)
+  // into `counters` and `checksum`, for a width x height image with `samplesPerPass` samples a
+  // pixel and the pass's samples `range`. The solids go in dispatches of a few chunks (llvmpipe
+  // cuts a long shader loop short), the running counts in a buffer between them; every tile's
+  // completed chunks are checked and a shortfall is an Error naming `light`.
+  void run(PassRange& pass, GpuPass range, int width, int height, int samplesPerPass,
+                std::size_t edges, const gl::Texture& counters, const gl::Texture& checksum, const std::string& light);
+  std::size_t memoryBytes() const { return solids_.size() + counts_.size(); }
+
+ private:
+  gl::Buffer solids_;  // the selected edges' wedge solids (shaders/dcs_solid.glsl DcsSolidPlanes)
+  gl::Buffer counts_;  // the pass's running counts between dispatches and the completed chunks
+};
+
+}  // namespace penumbra::dcs
