@@ -54,17 +54,27 @@ int techniqueTimings(const TimingOptions& o, std::FILE* out) {
       s.sampling.pattern = o.pattern;
       s.shading = o.shading;
       s.perSampleResults = false;  // no comparison here: time what a frame needs
-      std::vector<std::string> names = techniques;
-      names.push_back("raytrace");
+      std::vector<TimedVariant> runs;
+      for (const std::string& name : techniques) runs.push_back({name, name, {}, {}});
+      runs.insert(runs.end(), o.variants.begin(), o.variants.end());
+      runs.push_back({"raytrace", "raytrace", {}, {}});
       std::map<std::string, double> totals;
-      for (const std::string& name : names) {
+      for (const TimedVariant& run : runs) {
+        const std::string& name = run.label;
         Renderer renderer(*ctx, scene, s);
-        auto tech = makeTechnique(name);
+        auto tech = makeTechnique(run.technique, TechniqueParams(run.params));
         bench::Timing timing = bench::timeFrames(renderer, *tech, frames, warmup);
-        const FrameResult& last = timing.last;
+        FrameResult last = timing.last;
+        if (!run.profile.empty()) {  // the statistics of a profiled frame (not timed)
+          std::vector<std::string> p = run.params;
+          p.insert(p.end(), run.profile.begin(), run.profile.end());
+          Renderer profiled(*ctx, scene, s);
+          last.statistics = profiled.render(*makeTechnique(run.technique, TechniqueParams(p))).statistics;
+        }
         std::string key = name + "@" + std::to_string(samples);
-        std::fprintf(out, "\n%s, %d sample(s) (%d frames after %d warm-up)\n  %-18s %10s %10s %10s\n", name.c_str(),
-                    samples, frames, warmup, "stage", "median ms", "min", "max");
+        std::fprintf(out, "\n%s, %d sample(s) (%d frames after %d warm-up)%s\n  %-18s %10s %10s %10s\n", name.c_str(),
+                    samples, frames, warmup, run.profile.empty() ? "" : ", statistics of a profiled frame", "stage",
+                    "median ms", "min", "max");
         for (auto& [stage, sp] : timing.stages) {
           std::fprintf(out, "  %-18s %10.2f %10.2f %10.2f\n", stage.c_str(), sp.median, sp.min, sp.max);
           results[key]["stagesMs"][stage] = {{"median", sp.median}, {"min", sp.min}, {"max", sp.max}};

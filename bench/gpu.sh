@@ -10,8 +10,9 @@
 #                                        they are not there yet.
 #   sh bench/gpu.sh run [BENCH ARGS...]  there, in the repository root with .gpu-pack/ and .gl/:
 #                                        unpacks the glvnd loaders, points glvnd at NVIDIA's EGL,
-#                                        runs the GL render tests and `penumbra bench --quick`
-#                                        (plus BENCH ARGS) into bench/results/<renderer>/.
+#                                        runs the GL render tests, `penumbra bench --quick` and
+#                                        the dcs-scale study at full size (plus BENCH ARGS) into
+#                                        bench/results/<renderer>/.
 #   sh bench/gpu.sh local [BUILD_DIR]    here: pack, then `run` on this machine's GL (llvmpipe)
 #                                        with only the pack's libraries added, results under
 #                                        /tmp: the path the GPU machine takes.
@@ -123,6 +124,12 @@ run() {
   rc=0
   "$UNPACKED/bin/penumbra" bench --quick "$@" || rc=$?
   [ "$rc" -eq 0 ] || { echo "bench: exit $rc"; failed=1; }
+  # Issue 19's study at its full sizes (dcs raster and compute paths on the engine, 256^2 and
+  # 512^2, 16 and 64 samples): the question a GPU answers (few graphics units, compute on all).
+  echo "== penumbra bench --studies dcs-scale $*"
+  rc=0
+  "$UNPACKED/bin/penumbra" bench --studies dcs-scale "$@" || rc=$?
+  [ "$rc" -eq 0 ] || { echo "bench dcs-scale: exit $rc"; failed=1; }
   dir=""
   for a in "$@"; do [ "${prev:-}" = "-o" ] || [ "${prev:-}" = "--output" ] && dir="$a"; prev="$a"; done
   [ -n "$dir" ] || dir=$(dirname "$(ls -t bench/results/*/machine.txt | head -1)")

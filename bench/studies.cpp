@@ -1,5 +1,6 @@
 #include "studies.h"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace penumbra::bench {
@@ -53,6 +54,27 @@ int timings(const StudyRun& r, std::FILE* out) {
   return techniqueTimings(o, out);
 }
 
+// Issue 19: dcs's raster and compute paths against raytrace, mvr and hard-sv on the engine at
+// 256^2 and 512^2, 16 and 64 samples, in one run; the fill and the bound from a profiled frame.
+int dcsScale(const StudyRun& r, std::FILE* out) {
+  const std::string dir = (std::filesystem::path(r.outDir) / "dcs-scale").string();
+  std::filesystem::create_directories(dir);
+  int rc = 0;
+  for (int size : r.quick ? std::vector<int>{128} : std::vector<int>{256, 512}) {
+    TimingOptions o;
+    o.backend = r.backend;
+    o.width = o.height = size;
+    o.samples = r.quick ? std::vector<int>{16} : std::vector<int>{16, 64};
+    o.frames = r.quick ? 1 : 2;
+    o.techniques = {"hard-sv", "mvr"};
+    o.variants = {{"dcs", "dcs", {"path=raster"}, {"profile=true"}},
+                  {"dcs-compute", "dcs", {"path=compute"}, {"profile=true"}}};
+    o.json = (std::filesystem::path(dir) / ("engine-" + std::to_string(size) + ".json")).string();
+    rc = std::max(rc, techniqueTimings(o, out));
+  }
+  return rc;
+}
+
 int shading(const StudyRun& r, std::FILE* out) {
   ShadingStudyOptions o;
   o.backend = r.backend;
@@ -70,6 +92,7 @@ const std::vector<Study>& studyTable() {
       {"multiview", "VWSS paper tables 1-2, figures 8 and 13, map-resolution convergence", multiview},
       {"single-map", "Sterna table 1, VSSM against PCSS as the light grows, VSSM stages, single-map errors", singleMap},
       {"techniques", "per-stage timings of the main techniques on the engine", timings},
+      {"dcs-scale", "dcs raster and compute paths against raytrace, mvr and hard-sv on the engine (issue 19)", dcsScale},
       {"shading", "shading modes (ratio, modulate, per-sample) against the converged shaded reference", shading},
   };
   return table;

@@ -75,12 +75,20 @@ struct SingleMapOptions {
 };
 int singleMapStudies(const SingleMapOptions& o, std::FILE* out);
 
+// A technique with parameters, timed under its own label; `profile`: its statistics come from
+// one more, untimed frame with these parameters added (dcs `profile=true`: counters that slow it).
+struct TimedVariant {
+  std::string label, technique;
+  std::vector<std::string> params, profile;
+};
+
 // Per-stage timings of chosen techniques and sample counts (bench_techniques.cpp).
 struct TimingOptions {
   std::string scene = "scenes/engine.json";
   int width = 512, height = 512, frames = 5, warmup = 1;
   std::vector<int> samples = {1};
   std::vector<std::string> techniques = {"hard-sv"};
+  std::vector<TimedVariant> variants;  // timed after `techniques`, before raytrace
   PixelPattern pattern = PixelPattern::Correlated;
   ShadingMode shading = ShadingMode::Modulate;  // eq. 3, as the README's timing tables were measured
   std::string json;  // results as JSON here, if given

@@ -139,7 +139,8 @@ TEST(RenderResources, FreshRenderersLeakNothing) {
 // 2026-12-03) while its GL objects stayed put, because Mesa 22.3's lavapipe compiled a new
 // shader, never freed, at each draw of a program whose loops are bounded by uniforms. Those
 // bounds are read from buffers now (shaders/common_dcs_pass.glsl, common_light.glsl): measured
-// on zink over 32 frames, dcs +116 KiB (was +39.8 MiB), hard-sv +456 KiB (was +4.0 MiB).
+// on zink over 16 frames with a warm shader cache, dcs +2.0-2.9 MiB (was +19.9 MiB); hard-sv
+// +1.8-2.1 MiB, as before (a smaller growth, source not found); llvmpipe 0-64 KiB.
 TEST(RenderResources, ReusedRendererIsStable) {
   context();
   Scene scene = loadScene(scenePath("scenes/hard/15-two-plates.json"));
