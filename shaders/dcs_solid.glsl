@@ -109,9 +109,11 @@ struct DcsSolid {
 // The compute path's copy of a solid, in the storage block PENUMBRA_SSBO_DCS_SOLIDS
 // (dcs_solids.comp writes it, dcs_wedge.comp reads it; declared there, the raster path's
 // stages declare no writable block).
+const int DCS_SIDE_PLANES = 8;
 struct DcsSolidPlanes {
   vec4 plane[5];  // DcsSolid::plane (RECT: plane[0] its NDC rectangle)
-  ivec4 meta;     // x the kind (DCS_SOLID_*), y the edge id
+  ivec4 meta;     // x the kind (DCS_SOLID_*), y the edge id, z the side planes used
+  vec4 side[DCS_SIDE_PLANES];  // WEDGE: more planes holding W at its ends (dcsSidePlanes)
 };
 
 DcsSolid dcsNoSolid() {
@@ -221,6 +223,41 @@ bool wedgeSolid(vec3 a, vec3 b, inout DcsSolid s) {
   s.dir[3] = eB;
   s.kind = DCS_SOLID_WEDGE;
   return ok;
+}
+
+// The compute path's extra planes of a WEDGE solid (after dcsSolidBegin: corner[] holds L_e),
+// where it can test more planes per point than the raster path draws faces: W's end at a is
+// bounded by the cone a + cone(a - L_e) (p - a = s (1 + t) d + t (a - y) with x = a + s d on e,
+// y in L_e, s, t >= 0), which the single side plane A bounds loosely when L_e spans a wide angle
+// along e (a large light, a short edge). Every plane through a and two corners x_i, x_j that has
+// every a - x_k and d on its inner side holds W, and so does their intersection: these are the
+// cone's faces that face along d (at b the same with -d). Pushed out by margin like the others;
+// the first DCS_SIDE_PLANES found. Returns their number.
+int dcsSidePlanes(vec3 a, vec3 b, out vec4 side[DCS_SIDE_PLANES]) {
+  int count = 0;
+  for (int end = 0; end < 2; ++end) {
+    vec3 q = end == 0 ? a : b, along = end == 0 ? b - a : a - b;
+    for (int i = 0; i < cornerCount; ++i)
+      for (int j = i + 1; j < cornerCount; ++j) {
+        vec3 n = cross(corner[i] - q, corner[j] - q);
+        float nl = length(n);
+        if (nl <= 1e-6 * length(corner[i] - q) * length(corner[j] - q)) continue;
+        n /= nl;
+        // Every corner direction q - x_k on one side (to rounding), then that side inward.
+        float lo = 0.0, hi = 0.0;
+        for (int k = 0; k < cornerCount; ++k) {
+          float sk = dot(n, q - corner[k]), tol = 1e-6 * length(q - corner[k]);
+          lo = min(lo, sk + tol);
+          hi = max(hi, sk - tol);
+        }
+        if (lo < 0.0 && hi > 0.0) continue;  // corners on both sides: not a face of the cone
+        if (lo < 0.0) n = -n;
+        if (dot(n, along) < 0.0 || count == DCS_SIDE_PLANES) continue;  // cuts e itself, or no room
+        side[count++] = pushedPlane(n, q);
+      }
+  }
+  for (int k = count; k < DCS_SIDE_PLANES; ++k) side[k] = vec4(0.0);
+  return count;
 }
 
 // Case 2: apex q, the other endpoint o. W is inside q + cone(q - ball(c, r)) when o - q points

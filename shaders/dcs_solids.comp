@@ -16,7 +16,11 @@ void main() {
   DcsSolidPlanes out_;
   for (int k = 0; k < 5; ++k) out_.plane[k] = s.plane[k];
   if (s.kind == DCS_SOLID_RECT) out_.plane[0] = s.rect;
-  out_.meta = ivec4(s.kind, id, 0, 0);
+  int sides = 0;
+  if (s.kind == DCS_SOLID_WEDGE) sides = dcsSidePlanes(dcsEdges[id].v0.xyz, dcsEdges[id].v1.xyz, out_.side);
+  else
+    for (int k = 0; k < DCS_SIDE_PLANES; ++k) out_.side[k] = vec4(0.0);
+  out_.meta = ivec4(s.kind, id, sides, 0);
   if (s.kind == DCS_SOLID_RECT) PROFILE_COUNT(profRectangleEdges);
   if (s.kind == DCS_SOLID_WEDGE || s.kind == DCS_SOLID_PYRAMID) PROFILE_COUNT(profWedgeEdges);
   dcsSolids[i] = out_;

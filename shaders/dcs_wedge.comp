@@ -57,6 +57,8 @@ bool meetsTile(DcsSolidPlanes s, vec3 centre, vec3 extent, vec4 tileNdc) {
   }
   for (int k = 0; k < 5; ++k)
     if (dot(s.plane[k].xyz, centre) + dot(abs(s.plane[k].xyz), extent) < s.plane[k].w) return false;
+  for (int k = 0; k < s.meta.z; ++k)
+    if (dot(s.side[k].xyz, centre) + dot(abs(s.side[k].xyz), extent) < s.side[k].w) return false;
   return true;
 }
 
@@ -64,6 +66,8 @@ bool inside(DcsSolidPlanes s, vec3 p) {
   if (s.meta.x == DCS_SOLID_RECT) return true;
   for (int k = 0; k < 5; ++k)
     if (dot(s.plane[k].xyz, p) < s.plane[k].w) return false;
+  for (int k = 0; k < s.meta.z; ++k)
+    if (dot(s.side[k].xyz, p) < s.side[k].w) return false;
   return true;
 }
 

@@ -15,6 +15,7 @@ namespace {
 struct GpuSolid {
   glm::vec4 plane[5];
   glm::ivec4 meta;
+  glm::vec4 side[8];  // DCS_SIDE_PLANES
 };
 // Solids a dispatch: in one long loop over all of them llvmpipe (Mesa 22.3) stopped a tile after
 // about 40 chunks of 256 on the engine (its loop limiter), silently.
