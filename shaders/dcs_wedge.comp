@@ -48,26 +48,39 @@ shared uint boxLo[3], boxHi[3];
 shared uint listCount;
 shared uint list[TILE * TILE];
 
-// Does solid s meet the box (centre, extent) of the tile's points, or (a rectangle) the tile's
+// The solids are read a plane at a time, the end planes only once the five have passed: a copy
+// of the whole 224-byte solid per test made the loop slower than the planes it saved.
+// Does solid i meet the box (centre, extent) of the tile's points, or (a rectangle) the tile's
 // NDC rectangle?
-bool meetsTile(DcsSolidPlanes s, vec3 centre, vec3 extent, vec4 tileNdc) {
-  if (s.meta.x == DCS_SOLID_RECT) {
-    vec4 r = s.plane[0];
+bool meetsTile(uint i, vec3 centre, vec3 extent, vec4 tileNdc) {
+  if (dcsSolids[i].meta.x == DCS_SOLID_RECT) {
+    vec4 r = dcsSolids[i].plane[0];
     return r.x <= tileNdc.z && tileNdc.x <= r.z && r.y <= tileNdc.w && tileNdc.y <= r.w;
   }
-  for (int k = 0; k < 5; ++k)
-    if (dot(s.plane[k].xyz, centre) + dot(abs(s.plane[k].xyz), extent) < s.plane[k].w) return false;
-  for (int k = 0; k < s.meta.z; ++k)
-    if (dot(s.side[k].xyz, centre) + dot(abs(s.side[k].xyz), extent) < s.side[k].w) return false;
+  for (int k = 0; k < 5; ++k) {
+    vec4 q = dcsSolids[i].plane[k];
+    if (dot(q.xyz, centre) + dot(abs(q.xyz), extent) < q.w) return false;
+  }
+  int sides = dcsSolids[i].meta.z;
+  for (int k = 0; k < sides; ++k) {
+    vec4 q = dcsSolids[i].side[k];
+    if (dot(q.xyz, centre) + dot(abs(q.xyz), extent) < q.w) return false;
+  }
   return true;
 }
 
-bool inside(DcsSolidPlanes s, vec3 p) {
-  if (s.meta.x == DCS_SOLID_RECT) return true;
-  for (int k = 0; k < 5; ++k)
-    if (dot(s.plane[k].xyz, p) < s.plane[k].w) return false;
-  for (int k = 0; k < s.meta.z; ++k)
-    if (dot(s.side[k].xyz, p) < s.side[k].w) return false;
+// Is p inside solid i?
+bool inside(uint i, vec3 p) {
+  if (dcsSolids[i].meta.x == DCS_SOLID_RECT) return true;
+  for (int k = 0; k < 5; ++k) {
+    vec4 q = dcsSolids[i].plane[k];
+    if (dot(q.xyz, p) < q.w) return false;
+  }
+  int sides = dcsSolids[i].meta.z;
+  for (int k = 0; k < sides; ++k) {
+    vec4 q = dcsSolids[i].side[k];
+    if (dot(q.xyz, p) < q.w) return false;
+  }
   return true;
 }
 
@@ -115,7 +128,7 @@ void main() {
     if (lid == 0u) listCount = 0u;
     barrier();
     uint i = first + lid;
-    if (i < solidEnd && meetsTile(dcsSolids[i], centre, extent, tileNdc) &&
+    if (i < solidEnd && meetsTile(i, centre, extent, tileNdc) &&
         !dcsEdgeWeighsNothingInBox(dcsEdges[dcsSolids[i].meta.y], centre, extent))
       list[atomicAdd(listCount, 1u)] = i;
     barrier();
@@ -123,11 +136,11 @@ void main() {
     if (valid) {
       PROFILE_ADD(profCandidates, n);
       for (uint k = 0u; k < n; ++k) {
-        DcsSolidPlanes s = dcsSolids[list[k]];
-        if (!inside(s, p)) continue;
+        uint i = list[k];
+        if (!inside(i, p)) continue;
         PROFILE_COUNT(profFragments);
         uint mask[MASK_WORDS];
-        int delta = dcsEdgeUpdate(px, p, s.meta.y, passFirst, passCount, false, false, mask);
+        int delta = dcsEdgeUpdate(px, p, dcsSolids[i].meta.y, passFirst, passCount, false, false, mask);
         if (delta == 0) continue;
         bool updating = false;
         for (int w = 0; w < MASK_WORDS; ++w) {
