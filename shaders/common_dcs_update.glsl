@@ -10,9 +10,7 @@ uniform float lightRadius;  // bounding radius of the light around its centre
 // Edge e's update at the evaluation point p of pixel px for the pixel's samples
 // [first, first + count) (count <= 32 * MASK_WORDS): returns delta, the change of each covered
 // sample's count (0: none), and sets bit j of mask for sample first + j when e covers it.
-// positiveOnly: decreasing updates return 0; anyOnly: stops at the first covered sample.
-int dcsEdgeUpdate(ivec2 px, vec3 p, int edgeId, uint first, uint count, bool positiveOnly, bool anyOnly,
-                  out uint mask[MASK_WORDS]) {
+int dcsEdgeUpdate(ivec2 px, vec3 p, int edgeId, uint first, uint count, out uint mask[MASK_WORDS]) {
   for (int w = 0; w < MASK_WORDS; ++w) mask[w] = 0u;
   DcsEdge e = dcsEdges[edgeId];
   vec3 a = e.v0.xyz, b = e.v1.xyz;
@@ -29,7 +27,7 @@ int dcsEdgeUpdate(ivec2 px, vec3 p, int edgeId, uint first, uint count, bool pos
   // sign(n_e . (s - p)) = -cSide for every covered sample; m_e(p) crossings of the mesh's
   // surface, each worth the mesh's units (1 unless semi-opaque occluders are coded, opacity.h).
   int delta = -int(cSide) * m * e.meta.w;
-  if (delta == 0 || (positiveOnly && delta < 0)) return 0;
+  if (delta == 0) return 0;
   if (lightCornerCount == 4) {
     vec3 corners[4] = vec3[4](lightCorners[0], lightCorners[1], lightCorners[2], lightCorners[3]);
     if (!dcsEdgeMeetsLightPyramid(p, a, b, lightPosition, corners)) return 0;
@@ -59,13 +57,7 @@ int dcsEdgeUpdate(ivec2 px, vec3 p, int edgeId, uint first, uint count, bool pos
     for (uint k = 0u; k < 32u; ++k) {
       uint j = uint(w) * 32u + k;
       if (j >= count) break;
-      if (dcsCovered(cov, samplePositions[base + j].xyz - lightPosition)) {
-        bits |= 1u << k;
-        if (anyOnly) {
-          mask[w] = bits;
-          return delta;
-        }
-      }
+      if (dcsCovered(cov, samplePositions[base + j].xyz - lightPosition)) bits |= 1u << k;
     }
     mask[w] = bits;
   }

@@ -140,7 +140,7 @@ void main() {
         if (!inside(i, p)) continue;
         PROFILE_COUNT(profFragments);
         uint mask[MASK_WORDS];
-        int delta = dcsEdgeUpdate(px, p, dcsSolids[i].meta.y, passFirst, passCount, false, false, mask);
+        int delta = dcsEdgeUpdate(px, p, dcsSolids[i].meta.y, passFirst, passCount, mask);
         if (delta == 0) continue;
         bool updating = false;
         for (int w = 0; w < MASK_WORDS; ++w) {

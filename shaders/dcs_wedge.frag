@@ -8,18 +8,12 @@
 // The paper's outer-before-inner batching (section 4.3) is needed for unsigned integers only.
 // The checksum target gets (the sum of all updates, the positive updates): its second channel,
 // started at D(c) + bias, bounds every counter of the pixel at every step (adaptive sampling,
-// section 5.3; dcs.cpp checks it after the pass).
-// BOUND: instead, add the positive updates that cover any of the pixel's samples into one R32F
-// target, before any counter exists (the first frame of a light).
+// section 5.3; dcs.cpp checks it after the pass and plans the next frame from it).
 #include "common_light.glsl"
 #include "common_dcs.glsl"
 #include "common_dcs_pass.glsl"
 #include "common_dcs_lut.glsl"
-#ifdef BOUND
-const int MASK_WORDS = (PENUMBRA_MAX_SAMPLES + 31) / 32;
-#else
 const int MASK_WORDS = (DCS_TARGETS * 4 * DIGITS + 31) / 32;
-#endif
 #include "common_dcs_update.glsl"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
@@ -35,9 +29,6 @@ layout(early_fragment_tests) in;
 #endif
 flat in int gEdge;
 
-#ifdef BOUND
-layout(location = 0) out vec4 outBound;
-#else
 layout(location = 0) out vec4 outCounter0;
 #if DCS_TARGETS > 1
 layout(location = 1) out vec4 outCounter1;
@@ -58,7 +49,6 @@ layout(location = 5) out vec4 outCounter5;
 layout(location = 6) out vec4 outCounter6;
 #endif
 layout(location = DCS_TARGETS) out vec4 outChecksum;
-#endif
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
@@ -69,14 +59,7 @@ void main() {
   // (shared.h): its own triangle then lies clearly on one side of every plane(p, e).
   vec3 p = penumbraShadowOrigin(gp.xyz, texelFetch(gNormal, px, 0).xyz, eyePosition);
   uint mask[MASK_WORDS];
-#ifdef BOUND
-  int delta = dcsEdgeUpdate(px, p, gEdge, passFirst, passCount, true, true, mask);  // all the samples
-  bool hit = false;
-  for (int w = 0; w < MASK_WORDS; ++w) hit = hit || mask[w] != 0u;
-  if (delta == 0 || !hit) discard;
-  outBound = vec4(float(delta), 0.0, 0.0, 0.0);
-#else
-  int delta = dcsEdgeUpdate(px, p, gEdge, passFirst, passCount, false, false, mask);
+  int delta = dcsEdgeUpdate(px, p, gEdge, passFirst, passCount, mask);
   int covered = 0;
   for (int w = 0; w < MASK_WORDS; ++w) covered += bitCount(mask[w]);
   if (delta == 0 || covered == 0) discard;
@@ -114,5 +97,4 @@ void main() {
   outCounter6 = acc[6];
 #endif
   outChecksum = vec4(float(delta * covered), float(max(delta, 0)), 0.0, 0.0);
-#endif
 }

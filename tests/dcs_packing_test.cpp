@@ -69,5 +69,34 @@ TEST(DcsPacking, TargetsAndPassesCoverEverySample) {
   EXPECT_EQ(p.passes, 1);
 }
 
+// A light's first frame, no bound measured yet, plans for the widest base that costs no more
+// targets than base 256 and no extra pass (issue 19 section 3: the bound pass it replaces cost
+// 54-70% of a counter pass). 16 samples: base 256 takes 2 targets (12 a target), so does 4096
+// (8); 2^24 would take 4. 32 samples: 256 takes 3 targets, 4096 would take 4: 256 stays. 64
+// samples: 256 and 4096 need 2 passes, base 64 one (16 a target, 4 targets).
+TEST(DcsPacking, WidestPlanWithoutAnExtraPass) {
+  PackingPlan p = widestPlanAtTheCostOf(16, 255, 4);
+  EXPECT_EQ(p.counters.base, 4096u);
+  EXPECT_EQ(p.targets, 2);
+  EXPECT_EQ(p.passes, 1);
+  EXPECT_EQ(widestPlanAtTheCostOf(32, 255, 4).counters.base, 256u);
+  p = widestPlanAtTheCostOf(64, 255, 4);
+  EXPECT_EQ(p.counters.base, 64u);
+  EXPECT_EQ(p.passes, 1);
+  EXPECT_EQ(widestPlanAtTheCostOf(4, 255, 4).counters.base, 1u << 24) << "4 samples: one target in any base";
+  for (int n : {1, 7, 16, 24, 32, 48, 64, 100, 128})
+    for (int maxTargets : {1, 2, 4, 7})
+      for (int count : {3, 60, 255, 4000}) {
+        const PackingPlan cost = planPacking(n, count, maxTargets), wide = widestPlanAtTheCostOf(n, count, maxTargets);
+        const int fewest = planPacking(n, 0, maxTargets).passes;
+        EXPECT_LE(wide.targets, cost.targets);
+        EXPECT_EQ(wide.passes, fewest);
+        if (wide.layout + 1 < kLayoutCount) {  // the next wider layout costs more
+          const PackingPlan next = planPacking(n, int(kLayouts[wide.layout + 1].base - 1), maxTargets);
+          EXPECT_TRUE(next.targets > cost.targets || next.passes > fewest) << n << " " << maxTargets << " " << count;
+        }
+      }
+}
+
 }  // namespace
 }  // namespace penumbra::dcs

@@ -68,10 +68,16 @@ HOME="$T" timeout 120 "$CHROMIUM" --headless=new --no-sandbox --disable-gpu --no
   --user-data-dir="$T/profile" --enable-logging=stderr --v=0 --virtual-time-budget=10000 \
   --dump-dom "file://$T/default/index.html" >"$T/dom3.html" 2>"$T/chromium3.err"
 attr() { sed -n "s/.*data-$1=\"\([0-9]*\)\".*/\1/p" "$T/dom3.html" | head -1; }
-echo "default scene: points $(attr plot-points), labels shown $(attr labels-shown), overlapping $(attr label-overlaps)," \
+echo "default scene: points $(attr plot-points), labels wanted $(attr labels-wanted) shown $(attr labels-shown)" \
+  "(wanted but hidden $(attr wanted-labels-hidden)), overlapping $(attr label-overlaps)," \
   "unlabelled $(attr unlabelled-points), colour clashes $(attr family-colour-clashes)"
 [ "$(attr plot-points)" -ge 20 ] || { echo "FAIL: the default scene's plot has $(attr plot-points) points"; fail=1; }
-[ "$(attr labels-shown)" -ge 5 ] || { echo "FAIL: only $(attr labels-shown) labels shown"; fail=1; }
+# The labels shown depend on where the timings put the points; what must hold is that every
+# label the plot wants (the Pareto front's, each family's best: at least one per family, five
+# families here) is shown, beside its point or on a leader line.
+[ "$(attr labels-wanted)" -ge 5 ] || { echo "FAIL: only $(attr labels-wanted) labels wanted"; fail=1; }
+[ "$(attr wanted-labels-hidden)" = 0 ] || { echo "FAIL: $(attr wanted-labels-hidden) wanted labels hidden"; fail=1; }
+[ "$(attr labels-shown)" -ge "$(attr labels-wanted)" ] || { echo "FAIL: only $(attr labels-shown) labels shown"; fail=1; }
 [ "$(attr label-overlaps)" = 0 ] || { echo "FAIL: $(attr label-overlaps) pairs of shown labels overlap"; fail=1; }
 [ "$(attr unlabelled-points)" = 0 ] || { echo "FAIL: unlabelled points on the default scene"; fail=1; }
 [ "$(attr family-colour-clashes)" = 0 ] || { echo "FAIL: families share colours on the default scene"; fail=1; }

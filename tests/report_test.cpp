@@ -196,6 +196,33 @@ TEST(Report, PlotLabelsFamiliesAndAxes) {
   EXPECT_EQ(whichTechniqueWhen(r).back(), "broken @ samples=4 failed: it broke");
 }
 
+// Every label the plot must show (front, each family's best) is shown even where the eight
+// places beside its point are taken: a cluster of points, one per family and on the front,
+// within a few pixels (the default scene's single-map corner, CI stop 28: 4 of 6 shown). The
+// labels go out on leader lines; none overlaps another or a point, and all stay in the plot.
+TEST(Report, WantedLabelsFindRoomInACluster) {
+  CompareResult r = handMade();
+  r.runs.clear();
+  const TechniqueFamily families[] = {TechniqueFamily::ExactPerSample, TechniqueFamily::MultiView,
+                                      TechniqueFamily::SingleMap, TechniqueFamily::Denoised, TechniqueFamily::Hard};
+  for (int i = 0; i < 12; ++i) {
+    CompareRun c;
+    c.technique = "technique-with-a-long-name-" + std::to_string(i), c.preset = 0;
+    c.family = families[i % 5];
+    const double ms = 10 * (1 + 0.01 * i);  // a front: each a little slower and more accurate
+    c.total = {ms, ms, ms};
+    c.errors.visibility.rmse = 0.1 * (1 - 0.01 * i);
+    r.runs.push_back(c);
+  }
+  r.runs.push_back(r.runs[0]);
+  r.runs.back().technique = "far-away", r.runs.back().total = {1000, 1000, 1000}, r.runs.back().errors.visibility.rmse = 1e-3;
+  const std::string svg = speedErrorSvg(r);
+  const std::size_t wanted = count(svg, "data-wanted=\"1\"");
+  EXPECT_GE(wanted, 12u) << "the twelve on the front and the far point";
+  EXPECT_EQ(count(svg, "<text class=\"label hidden\" data-wanted"), 0u) << svg;
+  EXPECT_GE(count(svg, "<line class=\"leader\""), 1u) << "the cluster needs leader lines";
+}
+
 // Issue 14: a failed run is a row in every output (the reason, no numbers, no point), with
 // the CSV's columns unchanged; the other runs are as before.
 TEST(Report, AFailedRunIsARowEverywhere) {

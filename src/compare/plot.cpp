@@ -301,6 +301,8 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
     double x, y;
     const char* anchor;
     bool shown;
+    bool leader = false;  // drawn away from its point, joined to it by a line from (lx0, ly0) to (lx1, ly1)
+    double lx0 = 0, ly0 = 0, lx1 = 0, ly1 = 0;
   };
   std::vector<Placed> placed(runs.size());
   auto place = [&](std::size_t k, bool keep) {
@@ -313,15 +315,37 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
     };
     const Try tries[] = {{d, 3.5, "start"},      {-d, 3.5, "end"},       {0, -d - 1, "middle"},  {0, d + 9, "middle"},
                          {d - 1, -d, "start"},   {d - 1, d + 8, "start"}, {-d + 1, -d, "end"},    {-d + 1, d + 8, "end"}};
+    auto fits = [&](const Box& b) {
+      return b.x0 >= area.x0 && b.x1 <= area.x1 && b.y0 >= area.y0 && b.y1 <= area.y1 &&
+             std::none_of(taken.begin(), taken.end(), [&](const Box& o) { return o.overlaps(b); });
+    };
     for (const Try& t : tries) {
       const double bx = x + t.dx, by = y + t.dy;
       const double x0b = t.anchor[0] == 's' ? bx : t.anchor[0] == 'e' ? bx - w : bx - w / 2;
       const Box b{x0b - 1, by - kLabelFont, x0b + w + 1, by + 3};
-      if (b.x0 < area.x0 || b.x1 > area.x1 || b.y0 < area.y0 || b.y1 > area.y1) continue;
-      if (std::any_of(taken.begin(), taken.end(), [&](const Box& o) { return o.overlaps(b); })) continue;
+      if (!fits(b)) continue;
       if (keep) taken.push_back(b);
       placed[k] = {bx, by, t.anchor, keep};
       return true;
+    }
+    // A label the plot must show (front, family best) that found no room beside its point goes
+    // to the nearest free place further out, centred on rings of growing radius, with a leader
+    // line back to the point: in a crowded corner of the plot (the default scene's single-map
+    // family) the eight places are often all taken, and which ones depends on the timings.
+    if (keep) {
+      constexpr int kAngles = 16;
+      for (double radius = 2 * d + 6; radius <= 0.5 * std::max(pw, ph); radius += 6)
+        for (int a = 0; a < kAngles; ++a) {
+          const double phi = 2 * M_PI * a / kAngles, cx = x + radius * std::cos(phi), cy = y + radius * std::sin(phi);
+          const Box b{cx - w / 2 - 1, cy - kLabelFont / 2 - 1.5, cx + w / 2 + 1, cy + kLabelFont / 2 + 1.5};
+          if (!fits(b)) continue;
+          taken.push_back(b);
+          // The line from the marker's edge to the nearest point of the label's box.
+          const double ex = std::clamp(x, b.x0, b.x1), ey = std::clamp(y, b.y0, b.y1);
+          const double len = std::hypot(ex - x, ey - y), ux = (ex - x) / len, uy = (ey - y) / len;
+          placed[k] = {cx, cy + 3.5, "middle", true, true, x + ux * (kR + 1), y + uy * (kR + 1), ex, ey};
+          return true;
+        }
     }
     placed[k] = {x + d, y + 3.5, "start", false};  // no room: on hover only, at the right
     return false;
@@ -343,8 +367,13 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
                             onFront ? "#000" : "white", onFront ? 1.5 : 1),
                 fmt::format("<title>{}: {:.2f} ms, {} {:.4g}{}</title>", escapeMarkup(runLabel(r, run)), run.total.median,
                             escapeMarkup(errorAxisName(r, axis)), run.errorOn(axis), onFront ? " (Pareto front)" : ""));
-    s += fmt::format("<text class=\"label{}\" {} x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}<tspan fill=\"#555\">{}</tspan></text>\n",
-                     placed[k].shown ? "" : " hidden", ids, placed[k].x, placed[k].y, placed[k].anchor, escapeMarkup(name),
+    if (placed[k].leader)
+      s += fmt::format("<line class=\"leader\" x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#999\" "
+                       "stroke-width=\"0.8\"/>\n",
+                       placed[k].lx0, placed[k].ly0, placed[k].lx1, placed[k].ly1);
+    const bool isWanted = std::find(wanted.begin(), wanted.end(), k) != wanted.end();
+    s += fmt::format("<text class=\"label{}\"{} {} x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}<tspan fill=\"#555\">{}</tspan></text>\n",
+                     placed[k].shown ? "" : " hidden", isWanted ? " data-wanted=\"1\"" : "", ids, placed[k].x, placed[k].y, placed[k].anchor, escapeMarkup(name),
                      escapeMarkup(preset));
     s += "</g>\n";
   }

@@ -4,9 +4,10 @@
 // constant (techniques/shadow_volume, paper 7.2); (2) the potential silhouette edges, accurate
 // (edges that are silhouettes for some point of the light) or standard (from the centre);
 // (3) the counter packing (adaptive sampling, 5.3), from a bound on D(c) + the positive updates
-// of a pixel: on a light's first frame a bound pass computes it, later frames reuse the bound
-// the previous frame measured, and every frame checks its own bound after the pass and renders
-// again with a wider base if a digit could have overflowed; (4) per pass over a subset of the
+// of a pixel: every counter pass measures that bound, later frames plan from the bound the
+// previous frame measured, a light's first frame plans for the widest base at base 256's cost,
+// and every frame checks its own bound after the pass and renders again with a wider base if
+// a digit could have overflowed; (4) per pass over a subset of the
 // samples: counters initialised to D(c) in every digit, then each edge's wedge rasterised
 // (shaders/dcs_wedge.geom) and its exact per-sample update (shaders/common_dcs.glsl) blended
 // into float-packed counters (eq. 7-10), positive and negative updates in one pass (exact in
@@ -19,8 +20,8 @@
 // of the selected edges (shaders/dcs_solids.comp), then per 8x8 tile the edges whose solid
 // meets the bounding box of the tile's visible points, evaluated per pixel inside the solid with
 // the raster path's update function (shaders/dcs_wedge.comp). It adds each pixel's counts once,
-// so the packing holds the final counts only: it needs no bound pass, and its bound is the true
-// maximum count, measured exactly (a count past its digit is seen and rendered again).
+// so the packing holds the final counts only, and its bound is the true maximum count,
+// measured exactly (a count past its digit is seen and rendered again).
 //
 // Semi-opaque occluders add opacity units instead of 1 (dcs/opacity.h); the covered samples
 // come from the exact 3D test or the paper's 2D naive loop or edge LUT (dcs/edge_lut.h).
@@ -87,6 +88,8 @@ struct GpuStatus {
 constexpr int kBias = 2;
 // The counts the compute path's first frame of a light plans for (base 64 with the bias).
 constexpr int kComputeFirstCount = 61;
+// The raster path's first frame plans for the widest base costing no more than base 256's plan.
+constexpr int kFirstFrameCount = 255;
 // The largest count the widest layout (one counter per float channel) holds: float adds
 // integers exactly below 2^24 (packing.h).
 constexpr std::int64_t kMaxExactCount = std::int64_t(dcs::kLayouts[dcs::kLayoutCount - 1].base) - 1;
@@ -214,8 +217,6 @@ class DepthComplexitySampling final : public Technique {
     incidenceBuffer_ = gl::Buffer(incidences);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
     profileImage_ = gl::Texture::make2D(GL_R32UI, 7, 1);
-    bound_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
-    boundFbo_ = gl::Framebuffer({&bound_}, &gpu.depth());
     checksum_ = gl::Texture::make2D(GL_RG32F, gpu.width(), gpu.height());
     programs_.clear();
     luts_.clear();
@@ -260,7 +261,7 @@ class DepthComplexitySampling final : public Technique {
   std::size_t memoryBytes() const override {
     std::size_t lutBytes = 0;
     for (auto& [hash, l] : luts_) lutBytes += l.bytes();
-    return volumes_.counter().bytes() + bound_.bytes() + checksum_.bytes() + (counters_ ? counters_.bytes() : 0) +
+    return volumes_.counter().bytes() + checksum_.bytes() + (counters_ ? counters_.bytes() : 0) +
            edgeBuffer_.size() + incidenceBuffer_.size() + lutBytes + compute_.memoryBytes();
   }
 
@@ -466,10 +467,12 @@ class DepthComplexitySampling final : public Technique {
   // samples. Every counter pass measures exactly that per pixel (the checksum target's second
   // channel), so a frame can choose its packing from the previous frame's maximum for this
   // light and check it: if a counter could have overflowed, the passes run again with the
-  // packing the measured bound needs (never a silently wrong count). The first frame of a light
-  // has no previous maximum and runs the bound pass, which computes the bound before any
-  // counter exists.
-  int counterBound(LightPass& pass, const LightFrame& f) {
+  // packing the measured bound needs (never a silently wrong count). A light's first frame has
+  // no previous maximum: it plans for the widest base that costs no more targets than base 256
+  // and no extra pass (4096 at 16 samples, 64 at 64), and its pass measures the bound for the
+  // next (and renders again where that bound does not fit). Until issue 19 a separate bound pass computed it first,
+  // rasterising every wedge once more (54-70% of a counter pass; engine 256^2: 2.5 s).
+  int counterBound(const LightPass& pass, const LightFrame& f) const {
     auto cached = boundCache_.find(pass.lightIndex);
     if (cached != boundCache_.end()) return cached->second;
     if (options_.firstFrameBound >= 0) return options_.firstFrameBound + kBias + f.maxPathGain;
@@ -478,41 +481,26 @@ class DepthComplexitySampling final : public Technique {
     // for counts up to kComputeFirstCount and renders again, with the base the measured
     // maximum needs, when they go higher.
     if (options_.computePath) return kComputeFirstCount + kBias + f.maxPathGain;
-    return pass.timer.time("dcs bound", [&] {
-      boundFbo_.bind();
-      const float zero[4] = {0, 0, 0, 0};
-      glClearNamedFramebufferfv(boundFbo_.id(), GL_COLOR, 0, zero);
-      pass.gpu.bindGBuffer();
-      passRange_.write({0, std::uint32_t(pass.samples.count)});
-      beginWedgeState();
-      drawWedges(boundProgramFor(f.coverage), pass, f);
-      endWedgeState();
-      Image dc = volumes_.counter().read(1), bound = bound_.read(1);
-      float m = 0.0f;
-      for (std::size_t i = 0; i < dc.data.size(); ++i) m = std::max(m, std::round(dc.data[i]) + bound.data[i]);
-      // Float sums of positive integers never round below 2^24 once past it: a bound too
-      // deep for every base is seen as such (and refused) before an int could overflow.
-      if (!(double(m) + kBias + double(f.maxPathGain) <= double(kMaxExactCount)))
-        refuseDepth(f.light, double(m) + double(f.maxPathGain));
-      return int(m) + kBias + f.maxPathGain;
-    });
+    const dcs::PackingPlan wide =
+        dcs::widestPlanAtTheCostOf(pass.samples.count, kFirstFrameCount, options_.maxTargets, minLayout());
+    return int(wide.counters.base - 1);
+  }
+
+  // The narrowest layout options_.minBase allows.
+  int minLayout() const {
+    int layout = 0;
+    while (layout + 1 < dcs::kLayoutCount && dcs::kLayouts[layout].base < options_.minBase) ++layout;
+    return layout;
   }
 
   // The counter plan from `maxCount` and its passes, planned again with the measured bound
   // until no digit could have overflowed.
   std::pair<dcs::PackingPlan, GpuStatus> planAndCount(LightPass& pass, const LightFrame& f, int maxCount, bool hadBound) {
     const Light& light = f.light;
-    int minLayout = 0;
-    while (minLayout + 1 < dcs::kLayoutCount && dcs::kLayouts[minLayout].base < options_.minBase) ++minLayout;
     dcs::PackingPlan plan;
     GpuStatus status;
     for (int attempt = 0;; ++attempt) {
-      plan = dcs::planPacking(pass.samples.count, maxCount, options_.maxTargets, minLayout);
-      // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes
-      // (once per light, not on every frame that reuses the bound).
-      if ((plan.layout > minLayout || plan.passes > 1) && (!hadBound || attempt > 0))
-        PLOG_INFO("dcs: light '{}': counts up to {} (bound, + bias {}) need {}", light.name, maxCount - kBias, kBias,
-                   plan.describe());
+      plan = dcs::planPacking(pass.samples.count, maxCount, options_.maxTargets, minLayout());
       status = counterPasses(pass, f, plan);
       if (std::int64_t(status.boundMax) > kMaxExactCount) {
         boundCache_.erase(pass.lightIndex);
@@ -520,6 +508,12 @@ class DepthComplexitySampling final : public Technique {
       }
       int measured = int(status.boundMax);
       boundCache_[pass.lightIndex] = measured;
+      // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes
+      // (once per light, from its first measured bound, not on every frame that reuses it).
+      const dcs::PackingPlan needed = dcs::planPacking(pass.samples.count, measured, options_.maxTargets, minLayout());
+      if ((needed.layout > minLayout() || needed.passes > 1) && !hadBound && attempt == 0)
+        PLOG_INFO("dcs: light '{}': counts up to {} (bound, + bias {}) need {}", light.name, measured - kBias, kBias,
+                  needed.describe());
       if (std::int64_t(plan.counters.base) - 1 >= measured) break;
       PENUMBRA_CHECK(plan.layout + 1 < dcs::kLayoutCount && attempt < dcs::kLayoutCount, "dcs: no counter base fits");
       PLOG_INFO("dcs: light '{}': counts up to {} overflow base {}; rendering again", light.name, measured - kBias,
@@ -717,11 +711,6 @@ class DepthComplexitySampling final : public Technique {
             compute ? &programs_.get({"dcs_wedge.comp"}, defs) : nullptr};
   }
 
-  const gl::Program& boundProgramFor(int coverage) {
-    return programs_.get({"dcs_wedge.vert", "dcs_wedge.geom", "dcs_wedge.frag"},
-                         {"BOUND", "DCS_TARGETS 1", "DIGITS 1", "DCS_COVERAGE " + std::to_string(coverage)});
-  }
-
   // The edge LUT of the light's sample pattern on the GPU (edge_lut_gpu.h), loaded or built
   // once per pattern.
   const GpuLut& lutFor(const LightPass& pass) {
@@ -772,8 +761,8 @@ class DepthComplexitySampling final : public Technique {
   std::vector<geo::VolumeRule> edgeRules_;  // the rule per mesh edgeBuffer_ holds
   gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (shaders/dcs_init.frag)
   dcs::ComputeWedges compute_;  // the compute path's solids and counts (path=compute)
-  gl::Texture bound_, checksum_, counters_;
-  gl::Framebuffer boundFbo_, counterFbo_;
+  gl::Texture checksum_, counters_;
+  gl::Framebuffer counterFbo_;
   gl::ProgramCache programs_;  // by shaders and defines (counter layout, coverage, opacity coding)
   std::map<std::uint64_t, GpuLut> luts_;  // by sample-pattern hash
   std::set<int> warnedCoplanar_;  // lights warned about (once each)

@@ -25,8 +25,9 @@ struct DcsOptions {
   // Count where the wedge pass's fragments go (statistics "profile*"); atomics slow it down.
   // A debugging aid, also switched on by the environment variable PENUMBRA_DCS_PROFILE=1.
   bool profile = false;
-  // >= 0: the first frame of a light plans its counters from this bound instead of running the
-  // bound pass (the after-pass check and re-render still apply; tests use it to force them).
+  // >= 0: the first frame of a light plans its counters from this bound instead of the widest
+  // base at base 256's cost (the after-pass check and re-render still apply; tests use it to
+  // force them).
   int firstFrameBound = -1;
   // Semi-opaque occluders (dcs/opacity.h): the paper's sum of opacities or the product of
   // transmittances, and the largest single-layer transmittance error the unit coding may make.

@@ -32,4 +32,14 @@ PackingPlan planPacking(int samples, int maxCount, int maxTargets, int minLayout
   return plan;
 }
 
+PackingPlan widestPlanAtTheCostOf(int samples, int maxCount, int maxTargets, int minLayout) {
+  const PackingPlan cost = planPacking(samples, maxCount, maxTargets, minLayout);
+  const int fewestPasses = planPacking(samples, 0, maxTargets, minLayout).passes;
+  for (int i = kLayoutCount - 1; i >= 0; --i) {
+    PackingPlan p = planPacking(samples, int(kLayouts[i].base - 1), maxTargets, minLayout);
+    if (p.targets <= cost.targets && p.passes <= fewestPasses) return p;
+  }
+  return planPacking(samples, 0, maxTargets, minLayout);
+}
+
 }  // namespace penumbra::dcs

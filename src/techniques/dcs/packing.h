@@ -31,4 +31,10 @@ struct PackingPlan {
 // using at most `maxTargets` targets per pass and as few passes as that layout allows.
 PackingPlan planPacking(int samples, int maxCount, int maxTargets, int minLayout = 0);
 
+// The widest layout whose plan needs no more targets than the plan for `maxCount` and no more
+// passes than the fewest any layout needs: the counts that can be had without an extra pass. A
+// light's first frame, with no bound measured yet, plans for it (dcs.cpp, issue 19 section 3;
+// a second pass costs as much as the bound pass this replaces, so it is never guessed).
+PackingPlan widestPlanAtTheCostOf(int samples, int maxCount, int maxTargets, int minLayout = 0);
+
 }  // namespace penumbra::dcs

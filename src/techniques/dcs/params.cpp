@@ -35,8 +35,8 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
       ParamSpec::choice("path", kPathChoices[o.computePath ? 1 : 0], kPathChoices,
                         "the wedge pass: raster (each edge's wedge solid rasterised, its front faces depth-tested) or "
                         "compute (wedges binned into 8x8 tiles by the bounds of their visible points and evaluated "
-                        "per pixel inside the solid; counts added once, so the packing holds the final counts only and "
-                        "no bound pass runs)"),
+                        "per pixel inside the solid; counts added once, so the packing holds the final counts only: "
+                        "base 64 where the raster path needs the positive updates' bound)"),
       ParamSpec::choice("coverage", kCoverageChoices[std::size_t(o.coverage)], kCoverageChoices,
                         "covered-sample test: exact (3D, per sample), naive (the paper's loop over 8-bit packed "
                         "positions, 7.1) or lut (the paper's edge LUT, 7.3); the 2D modes serve rect and disk lights, "
@@ -51,9 +51,9 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
       ParamSpec::choice("min-base", std::to_string(o.minBase), baseChoices(),
                         "narrowest counter base the packing may use (5.3: more counters per channel, fewer passes)"),
       ParamSpec::integer("first-bound", o.firstFrameBound, 0, int(dcs::kLayouts[dcs::kLayoutCount - 1].base) - 1,
-                         "a light's first frame plans its counters from this bound instead of running the bound pass "
-                         "(the check after the pass and the re-render still apply; tests force them with it)")
-          .shown("bound pass"),
+                         "a light's first frame plans its counters from this bound instead of the widest base at base "
+                         "256's cost (the check after the pass and the re-render still apply; tests force them with it)")
+          .shown("base 256's cost"),
       ParamSpec::path("lut-file", "the edge LUT file (refused unless built for the light's sample pattern); empty: "
                                   "`<lut-dir>/edge_<shape>_<strategy>_<pattern>_n<N>_seed<S>.lut` if it exists, else "
                                   "built in memory"),
