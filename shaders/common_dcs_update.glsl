@@ -64,4 +64,18 @@ int dcsEdgeUpdate(ivec2 px, vec3 p, int edgeId, uint first, uint count, out uint
   return delta;
 }
 
+// The index-weighted number of samples in mask: the sum of j + 1 over its set bits j (the
+// weights of the second digit sum, dcs_resolve.frag), as bit counts of the index bits.
+float dcsMaskIndexSum(uint mask[MASK_WORDS]) {
+  float sum = 0.0;
+  for (int w = 0; w < MASK_WORDS; ++w) {
+    uint m = mask[w];
+    int ones = bitCount(m);
+    int positions = bitCount(m & 0xAAAAAAAAu) + 2 * bitCount(m & 0xCCCCCCCCu) + 4 * bitCount(m & 0xF0F0F0F0u) +
+                    8 * bitCount(m & 0xFF00FF00u) + 16 * bitCount(m & 0xFFFF0000u);
+    sum += float(positions + (w * 32 + 1) * ones);
+  }
+  return sum;
+}
+
 #endif

@@ -1,6 +1,6 @@
 // Initialises the packed counters of a pass with the integration constant D(c) in every digit
-// (DCS section 7.3: "MUL r0.w, r0.w, 266305" for base 64), the checksum with passCount * D(c)
-// and the pixel's bound with D(c).
+// (DCS section 7.3: "MUL r0.w, r0.w, 266305" for base 64), the checksum with passCount * D(c),
+// the pixel's bound with D(c) and the index-weighted checksum with D(c) (1 + ... + passCount).
 // Path crossings (hard case 28, a light partly inside a closed occluder or through one): where
 // the straight path from c to sample s passes through a triangle t, the count changes without
 // any edge being crossed: the segment x -> p gains or loses t as its end x passes t's plane.
@@ -77,7 +77,7 @@ void main() {
     vec3 p = penumbraShadowOrigin(gp.xyz, texelFetch(gNormal, px, 0).xyz, eyePosition);
     uint base = pixelSampleBase(px) + passFirst;
     vec4 acc[DCS_TARGETS];
-    float total = 0.0, most = 0.0;
+    float total = 0.0, weighted = 0.0, most = 0.0;
     for (int t = 0; t < DCS_TARGETS; ++t) {
       for (int ch = 0; ch < 4; ++ch) {
         float value = 0.0, weight = 1.0;
@@ -88,6 +88,7 @@ void main() {
             float g = pathGain(base + j, p);
             count += g;
             total += count;
+            weighted += float(j + 1u) * count;
             most = max(most, g);
           }
           value += count * weight;
@@ -114,7 +115,7 @@ void main() {
 #if DCS_TARGETS > 6
     outCounter6 = acc[6];
 #endif
-    outChecksum = vec4(total, dc + most, 0.0, 0.0);
+    outChecksum = vec4(total, dc + most, weighted, 0.0);
     return;
   }
   outCounter0 = v;
@@ -136,5 +137,6 @@ void main() {
 #if DCS_TARGETS > 6
   outCounter6 = v;
 #endif
-  outChecksum = vec4(dc * float(passCount), dc, 0.0, 0.0);  // (digit sum, bound), dcs_wedge.frag
+  // (digit sum, bound, index-weighted digit sum), dcs_wedge.frag
+  outChecksum = vec4(dc * float(passCount), dc, dc * float(passCount * (passCount + 1u) / 2u), 0.0);
 }

@@ -1,9 +1,17 @@
 // Resolve of one pass: decode the packed counters (eq. 7-10), write each sample's visibility
 // (above the horizon and count == 0: the Heaviside of eq. 5-6; with semi-opaque occluders the
 // transmittance the count's units decode to, DCS_OPACITY and shared.h penumbraDcsTransmittance)
-// into the per-sample array, and add this pass's share of the visibility buffer (eq. 1-2). A counter that overflowed its digit
-// carries into its neighbour; that changes the digit sum, so comparing it with the checksum
-// (the plain sum of all updates) detects it, and the pixel is reported.
+// into the per-sample array, and add this pass's share of the visibility buffer (eq. 1-2).
+// A final count past its digit carries into its neighbour (-B at its digit, +1 at the next),
+// one below zero borrows (+B, -1): either changes the digit sum, so comparing it with the
+// checksum (the plain sum of all updates) detects it. Where the pixel's bound (D(c) + bias +
+// its positive updates) fits the base, no count can pass its digit and a mismatch is an
+// inconsistency (a borrow, reported: overflowPixels). Where it does not (dcs/packing.h: a plan
+// for the final counts), a mismatch may be a carry (carryPixels: dcs.cpp renders again with a
+// base above the bound); there a carry and a borrow of the same pixel cancel in the plain sum,
+// so the sum weighted by sample index + 1 is compared as well (a carry out of sample j changes
+// it by -(B - 1)(j + 1) + 1, a borrow by +(B - 1)(j + 1) - 1: one carry and one borrow never
+// cancel in both).
 #include "dcs_bindings.h"
 #include "common_light.glsl"
 #include "common_dcs_pass.glsl"
@@ -22,6 +30,7 @@ layout(std430, binding = PENUMBRA_SSBO_DCS_STATUS) buffer DcsStatus {
                          // as 0, reported
   uint boundMax;         // largest D(c) + bias + positive updates (dcs_wedge.frag)
   uint firstNegative;    // the first pixel (y * width + x, rows from the top) with a negative count
+  uint carryPixels;      // digit sums != checksums where a count may pass its digit: render again
 };
 
 uniform float counterBase;
@@ -37,7 +46,7 @@ void main() {
   vec3 n = texelFetch(gNormal, px, 0).xyz;
   uint base = pixelSampleBase(px);
   vec3 v = vec3(0.0);
-  float digitTotal = 0.0;
+  float digitTotal = 0.0, digitWeighted = 0.0;
   bool bad = false;
   uint channels = (passCount + uint(DIGITS) - 1u) / uint(DIGITS);
   uint j = 0u;
@@ -52,6 +61,7 @@ void main() {
       value = q;
       if (j >= passCount) continue;
       digitTotal += digit;
+      digitWeighted += float(j + 1u) * digit;
       maxD = max(maxD, uint(digit));
       uint k = passFirst + j;
       vec3 x = samplePositions[base + k].xyz;
@@ -66,11 +76,13 @@ void main() {
     // Every digit decoded (unused ones of the last channel hold D(c)): nothing may be left.
     bad = bad || value != 0.0;
   }
-  vec2 sums = texelFetch(checksum, px, 0).rg;
-  float expected = sums.r;
+  vec3 sums = texelFetch(checksum, px, 0).rgb;
   // Clamped below 2^32 (uint() of a larger float is undefined): still past 2^24, still refused.
   atomicMax(boundMax, uint(min(sums.g, 4294967040.0)));
-  if (bad || abs(digitTotal - expected) > 0.5) atomicAdd(overflowPixels, 1u);
+  bool mayCarry = sums.g > counterBase - 1.0;
+  bad = bad || abs(digitTotal - sums.r) > 0.5 || (mayCarry && abs(digitWeighted - sums.b) > 0.5);
+  if (bad && mayCarry) atomicAdd(carryPixels, 1u);
+  else if (bad) atomicAdd(overflowPixels, 1u);
   if (negative) {
     atomicAdd(negativePixels, 1u);
     atomicMin(firstNegative, uint(px.y * textureSize(gPosition, 0).x + px.x));

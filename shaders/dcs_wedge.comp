@@ -27,7 +27,7 @@ layout(local_size_x = TILE, local_size_y = TILE) in;
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
 layout(binding = PENUMBRA_IMAGE_DCS_COUNTERS, rgba32f) uniform image2DArray counterImage;
-layout(binding = PENUMBRA_IMAGE_DCS_CHECKSUM, rg32f) uniform image2D checksumImage;
+layout(binding = PENUMBRA_IMAGE_DCS_CHECKSUM, rgba32f) uniform image2D checksumImage;
 layout(std430, binding = PENUMBRA_SSBO_DCS_SOLIDS) readonly buffer DcsSolids { DcsSolidPlanes dcsSolids[]; };
 uniform vec3 eyePosition;
 // The running counts of the pass between dispatches, PASS_SAMPLES a pixel, and the chunks the
@@ -166,7 +166,7 @@ void main() {
   }
 
   // The final counts: the initialised digits (D(c) + bias + path crossings) plus the updates.
-  float total = 0.0, largest = 0.0;
+  float total = 0.0, weighted = 0.0, largest = 0.0;
   for (int t = 0; t < DCS_TARGETS; ++t) {
     vec4 v = imageLoad(counterImage, ivec3(px, t));
     for (int ch = 0; ch < 4; ++ch) {
@@ -179,6 +179,7 @@ void main() {
         if (uint(j) < passCount) {
           float c = digit + float(count[j]);
           total += float(count[j]);
+          weighted += float((j + 1) * count[j]);
           largest = max(largest, c);
           digit = clamp(c, 0.0, float(DCS_BASE - 1));
         }
@@ -188,6 +189,6 @@ void main() {
     }
     imageStore(counterImage, ivec3(px, t), v);
   }
-  vec2 sums = imageLoad(checksumImage, px).rg;
-  imageStore(checksumImage, px, vec4(sums.r + total, max(sums.g, largest), 0.0, 0.0));
+  vec4 sums = imageLoad(checksumImage, px);
+  imageStore(checksumImage, px, vec4(sums.r + total, max(sums.g, largest), sums.b + weighted, 0.0));
 }

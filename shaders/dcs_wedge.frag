@@ -8,7 +8,8 @@
 // The paper's outer-before-inner batching (section 4.3) is needed for unsigned integers only.
 // The checksum target gets (the sum of all updates, the positive updates): its second channel,
 // started at D(c) + bias, bounds every counter of the pixel at every step (adaptive sampling,
-// section 5.3; dcs.cpp checks it after the pass and plans the next frame from it).
+// section 5.3; dcs.cpp checks it after the pass and plans the next frame from it), and the sum
+// of the updates weighted by sample index + 1 (the second digit sum, dcs_resolve.frag).
 #include "common_light.glsl"
 #include "common_dcs.glsl"
 #include "common_dcs_pass.glsl"
@@ -96,5 +97,5 @@ void main() {
 #if DCS_TARGETS > 6
   outCounter6 = acc[6];
 #endif
-  outChecksum = vec4(float(delta * covered), float(max(delta, 0)), 0.0, 0.0);
+  outChecksum = vec4(float(delta * covered), float(max(delta, 0)), float(delta) * dcsMaskIndexSum(mask), 0.0);
 }

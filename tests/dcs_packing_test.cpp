@@ -1,15 +1,69 @@
 // Float-base counter packing (DCS eq. 7-10) and the packing planner. No GL.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "techniques/dcs/packing.h"
 
 namespace penumbra::dcs {
 namespace {
 
-TEST(DcsPacking, EveryLayoutFillsExactly24Bits) {
-  for (const auto& l : kLayouts) EXPECT_EQ(std::pow(double(l.base), l.digits), double(1 << 24)) << l.base;
+TEST(DcsPacking, EveryLayoutHoldsAsManyDigitsAs24BitsAllow) {
+  for (const auto& l : kLayouts) {
+    EXPECT_LE(std::pow(double(l.base), l.digits), double(1 << 24)) << l.base;
+    EXPECT_GT(std::pow(double(l.base), l.digits + 1), double(1 << 24)) << l.base;
+    EXPECT_TRUE(exactWhileCounting(l.base, l.digits, std::int64_t(l.base) - 1)) << "the paper's rule, base " << l.base;
+  }
+}
+
+// Issue 19 section 2: partial counts may pass their digit (carry into the next, borrow back)
+// when the channel's partial sums stay exact; the final value decodes to the final counts.
+// Each step adds +-1 to a random digit, the partial counts wander in [-reach, reach], the last
+// steps walk every count back into [0, base).
+TEST(DcsPacking, PartialCountsPastTheDigitDecodeExactlyWhereThePlanSaysSo) {
+  for (const auto& l : kLayouts) {
+    if (l.digits == 1) continue;
+    const std::int64_t reach = 4 * std::int64_t(l.base);
+    int digits = l.digits;
+    while (digits > 0 && !exactWhileCounting(l.base, digits, reach)) --digits;
+    if (digits < 2) continue;  // 4096: one digit at this reach
+    float v = 0.0f;
+    std::vector<int> counts(std::size_t(digits), 0);
+    unsigned seed = 777u;
+    int passedTheDigit = 0;
+    auto add = [&](int d, int delta) {
+      counts[std::size_t(d)] += delta;
+      v += float(delta) * float(std::pow(double(l.base), d));
+      passedTheDigit += counts[std::size_t(d)] >= int(l.base) || counts[std::size_t(d)] < 0;
+    };
+    for (int step = 0; step < 20000; ++step) {
+      seed = seed * 1664525u + 1013904223u;
+      int d = int(seed >> 8) % digits;
+      int c = counts[std::size_t(d)];
+      add(d, c >= reach ? -1 : (c <= -reach ? 1 : ((seed >> 4) & 1 ? 1 : -1)));
+    }
+    for (int d = 0; d < digits; ++d)
+      while (counts[std::size_t(d)] < 0 || counts[std::size_t(d)] >= int(l.base)) add(d, counts[std::size_t(d)] < 0 ? 1 : -1);
+    EXPECT_GT(passedTheDigit, 100) << "base " << l.base << ": the walk passed the digits";
+    double rest = v;
+    for (int d = 0; d < digits; ++d) {
+      double q = std::floor(rest / l.base);
+      EXPECT_EQ(int(rest - q * l.base), counts[std::size_t(d)]) << "base " << l.base << " digit " << d;
+      rest = q;
+    }
+    EXPECT_EQ(rest, 0.0);
+  }
+  // The boundary: 496 * (1 + 32 + 32^2 + 32^3) = 2^24 - 16, 497 passes 2^24; 4 digits of base
+  // 64 at 263 are past it too.
+  EXPECT_TRUE(exactWhileCounting(32, 4, 263));
+  EXPECT_TRUE(exactWhileCounting(32, 4, 496));
+  EXPECT_FALSE(exactWhileCounting(32, 4, 497));
+  EXPECT_FALSE(exactWhileCounting(64, 4, 263));
+  EXPECT_TRUE(exactWhileCounting(64, 3, 263));
+  EXPECT_FALSE(exactWhileCounting(8, 8, -1));
 }
 
 TEST(DcsPacking, FloatAdditionOfPackedDigitsIsExact) {
@@ -43,7 +97,50 @@ TEST(DcsPacking, PlannerPicksTheNarrowestBaseThatHoldsTheCount) {
   EXPECT_EQ(planPacking(16, 64, 4).counters.base, 256u);
   EXPECT_EQ(planPacking(16, 256, 4).counters.base, 4096u);
   EXPECT_EQ(planPacking(16, 5000, 4).counters.base, 1u << 24);
-  EXPECT_EQ(planPacking(16, 1, 4, 2).counters.base, 64u);  // minimum layout honoured
+  EXPECT_EQ(planPacking(16, 1, 4, 3).counters.base, 64u);  // minimum layout honoured
+  for (int maxCount : {0, 5, 30, 200, 3000}) {                // the paper's rule: no carries
+    const PackingPlan p = planPacking(16, maxCount, 4);
+    EXPECT_FALSE(p.mayCarry()) << maxCount;
+    EXPECT_EQ(p.reach, maxCount);
+  }
+}
+
+// Issue 19 section 2: the engine's counts end at 29 (with the bias) but pass 263 on the way.
+// The paper's rule packs base 4096 (2 a channel: 16 samples in 2 targets, 64 in 2 passes);
+// holding the final counts, with the partial sums exact, packs base 32 (4 a channel: 1 target,
+// 64 samples in 4 targets and one pass).
+TEST(DcsPacking, PlannerHoldsTheFinalCountsWithExactPartialSums) {
+  PackingPlan paper = planPacking(16, 265, 4), p = planPacking(16, 29, 4, 0, 265);
+  EXPECT_EQ(paper.counters.base, 4096u);
+  EXPECT_EQ(paper.targets, 2);
+  EXPECT_EQ(p.counters.base, 32u);
+  EXPECT_EQ(p.counters.digits, 4);
+  EXPECT_EQ(p.targets, 1);
+  EXPECT_TRUE(p.mayCarry());
+  EXPECT_TRUE(p.holds(265));
+  EXPECT_FALSE(p.holds(497)) << "past the exact partial sums: the pass is redone";
+  EXPECT_EQ(planPacking(64, 265, 4).passes, 2);
+  p = planPacking(64, 29, 4, 0, 265);
+  EXPECT_EQ(p.counters.base, 32u);
+  EXPECT_EQ(p.targets, 4);
+  EXPECT_EQ(p.passes, 1);
+  // Every plan: the final counts fit their digits, the partial sums and the weighted checksum
+  // stay exact at the reach, and it costs no more than the paper's rule.
+  for (int n : {1, 16, 32, 64, 100, 128})
+    for (int maxTargets : {1, 4, 7})
+      for (int maxCount : {2, 10, 29, 100, 300})
+        for (std::int64_t reach : {0, 30, 265, 1000, 20000}) {
+          const PackingPlan q = planPacking(n, maxCount, maxTargets, 0, reach);
+          const PackingPlan r = planPacking(n, int(std::max<std::int64_t>(reach, maxCount)), maxTargets);
+          EXPECT_GE(std::int64_t(q.counters.base) - 1, maxCount);
+          EXPECT_TRUE(exactWhileCounting(q.counters.base, q.counters.digits, q.reach));
+          EXPECT_TRUE(q.holds(q.reach));
+          if (q.mayCarry()) {
+            EXPECT_TRUE(weightedChecksumExact(q.samplesPerPass, q.reach));
+          }
+          EXPECT_LE(std::pair(q.passes, q.targets), std::pair(r.passes, r.targets)) << n << " " << maxCount << " " << reach;
+          EXPECT_GE(q.passes * q.samplesPerPass, n);
+        }
 }
 
 TEST(DcsPacking, TargetsAndPassesCoverEverySample) {

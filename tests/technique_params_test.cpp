@@ -62,7 +62,7 @@ TEST(TechniqueParams, DcsTakesItsOptionsThroughParam) {
             std::string::npos);
   EXPECT_NE(errorOf([] { makeTechnique("dcs", TechniqueParams({"targets=8"})); }).find("--param: targets: 8 is outside [1, 7]"),
             std::string::npos);
-  EXPECT_NE(errorOf([] { makeTechnique("dcs", TechniqueParams({"min-base=32"})); }).find("min-base: expected one of 8, 16, 64"),
+  EXPECT_NE(errorOf([] { makeTechnique("dcs", TechniqueParams({"min-base=48"})); }).find("min-base: expected one of 8, 16, 32, 64"),
             std::string::npos);
   // The variants are presets of the same declarations: their defaults differ, their keys do not.
   EXPECT_EQ(findTechnique("dcs-lut").params.size(), findTechnique("dcs").params.size());

@@ -3,18 +3,19 @@
 // Per light: (1) the z-fail shadow-volume count from the light centre, D(c), the integration
 // constant (techniques/shadow_volume, paper 7.2); (2) the potential silhouette edges, accurate
 // (edges that are silhouettes for some point of the light) or standard (from the centre);
-// (3) the counter packing (adaptive sampling, 5.3), from a bound on D(c) + the positive updates
-// of a pixel: every counter pass measures that bound, later frames plan from the bound the
-// previous frame measured, a light's first frame plans for the widest base at base 256's cost,
-// and every frame checks its own bound after the pass and renders again with a wider base if
+// (3) the counter packing (adaptive sampling, 5.3): every counter pass measures a bound on
+// D(c) + the positive updates of a pixel and the largest final count, later frames plan from
+// what the previous frame measured (exact counts: for the final counts, with exact partial
+// sums, dcs/packing.h), a light's first frame plans for the widest base at base 256's cost,
+// and every frame checks its own counts after the pass and renders again with a wider base if
 // a digit could have overflowed; (4) per pass over a subset of the
 // samples: counters initialised to D(c) in every digit, then each edge's wedge rasterised
 // (shaders/dcs_wedge.geom) and its exact per-sample update (shaders/common_dcs.glsl) blended
 // into float-packed counters (eq. 7-10), positive and negative updates in one pass (exact in
 // float, see shaders/dcs_wedge.frag); (5) a resolve that decodes the counters into per-sample
 // visibility (count <= 0) and the visibility buffer, and checks each pixel's digit sum against a
-// checksum of all updates; a mismatch cannot be an overflow (the bound excludes it) and is
-// reported (see below).
+// checksum of all updates; where the pixel's bound fits the base a mismatch cannot be an
+// overflow and is reported (see below), elsewhere it is a carry and the pass is redone.
 //
 // The compute path (`path=compute`, issue 19) replaces step (4)'s rasterised wedges: the solids
 // of the selected edges (shaders/dcs_solids.comp), then per 8x8 tile the edges whose solid
@@ -82,6 +83,14 @@ struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
   std::uint32_t boundMax = 0;  // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
   std::uint32_t firstNegative = 0xffffffffu;  // y * width + x of the first pixel with a negative count
+  std::uint32_t carryPixels = 0;  // a digit sum off where a count may pass its digit (dcs_resolve.frag)
+};
+
+// What a counter plan must hold (both with the bias): the final counts and the partial counts
+// on the way (dcs/packing.h).
+struct CountBound {
+  int final = 0;
+  int reach = 0;
 };
 
 // Bias of every counter digit (shaders/dcs_init.frag).
@@ -217,7 +226,7 @@ class DepthComplexitySampling final : public Technique {
     incidenceBuffer_ = gl::Buffer(incidences);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
     profileImage_ = gl::Texture::make2D(GL_R32UI, 7, 1);
-    checksum_ = gl::Texture::make2D(GL_RG32F, gpu.width(), gpu.height());
+    checksum_ = gl::Texture::make2D(GL_RGBA32F, gpu.width(), gpu.height());
     programs_.clear();
     luts_.clear();
     boundCache_.clear();
@@ -251,9 +260,8 @@ class DepthComplexitySampling final : public Technique {
     centreCount(pass, f);
     selectEdges(pass, f, lightPass.light);
     const bool hadBound = boundCache_.count(pass.lightIndex) > 0;
-    const int maxCount = counterBound(pass, f);
-    auto [plan, status] = planAndCount(pass, f, maxCount, hadBound);
-    checkBound(pass, f, plan, status, maxCount);
+    auto [plan, status] = planAndCount(pass, f, counterBound(pass, f), hadBound);
+    checkBound(pass, f, plan, status);
   }
 
   bool providesPerSample() const override { return true; }
@@ -273,6 +281,7 @@ class DepthComplexitySampling final : public Technique {
             {"targets", double(stats_.plan.targets)},
             {"passes", double(stats_.plan.passes)},
             {"boundMaxCount", double(stats_.boundMaxCount)},
+            {"countsMayCarry", stats_.plan.mayCarry() ? 1.0 : 0.0},
             {"reruns", double(stats_.reruns)},
             {"maxCount", double(stats_.maxCount)},
             {"negativeCountPixels", double(stats_.negativePixels)},
@@ -462,29 +471,48 @@ class DepthComplexitySampling final : public Technique {
     }
   }
 
-  // Pass 3, the counter plan's bound. Adaptive sampling (5.3): the counter base must hold the
-  // largest value any counter reaches, D(c) + bias + the positive updates that cover one of its
-  // samples. Every counter pass measures exactly that per pixel (the checksum target's second
-  // channel), so a frame can choose its packing from the previous frame's maximum for this
-  // light and check it: if a counter could have overflowed, the passes run again with the
-  // packing the measured bound needs (never a silently wrong count). A light's first frame has
-  // no previous maximum: it plans for the widest base that costs no more targets than base 256
-  // and no extra pass (4096 at 16 samples, 64 at 64), and its pass measures the bound for the
-  // next (and renders again where that bound does not fit). Until issue 19 a separate bound pass computed it first,
-  // rasterising every wedge once more (54-70% of a counter pass; engine 256^2: 2.5 s).
-  int counterBound(const LightPass& pass, const LightFrame& f) const {
+  // Pass 3, the counter plan's bound. Adaptive sampling (5.3): the paper's counter base holds
+  // the largest value any counter reaches, D(c) + bias + the positive updates that cover one of
+  // its samples. Every counter pass measures exactly that per pixel (the checksum target's
+  // second channel) and the largest final count (the resolve), so a frame chooses its packing
+  // from the previous frame's counts for this light and checks it: if a counter could have
+  // overflowed, the passes run again with the packing the measured bound needs (never a
+  // silently wrong count). A light's first frame has no previous counts: it plans for the widest
+  // base that costs no more targets than base 256 and no extra pass (4096 at 16 samples, 64 at
+  // 64), and its pass measures the counts for the next (and renders again where they do not
+  // fit). Until issue 19 a separate bound pass computed the bound first, rasterising every
+  // wedge once more (54-70% of a counter pass; engine 256^2: 2.5 s).
+  //
+  // Issue 19 section 2: with exact counts (accurate silhouettes, the exact covered-sample test)
+  // later frames plan for the final counts with exact partial sums instead (dcs/packing.h), and
+  // the resolve checks every pixel where a count may have passed its digit. The paper's 2D
+  // modes and standard silhouettes leave counts below -bias at edge-band pixels by design,
+  // which that check cannot tell from a carry: they keep the paper's rule.
+  CountBound counterBound(const LightPass& pass, const LightFrame& f) const {
     auto cached = boundCache_.find(pass.lightIndex);
-    if (cached != boundCache_.end()) return cached->second;
-    if (options_.firstFrameBound >= 0) return options_.firstFrameBound + kBias + f.maxPathGain;
+    if (cached != boundCache_.end())
+      return plansFinalCounts(f) ? cached->second : CountBound{cached->second.reach, cached->second.reach};
+    auto both = [](int count) { return CountBound{count, count}; };
+    if (options_.firstFrameBound >= 0) {
+      const CountBound b = both(options_.firstFrameBound + kBias + f.maxPathGain);
+      return {b.final, std::max(b.reach, options_.firstFrameReach + kBias + f.maxPathGain)};
+    }
     // The compute path adds each count once: the packing must hold the final counts only, and
     // its pass measures their maximum exactly (shaders/dcs_wedge.comp). Its first frame plans
     // for counts up to kComputeFirstCount and renders again, with the base the measured
     // maximum needs, when they go higher.
-    if (options_.computePath) return kComputeFirstCount + kBias + f.maxPathGain;
+    if (options_.computePath) return both(kComputeFirstCount + kBias + f.maxPathGain);
     const dcs::PackingPlan wide =
         dcs::widestPlanAtTheCostOf(pass.samples.count, kFirstFrameCount, options_.maxTargets, minLayout());
-    return int(wide.counters.base - 1);
+    return both(int(wide.counters.base - 1));
   }
+
+  // Whether the light's counts are exact (a count below -bias is an error, never a design
+  // limit), so that the raster path may plan for the final counts (counterBound).
+  bool exactCounts(const LightFrame& f) const {
+    return f.coverage == PENUMBRA_DCS_COVERAGE_EXACT && options_.silhouettes == SilhouetteMode::Accurate;
+  }
+  bool plansFinalCounts(const LightFrame& f) const { return exactCounts(f) && !options_.computePath; }
 
   // The narrowest layout options_.minBase allows.
   int minLayout() const {
@@ -493,32 +521,40 @@ class DepthComplexitySampling final : public Technique {
     return layout;
   }
 
-  // The counter plan from `maxCount` and its passes, planned again with the measured bound
-  // until no digit could have overflowed.
-  std::pair<dcs::PackingPlan, GpuStatus> planAndCount(LightPass& pass, const LightFrame& f, int maxCount, bool hadBound) {
+  // The counter plan for `bound` and its passes, planned again by the paper's rule with the
+  // measured bound until no digit could have overflowed.
+  std::pair<dcs::PackingPlan, GpuStatus> planAndCount(LightPass& pass, const LightFrame& f, CountBound bound, bool hadBound) {
     const Light& light = f.light;
     dcs::PackingPlan plan;
     GpuStatus status;
     for (int attempt = 0;; ++attempt) {
-      plan = dcs::planPacking(pass.samples.count, maxCount, options_.maxTargets, minLayout());
+      plan = dcs::planPacking(pass.samples.count, bound.final, options_.maxTargets, minLayout(), bound.reach);
       status = counterPasses(pass, f, plan);
       if (std::int64_t(status.boundMax) > kMaxExactCount) {
         boundCache_.erase(pass.lightIndex);
         refuseDepth(light, double(status.boundMax) - kBias);
       }
-      int measured = int(status.boundMax);
-      boundCache_[pass.lightIndex] = measured;
+      const int reach = int(status.boundMax);
+      // The largest final count, where no count passed its digit (else the bound holds it).
+      const int final = status.carryPixels == 0 ? std::min(int(status.maxCount), reach) : reach;
+      boundCache_[pass.lightIndex] = {final, reach};
       // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes
       // (once per light, from its first measured bound, not on every frame that reuses it).
-      const dcs::PackingPlan needed = dcs::planPacking(pass.samples.count, measured, options_.maxTargets, minLayout());
+      const dcs::PackingPlan needed = dcs::planPacking(pass.samples.count, plansFinalCounts(f) ? final : reach,
+                                                       options_.maxTargets, minLayout(), reach);
       if ((needed.layout > minLayout() || needed.passes > 1) && !hadBound && attempt == 0)
-        PLOG_INFO("dcs: light '{}': counts up to {} (bound, + bias {}) need {}", light.name, measured - kBias, kBias,
-                  needed.describe());
-      if (std::int64_t(plan.counters.base) - 1 >= measured) break;
-      PENUMBRA_CHECK(plan.layout + 1 < dcs::kLayoutCount && attempt < dcs::kLayoutCount, "dcs: no counter base fits");
-      PLOG_INFO("dcs: light '{}': counts up to {} overflow base {}; rendering again", light.name, measured - kBias,
-                plan.counters.base);
-      maxCount = measured;
+        PLOG_INFO("dcs: light '{}': counts up to {} (partial counts up to {}, with the bias {}) need {}", light.name,
+                  final - kBias, reach - kBias, kBias, needed.describe());
+      const bool fits = plansFinalCounts(f) ? plan.holds(reach) : std::int64_t(plan.counters.base) - 1 >= reach;
+      if (status.carryPixels == 0 && fits) break;
+      PENUMBRA_CHECK(attempt < dcs::kLayoutCount, "dcs: no counter base fits");
+      if (status.carryPixels > 0)
+        PLOG_INFO("dcs: light '{}': {} pixels with counts past their digit in base {}; rendering again", light.name,
+                  status.carryPixels, plan.counters.base);
+      else
+        PLOG_INFO("dcs: light '{}': partial counts up to {} pass what {} holds; rendering again", light.name,
+                  reach - kBias, plan.describe());
+      bound = {reach, reach};  // the paper's rule: no count passes its digit
       pass.visibility.clear(glm::vec4(0.0f));
       ++stats_.reruns;
     }
@@ -609,8 +645,7 @@ class DepthComplexitySampling final : public Technique {
   // promises the reference's: an error, never a warning. Standard silhouettes (dcs-standard,
   // they miss edges) and the paper's 2D modes (naive, lut) are approximate by design; they
   // report such pixels.
-  void checkBound(const LightPass& pass, const LightFrame& f, const dcs::PackingPlan& plan, const GpuStatus& status,
-                  int maxCount) {
+  void checkBound(const LightPass& pass, const LightFrame& f, const dcs::PackingPlan& plan, const GpuStatus& status) {
     const Light& light = f.light;
     stats_.plan = plan;
     stats_.boundMaxCount = status.boundMax >= std::uint32_t(kBias) ? status.boundMax - kBias : 0;
@@ -620,7 +655,7 @@ class DepthComplexitySampling final : public Technique {
     std::size_t pixels = std::size_t(pass.gpu.width()) * std::size_t(pass.gpu.height());
     // A count that ends in [-bias, -1] (read as 0) is the same disagreement, caught by the bias
     // before it borrowed: exact dcs has none on any scene (render_dcs_test), so one is an error too.
-    const bool exact = f.coverage == PENUMBRA_DCS_COVERAGE_EXACT && options_.silhouettes == SilhouetteMode::Accurate;
+    const bool exact = exactCounts(f);
     if ((status.overflowPixels > 0 || status.negativePixels > 0) && exact)
       throw Error("dcs", fmt::format("light '{}': {} pixels with inconsistent counts (a counter left its digit) and {} "
                                      "with negative counts{}: the shadow-volume count and the wedges disagree, the image "
@@ -633,8 +668,8 @@ class DepthComplexitySampling final : public Technique {
     if (status.overflowPixels > pixels / 1000)
       PLOG_WARN("dcs: {} pixels with inconsistent counts (shadow-volume count vs wedges at a volume side)",
                 status.overflowPixels);
-    PLOG_DEBUG("dcs: {} edges, bound {}, {}, {} inconsistent pixels", stats_.edges, maxCount - kBias,
-               plan.describe(), status.overflowPixels);
+    PLOG_DEBUG("dcs: {} edges, counts up to {} (partial {}), {}, {} inconsistent pixels", stats_.edges,
+               stats_.maxCount, stats_.boundMaxCount, plan.describe(), status.overflowPixels);
   }
 
   // A light whose counts (its depth complexity times the units of a crossing) pass what a float
@@ -766,7 +801,7 @@ class DepthComplexitySampling final : public Technique {
   gl::ProgramCache programs_;  // by shaders and defines (counter layout, coverage, opacity coding)
   std::map<std::uint64_t, GpuLut> luts_;  // by sample-pattern hash
   std::set<int> warnedCoplanar_;  // lights warned about (once each)
-  std::map<int, int> boundCache_;  // light index -> the last frame's measured bound (+ bias)
+  std::map<int, CountBound> boundCache_;  // light index -> the last frame's measured counts (+ bias)
   gl::VertexArray emptyVao_;
   Stats stats_;
 };

@@ -17,7 +17,7 @@ enum class SilhouetteMode { Standard, Accurate };
 struct DcsOptions {
   SilhouetteMode silhouettes = SilhouetteMode::Accurate;
   int maxTargets = 4;  // packed RGBA32F counter targets per pass (paper: 4; up to 7 here)
-  std::uint32_t minBase = 8;  // narrowest counter base allowed (8, 16, 64, 256, 4096, 2^24)
+  std::uint32_t minBase = 8;  // narrowest counter base allowed (dcs::kLayouts)
   bool gpuSilhouettes = false;  // accurate silhouettes by a compute shader instead of the CPU
   // The counter pass's wedges: rasterised (their solids' front faces, shaders/dcs_wedge.geom) or
   // binned into screen tiles by a compute shader and evaluated per pixel (shaders/dcs_wedge.comp).
@@ -29,6 +29,10 @@ struct DcsOptions {
   // base at base 256's cost (the after-pass check and re-render still apply; tests use it to
   // force them).
   int firstFrameBound = -1;
+  // > firstFrameBound: that first frame plans for final counts up to firstFrameBound whose
+  // partial counts reach this (dcs/packing.h), as a later frame of exact counts does; tests force
+  // a carry past a digit with it.
+  int firstFrameReach = -1;
   // Semi-opaque occluders (dcs/opacity.h): the paper's sum of opacities or the product of
   // transmittances, and the largest single-layer transmittance error the unit coding may make.
   dcs::OpacityMode opacity = dcs::OpacityMode::Product;

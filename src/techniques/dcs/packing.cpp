@@ -1,6 +1,8 @@
 #include "techniques/dcs/packing.h"
 
 #include <algorithm>
+#include <optional>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -13,23 +15,55 @@ std::string PackingPlan::describe() const {
                      targets == 1 ? "" : "s", passes, passes == 1 ? "" : "es");
 }
 
-PackingPlan planPacking(int samples, int maxCount, int maxTargets, int minLayout) {
-  PENUMBRA_CHECK(samples >= 1 && maxTargets >= 1, "planPacking arguments");
-  PackingPlan plan;
-  plan.layout = kLayoutCount - 1;
-  for (int i = std::max(0, minLayout); i < kLayoutCount; ++i) {
-    if (std::int64_t(kLayouts[i].base) - 1 >= maxCount) {
-      plan.layout = i;
-      break;
-    }
+namespace {
+constexpr std::int64_t kExact = std::int64_t(1) << 24;  // float's exact integers: |x| < 2^24
+}  // namespace
+
+bool exactWhileCounting(std::uint32_t base, int digits, std::int64_t reach) {
+  std::int64_t weights = 0, w = 1;  // 1 + B + ... + B^(digits-1)
+  for (int d = 0; d < digits; ++d, w *= base) {
+    weights += w;
+    if (weights >= kExact) return false;
   }
-  plan.counters = kLayouts[plan.layout];
-  int perTarget = 4 * plan.counters.digits;
-  int needed = (samples + perTarget - 1) / perTarget;
-  plan.targets = std::min(needed, maxTargets);
-  plan.samplesPerPass = perTarget * plan.targets;
-  plan.passes = (samples + plan.samplesPerPass - 1) / plan.samplesPerPass;
-  return plan;
+  return reach >= 0 && reach * weights < kExact;
+}
+
+bool weightedChecksumExact(int samplesPerPass, std::int64_t reach) {
+  const std::int64_t weights = std::int64_t(samplesPerPass) * (samplesPerPass + 1) / 2;
+  return reach >= 0 && reach * weights < kExact;
+}
+
+bool PackingPlan::holds(std::int64_t measuredReach) const {
+  if (!exactWhileCounting(counters.base, counters.digits, measuredReach)) return false;
+  return measuredReach <= std::int64_t(counters.base) - 1 || weightedChecksumExact(samplesPerPass, measuredReach);
+}
+
+PackingPlan planPacking(int samples, int maxCount, int maxTargets, int minLayout, std::int64_t reach) {
+  PENUMBRA_CHECK(samples >= 1 && maxTargets >= 1, "planPacking arguments");
+  reach = std::max<std::int64_t>(reach, maxCount);
+  auto make = [&](int layout, int digits, std::int64_t r) {
+    PackingPlan p;
+    p.layout = layout;
+    p.counters = {kLayouts[layout].base, digits};
+    const int perTarget = 4 * digits;
+    p.targets = std::min((samples + perTarget - 1) / perTarget, maxTargets);
+    p.samplesPerPass = perTarget * p.targets;
+    p.passes = (samples + p.samplesPerPass - 1) / p.samplesPerPass;
+    p.reach = r;
+    return p;
+  };
+  std::optional<PackingPlan> best;
+  for (int i = std::max(0, minLayout); i < kLayoutCount; ++i) {
+    if (std::int64_t(kLayouts[i].base) - 1 < maxCount) continue;
+    int digits = kLayouts[i].digits;
+    while (digits > 0 && !exactWhileCounting(kLayouts[i].base, digits, reach)) --digits;
+    if (digits == 0) continue;
+    const PackingPlan p = make(i, digits, reach);
+    if (!p.holds(reach)) continue;
+    if (!best || std::pair(p.passes, p.targets) < std::pair(best->passes, best->targets)) best = p;
+  }
+  // Past every layout: the widest, whose pass measures the bound and is refused (dcs.cpp).
+  return best ? *best : make(kLayoutCount - 1, 1, reach);
 }
 
 PackingPlan widestPlanAtTheCostOf(int samples, int maxCount, int maxTargets, int minLayout) {

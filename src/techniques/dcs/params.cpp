@@ -54,6 +54,10 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
                          "a light's first frame plans its counters from this bound instead of the widest base at base "
                          "256's cost (the check after the pass and the re-render still apply; tests force them with it)")
           .shown("base 256's cost"),
+      ParamSpec::integer("first-reach", o.firstFrameReach, 0, int(dcs::kLayouts[dcs::kLayoutCount - 1].base) - 1,
+                         "with first-bound: the partial counts that first frame plans for, above the final ones (the "
+                         "plan later frames of exact counts make; tests force a count past its digit with it)")
+          .shown("first-bound"),
       ParamSpec::path("lut-file", "the edge LUT file (refused unless built for the light's sample pattern); empty: "
                                   "`<lut-dir>/edge_<shape>_<strategy>_<pattern>_n<N>_seed<S>.lut` if it exists, else "
                                   "built in memory"),
@@ -81,6 +85,7 @@ DcsOptions readDcsOptions(const TechniqueArgs& args) {
   o.maxTargets = args.integer("targets");
   o.minBase = std::uint32_t(std::stoul(args.text("min-base")));
   o.firstFrameBound = args.integer("first-bound");
+  o.firstFrameReach = args.integer("first-reach");
   o.lutFile = args.text("lut-file");
   o.lutDirectory = args.text("lut-dir");
   o.lutSize.cube = args.integer("lut-cube");
