@@ -195,5 +195,39 @@ TEST(DcsPacking, WidestPlanWithoutAnExtraPass) {
       }
 }
 
+// Partial counts grow with the samples a pass holds (engine, 64 samples: 535 in one pass of 64,
+// 311 in two of 32). A bound measured with other passes serves a plan only through the measured
+// passes each of its passes spans, their bounds added.
+TEST(DcsPacking, ReachOfOtherPassesAddsUpTheMeasuredOnes) {
+  Reach r;
+  EXPECT_EQ(r.forPasses(64, 64), -1) << "nothing measured";
+  r.measured(64, 32, 311);
+  EXPECT_EQ(r.forPasses(64, 32), 311);
+  EXPECT_EQ(r.forPasses(64, 16), 311) << "inside one measured pass";
+  EXPECT_EQ(r.forPasses(64, 64), 622) << "two measured passes";
+  EXPECT_EQ(r.forPasses(64, 48), 622) << "[0, 48) spans two";
+  EXPECT_EQ(r.forPasses(64, 24), 622) << "[24, 48) spans two";
+  r.measured(64, 64, 535);
+  EXPECT_EQ(r.forPasses(64, 64), 535) << "measured itself";
+  EXPECT_EQ(r.forPasses(64, 48), 535) << "inside the pass of 64";
+  r.measured(64, 128, 540);  // a pass past the samples is a pass of all of them
+  EXPECT_EQ(r.forPasses(64, 64), 540);
+  EXPECT_EQ(Reach::any(9).forPasses(64, 7), 9);
+  // The engine at 64 samples, from the two passes of 32 alone: base 32 cannot take 4 digits
+  // (622 partial counts), so the plan keeps 2 passes, whatever the base; from the pass of 64
+  // (535) the same.
+  Reach two;
+  two.measured(64, 32, 311);
+  PackingPlan p = planPacking(64, 30, 4, 0, two, true);
+  EXPECT_EQ(p.passes, 2);
+  EXPECT_TRUE(p.holds(p.reach));
+  EXPECT_GE(p.reach, two.forPasses(64, p.samplesPerPass));
+  EXPECT_EQ(planPacking(64, 30, 4, 0, r, true).passes, 2);
+  // The paper's rule from measured passes: the digits hold the partial counts of its passes.
+  p = planPacking(64, 0, 4, 0, two, false);
+  EXPECT_FALSE(p.mayCarry());
+  EXPECT_GE(std::int64_t(p.counters.base) - 1, two.forPasses(64, p.samplesPerPass));
+}
+
 }  // namespace
 }  // namespace penumbra::dcs

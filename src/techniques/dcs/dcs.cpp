@@ -90,7 +90,7 @@ struct GpuStatus {
 // on the way (dcs/packing.h).
 struct CountBound {
   int final = 0;
-  int reach = 0;
+  dcs::Reach reach;
 };
 
 // Bias of every counter digit (shaders/dcs_init.frag).
@@ -490,12 +490,11 @@ class DepthComplexitySampling final : public Technique {
   // which that check cannot tell from a carry: they keep the paper's rule.
   CountBound counterBound(const LightPass& pass, const LightFrame& f) const {
     auto cached = boundCache_.find(pass.lightIndex);
-    if (cached != boundCache_.end())
-      return plansFinalCounts(f) ? cached->second : CountBound{cached->second.reach, cached->second.reach};
-    auto both = [](int count) { return CountBound{count, count}; };
+    if (cached != boundCache_.end()) return cached->second;
+    auto both = [](int count) { return CountBound{count, dcs::Reach::any(count)}; };
     if (options_.firstFrameBound >= 0) {
-      const CountBound b = both(options_.firstFrameBound + kBias + f.maxPathGain);
-      return {b.final, std::max(b.reach, options_.firstFrameReach + kBias + f.maxPathGain)};
+      const int final = options_.firstFrameBound + kBias + f.maxPathGain;
+      return {final, dcs::Reach::any(std::max(final, options_.firstFrameReach + kBias + f.maxPathGain))};
     }
     // The compute path adds each count once: the packing must hold the final counts only, and
     // its pass measures their maximum exactly (shaders/dcs_wedge.comp). Its first frame plans
@@ -528,7 +527,8 @@ class DepthComplexitySampling final : public Technique {
     dcs::PackingPlan plan;
     GpuStatus status;
     for (int attempt = 0;; ++attempt) {
-      plan = dcs::planPacking(pass.samples.count, bound.final, options_.maxTargets, minLayout(), bound.reach);
+      plan = dcs::planPacking(pass.samples.count, bound.final, options_.maxTargets, minLayout(), bound.reach,
+                              plansFinalCounts(f));
       status = counterPasses(pass, f, plan);
       if (std::int64_t(status.boundMax) > kMaxExactCount) {
         boundCache_.erase(pass.lightIndex);
@@ -537,11 +537,16 @@ class DepthComplexitySampling final : public Technique {
       const int reach = int(status.boundMax);
       // The largest final count, where no count passed its digit (else the bound holds it).
       const int final = status.carryPixels == 0 ? std::min(int(status.maxCount), reach) : reach;
-      boundCache_[pass.lightIndex] = {final, reach};
+      // Partial counts grow with the samples a pass holds: kept per pass size (a later plan
+      // with other passes adds up the ones it spans).
+      auto known = boundCache_.find(pass.lightIndex);
+      dcs::Reach measured = known != boundCache_.end() ? known->second.reach : dcs::Reach();
+      measured.measured(pass.samples.count, plan.samplesPerPass, reach);
+      boundCache_[pass.lightIndex] = {final, measured};
       // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes
       // (once per light, from its first measured bound, not on every frame that reuses it).
       const dcs::PackingPlan needed = dcs::planPacking(pass.samples.count, plansFinalCounts(f) ? final : reach,
-                                                       options_.maxTargets, minLayout(), reach);
+                                                       options_.maxTargets, minLayout(), measured, plansFinalCounts(f));
       if ((needed.layout > minLayout() || needed.passes > 1) && !hadBound && attempt == 0)
         PLOG_INFO("dcs: light '{}': counts up to {} (partial counts up to {}, with the bias {}) need {}", light.name,
                   final - kBias, reach - kBias, kBias, needed.describe());
@@ -554,7 +559,7 @@ class DepthComplexitySampling final : public Technique {
       else
         PLOG_INFO("dcs: light '{}': partial counts up to {} pass what {} holds; rendering again", light.name,
                   reach - kBias, plan.describe());
-      bound = {reach, reach};  // the paper's rule: no count passes its digit
+      bound = {reach, measured};  // final counts up to the bound: none passes its digit
       pass.visibility.clear(glm::vec4(0.0f));
       ++stats_.reruns;
     }

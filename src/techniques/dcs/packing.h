@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 
 namespace penumbra::dcs {
@@ -52,10 +53,31 @@ struct PackingPlan {
   std::string describe() const;  // "base 64 (4 per channel), 4 targets, 1 pass"
 };
 
+// Bounds on the partial counts of a pixel (D(c) + bias + its positive updates on the pass's
+// samples), which grow with the samples a pass holds: measured per pass size (a pass of the
+// plan may span several measured ones, each adding its bound), or one bound for passes of any
+// size (a guess, or the first-bound parameter).
+class Reach {
+ public:
+  static Reach any(std::int64_t bound);
+  // A counter pass over passes of `samplesPerPass` of the `samples` measured `bound`.
+  void measured(int samples, int samplesPerPass, std::int64_t bound);
+  // A bound for the passes of a plan with `samplesPerPass` (-1: nothing measured).
+  std::int64_t forPasses(int samples, int samplesPerPass) const;
+
+ private:
+  std::int64_t any_ = -1;
+  std::map<int, std::int64_t> byPassSize_;  // samples a pass (at most `samples`) -> bound
+};
+
 // The cheapest plan (fewest passes, then fewest targets, then the narrowest base) over the
 // layouts at index >= `minLayout` whose digits hold a final count of `maxCount`
-// (base - 1 >= maxCount) and whose channels stay exact for partial counts up to `reach`
-// (default: maxCount, the paper's rule), using at most `maxTargets` targets per pass.
+// (base - 1 >= maxCount), using at most `maxTargets` targets per pass. finalCounts: the
+// channels only stay exact for the partial counts (`reach` for the plan's passes); else the
+// digits hold them too (the paper's rule).
+PackingPlan planPacking(int samples, int maxCount, int maxTargets, int minLayout, const Reach& reach, bool finalCounts);
+// The same with one bound for passes of any size: `reach` >= 0 plans for the final counts,
+// -1 by the paper's rule for maxCount.
 PackingPlan planPacking(int samples, int maxCount, int maxTargets, int minLayout = 0, std::int64_t reach = -1);
 
 // The widest layout whose plan needs no more targets than the plan for `maxCount` and no more
