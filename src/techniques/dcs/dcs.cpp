@@ -520,8 +520,8 @@ class DepthComplexitySampling final : public Technique {
     return layout;
   }
 
-  // The counter plan for `bound` and its passes, planned again by the paper's rule with the
-  // measured bound until no digit could have overflowed.
+  // The counter plan for `bound` and its passes, planned again for final counts up to the
+  // measured partial bound (none can then pass its digit) until the counts fit.
   std::pair<dcs::PackingPlan, GpuStatus> planAndCount(LightPass& pass, const LightFrame& f, CountBound bound, bool hadBound) {
     const Light& light = f.light;
     dcs::PackingPlan plan;
