@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "techniques/dcs/counter_planner.h"
 #include "techniques/dcs/packing.h"
 
 namespace penumbra::dcs {
@@ -227,6 +228,41 @@ TEST(DcsPacking, ReachOfOtherPassesAddsUpTheMeasuredOnes) {
   p = planPacking(64, 0, 4, 0, two, false);
   EXPECT_FALSE(p.mayCarry());
   EXPECT_GE(std::int64_t(p.counters.base) - 1, two.forPasses(64, p.samplesPerPass));
+}
+
+// Frame to frame (dcs.cpp's counter passes, here their measured counts): the first frame plans
+// from the guess, later ones from what the last pass measured; a pass whose counts do not fit
+// is planned again so that no count can pass its digit.
+TEST(DcsCounterPlanner, PlansFromTheMeasuredCountsAndAgainWhenTheyDoNotFit) {
+  CounterPlanner planner;
+  const PlanLimits exact{16, 4, 0, true}, paper{16, 4, 0, false};
+  const CountBound wide{4095, Reach::any(4095)};
+  PackingPlan first = planner.plan(0, exact, wide);
+  EXPECT_EQ(first.counters.base, 4096u);
+  EXPECT_FALSE(planner.knows(0));
+  // The engine's first frame: partial counts 264, final 29 (with the bias); they fit base 4096.
+  EXPECT_FALSE(planner.record(0, exact, first, {264, 29, 0}).has_value());
+  PackingPlan later = planner.plan(0, exact, wide);
+  EXPECT_EQ(later.counters.base, 32u);
+  EXPECT_EQ(later.targets, 1);
+  EXPECT_TRUE(later.mayCarry());
+  EXPECT_EQ(planner.measured(0).final, 29);
+  // A later frame whose counts grew past the digit: rendered again, no count can pass it then.
+  std::optional<PackingPlan> again = planner.record(0, exact, later, {264, 31, 12});
+  ASSERT_TRUE(again.has_value());
+  EXPECT_GE(std::int64_t(again->counters.base) - 1, 264);
+  // Partial counts past what the plan keeps exact (497 > 496 for 4 digits of base 32): again.
+  again = planner.record(0, exact, later, {497, 29, 0});
+  ASSERT_TRUE(again.has_value());
+  EXPECT_TRUE(again->holds(497));
+  // The paper's rule: partial counts past the digit are a rerun, whatever the final ones.
+  PackingPlan narrow = planPacking(16, 30, 4);
+  again = planner.record(1, paper, narrow, {40, 20, 0});
+  ASSERT_TRUE(again.has_value());
+  EXPECT_GE(std::int64_t(again->counters.base) - 1, 40);
+  EXPECT_FALSE(planner.record(1, paper, *again, {40, 20, 0}).has_value());
+  planner.forget(1);
+  EXPECT_FALSE(planner.knows(1));
 }
 
 }  // namespace

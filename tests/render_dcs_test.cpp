@@ -208,7 +208,11 @@ TEST(Dcs, LaterFramesPackTheFinalCountsExactly) {
   EXPECT_EQ(statistic(second, "reruns"), 0.0);
   EXPECT_EQ(statistic(second, "inconsistentPixels"), 0.0);
   EXPECT_EQ(first.lights[0].perSample, second.lights[0].perSample);
-  EXPECT_GE(measureErrors(second, ref).sampleAgreement, 0.999);
+  const TechniqueErrors e = measureErrors(second, ref);
+  std::printf("second frame against raytrace: sample agreement %.6f, visibility RMSE outside the edge band %.2e\n",
+              e.sampleAgreement, e.visibilityOutsideBand.rmse);
+  EXPECT_GE(e.sampleAgreement, 0.999);
+  EXPECT_LE(e.visibilityOutsideBand.rmse, 1e-3);
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }
 

@@ -49,6 +49,7 @@
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
 #include "techniques/dcs/compute_wedges.h"
+#include "techniques/dcs/counter_planner.h"
 #include "techniques/dcs/edge_lut_gpu.h"
 #include "techniques/dcs/gpu_silhouette.h"
 #include "techniques/dcs/packing.h"
@@ -84,13 +85,6 @@ struct GpuStatus {
   std::uint32_t boundMax = 0;  // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
   std::uint32_t firstNegative = 0xffffffffu;  // y * width + x of the first pixel with a negative count
   std::uint32_t carryPixels = 0;  // a digit sum off where a count may pass its digit (dcs_resolve.frag)
-};
-
-// What a counter plan must hold (both with the bias): the final counts and the partial counts
-// on the way (dcs/packing.h).
-struct CountBound {
-  int final = 0;
-  dcs::Reach reach;
 };
 
 // Bias of every counter digit (shaders/dcs_init.frag).
@@ -229,7 +223,7 @@ class DepthComplexitySampling final : public Technique {
     checksum_ = gl::Texture::make2D(GL_RGBA32F, gpu.width(), gpu.height());
     programs_.clear();
     luts_.clear();
-    boundCache_.clear();
+    planner_.clear();
     warnedCoplanar_.clear();
     counters_ = gl::Texture();
     emptyVao_ = gl::VertexArray::create();
@@ -259,8 +253,7 @@ class DepthComplexitySampling final : public Technique {
 
     centreCount(pass, f);
     selectEdges(pass, f, lightPass.light);
-    const bool hadBound = boundCache_.count(pass.lightIndex) > 0;
-    auto [plan, status] = planAndCount(pass, f, counterBound(pass, f), hadBound);
+    auto [plan, status] = planAndCount(pass, f);
     checkBound(pass, f, plan, status);
   }
 
@@ -471,27 +464,14 @@ class DepthComplexitySampling final : public Technique {
     }
   }
 
-  // Pass 3, the counter plan's bound. Adaptive sampling (5.3): the paper's counter base holds
-  // the largest value any counter reaches, D(c) + bias + the positive updates that cover one of
-  // its samples. Every counter pass measures exactly that per pixel (the checksum target's
-  // second channel) and the largest final count (the resolve), so a frame chooses its packing
-  // from the previous frame's counts for this light and checks it: if a counter could have
-  // overflowed, the passes run again with the packing the measured bound needs (never a
-  // silently wrong count). A light's first frame has no previous counts: it plans for the widest
-  // base that costs no more targets than base 256 and no extra pass (4096 at 16 samples, 64 at
-  // 64), and its pass measures the counts for the next (and renders again where they do not
-  // fit). Until issue 19 a separate bound pass computed the bound first, rasterising every
-  // wedge once more (54-70% of a counter pass; engine 256^2: 2.5 s).
-  //
-  // Issue 19 section 2: with exact counts (accurate silhouettes, the exact covered-sample test)
-  // later frames plan for the final counts with exact partial sums instead (dcs/packing.h), and
-  // the resolve checks every pixel where a count may have passed its digit. The paper's 2D
-  // modes and standard silhouettes leave counts below -bias at edge-band pixels by design,
-  // which that check cannot tell from a carry: they keep the paper's rule.
-  CountBound counterBound(const LightPass& pass, const LightFrame& f) const {
-    auto cached = boundCache_.find(pass.lightIndex);
-    if (cached != boundCache_.end()) return cached->second;
-    auto both = [](int count) { return CountBound{count, dcs::Reach::any(count)}; };
+  // Pass 3, the counter plan (adaptive sampling, 5.3; dcs/counter_planner.h plans a light's
+  // later frames from the counts its last pass measured). A light's first frame has none: it
+  // plans for the widest base that costs no more targets than base 256 and no extra pass (4096
+  // at 16 samples, 64 at 64), and its pass measures the counts for the next (and renders again
+  // where they do not fit). Until issue 19 a separate bound pass measured them first,
+  // rasterising every wedge once more (54-70% of a counter pass; engine 256^2: 2.5 s).
+  dcs::CountBound firstFrameGuess(const LightPass& pass, const LightFrame& f) const {
+    auto both = [](int count) { return dcs::CountBound{count, dcs::Reach::any(count)}; };
     if (options_.firstFrameBound >= 0) {
       const int final = options_.firstFrameBound + kBias + f.maxPathGain;
       return {final, dcs::Reach::any(std::max(final, options_.firstFrameReach + kBias + f.maxPathGain))};
@@ -507,7 +487,7 @@ class DepthComplexitySampling final : public Technique {
   }
 
   // Whether the light's counts are exact (a count below -bias is an error, never a design
-  // limit), so that the raster path may plan for the final counts (counterBound).
+  // limit), so that the raster path may plan for the final counts (dcs::PlanLimits).
   bool exactCounts(const LightFrame& f) const {
     return f.coverage == PENUMBRA_DCS_COVERAGE_EXACT && options_.silhouettes == SilhouetteMode::Accurate;
   }
@@ -520,46 +500,38 @@ class DepthComplexitySampling final : public Technique {
     return layout;
   }
 
-  // The counter plan for `bound` and its passes, planned again for final counts up to the
-  // measured partial bound (none can then pass its digit) until the counts fit.
-  std::pair<dcs::PackingPlan, GpuStatus> planAndCount(LightPass& pass, const LightFrame& f, CountBound bound, bool hadBound) {
+  // The light's counter plan and its passes, planned again until the counts fit.
+  std::pair<dcs::PackingPlan, GpuStatus> planAndCount(LightPass& pass, const LightFrame& f) {
     const Light& light = f.light;
-    dcs::PackingPlan plan;
+    const bool hadBound = planner_.knows(pass.lightIndex);
+    const dcs::PlanLimits limits{pass.samples.count, options_.maxTargets, minLayout(), plansFinalCounts(f)};
+    dcs::PackingPlan plan = planner_.plan(pass.lightIndex, limits, firstFrameGuess(pass, f));
     GpuStatus status;
     for (int attempt = 0;; ++attempt) {
-      plan = dcs::planPacking(pass.samples.count, bound.final, options_.maxTargets, minLayout(), bound.reach,
-                              plansFinalCounts(f));
       status = counterPasses(pass, f, plan);
       if (std::int64_t(status.boundMax) > kMaxExactCount) {
-        boundCache_.erase(pass.lightIndex);
+        planner_.forget(pass.lightIndex);
         refuseDepth(light, double(status.boundMax) - kBias);
       }
-      const int reach = int(status.boundMax);
-      // The largest final count, where no count passed its digit (else the bound holds it).
-      const int final = status.carryPixels == 0 ? std::min(int(status.maxCount), reach) : reach;
-      // Partial counts grow with the samples a pass holds: kept per pass size (a later plan
-      // with other passes adds up the ones it spans).
-      auto known = boundCache_.find(pass.lightIndex);
-      dcs::Reach measured = known != boundCache_.end() ? known->second.reach : dcs::Reach();
-      measured.measured(pass.samples.count, plan.samplesPerPass, reach);
-      boundCache_[pass.lightIndex] = {final, measured};
+      const std::optional<dcs::PackingPlan> again =
+          planner_.record(pass.lightIndex, limits, plan, {status.boundMax, status.maxCount, status.carryPixels});
       // Adaptive sampling (5.3): say when the scene's depth complexity costs counters or passes
-      // (once per light, from its first measured bound, not on every frame that reuses it).
-      const dcs::PackingPlan needed = dcs::planPacking(pass.samples.count, plansFinalCounts(f) ? final : reach,
-                                                       options_.maxTargets, minLayout(), measured, plansFinalCounts(f));
-      if ((needed.layout > minLayout() || needed.passes > 1) && !hadBound && attempt == 0)
-        PLOG_INFO("dcs: light '{}': counts up to {} (partial counts up to {}, with the bias {}) need {}", light.name,
-                  final - kBias, reach - kBias, kBias, needed.describe());
-      const bool fits = plansFinalCounts(f) ? plan.holds(reach) : std::int64_t(plan.counters.base) - 1 >= reach;
-      if (status.carryPixels == 0 && fits) break;
+      // (once per light, from its first measured counts, not on every frame that reuses them).
+      if (!hadBound && attempt == 0) {
+        const dcs::PackingPlan needed = planner_.plan(pass.lightIndex, limits, {});
+        if (needed.layout > minLayout() || needed.passes > 1)
+          PLOG_INFO("dcs: light '{}': counts up to {} (partial counts up to {}, with the bias {}) need {}", light.name,
+                    planner_.measured(pass.lightIndex).final - kBias, status.boundMax - kBias, kBias, needed.describe());
+      }
+      if (!again) break;
       PENUMBRA_CHECK(attempt < dcs::kLayoutCount, "dcs: no counter base fits");
       if (status.carryPixels > 0)
         PLOG_INFO("dcs: light '{}': {} pixels with counts past their digit in base {}; rendering again", light.name,
                   status.carryPixels, plan.counters.base);
       else
         PLOG_INFO("dcs: light '{}': partial counts up to {} pass what {} holds; rendering again", light.name,
-                  reach - kBias, plan.describe());
-      bound = {reach, measured};  // final counts up to the bound: none passes its digit
+                  status.boundMax - kBias, plan.describe());
+      plan = *again;
       pass.visibility.clear(glm::vec4(0.0f));
       ++stats_.reruns;
     }
@@ -806,7 +778,7 @@ class DepthComplexitySampling final : public Technique {
   gl::ProgramCache programs_;  // by shaders and defines (counter layout, coverage, opacity coding)
   std::map<std::uint64_t, GpuLut> luts_;  // by sample-pattern hash
   std::set<int> warnedCoplanar_;  // lights warned about (once each)
-  std::map<int, CountBound> boundCache_;  // light index -> the last frame's measured counts (+ bias)
+  dcs::CounterPlanner planner_;  // each light's measured counts, the next frame's plan
   gl::VertexArray emptyVao_;
   Stats stats_;
 };
