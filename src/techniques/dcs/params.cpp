@@ -35,8 +35,9 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
       ParamSpec::choice("path", kPathChoices[o.computePath ? 1 : 0], kPathChoices,
                         "the wedge pass: raster (each edge's wedge solid rasterised, its front faces depth-tested) or "
                         "compute (wedges binned into 8x8 tiles by the bounds of their visible points and evaluated "
-                        "per pixel inside the solid; counts added once, so the packing holds the final counts only: "
-                        "base 64 where the raster path needs the positive updates' bound)"),
+                        "per pixel inside the solid; counts added once, so the packing holds the final counts with "
+                        "no partial sums to keep exact: 4 counters a channel on the engine where the raster path's "
+                        "later frames fit 3 at 64 samples)"),
       ParamSpec::choice("coverage", kCoverageChoices[std::size_t(o.coverage)], kCoverageChoices,
                         "covered-sample test: exact (3D, per sample), naive (the paper's loop over 8-bit packed "
                         "positions, 7.1) or lut (the paper's edge LUT, 7.3); the 2D modes serve rect and disk lights, "
