@@ -52,7 +52,10 @@ const int profInPlane = 3;         // ... whose plane(p, e) crosses the light
 const int profWeighted = 4;        // ... with m_e(p) != 0
 const int profUpdating = 5;        // ... that change at least one counter
 const int profCandidates = 6;      // compute path: (pixel, edge) pairs its tiles kept (dcs_wedge.comp)
-#define PROFILE_COUNT(x) imageAtomicAdd(dcsProfile, ivec2(x, 0), 1u)
+// What one count adds: 1, or in dcs_wedge.frag the fragment's sign (a folded sliver's fragment
+// counts -1, so that the counts are of (pixel, edge) pairs; uint arithmetic wraps).
+uint dcsProfileStep = 1u;
+#define PROFILE_COUNT(x) imageAtomicAdd(dcsProfile, ivec2(x, 0), dcsProfileStep)
 #define PROFILE_ADD(x, n) imageAtomicAdd(dcsProfile, ivec2(x, 0), n)
 #else
 #define PROFILE_COUNT(x)

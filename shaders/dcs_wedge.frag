@@ -29,6 +29,7 @@ uniform vec3 eyePosition;
 layout(early_fragment_tests) in;
 #endif
 flat in int gEdge;
+flat in int gFacing;  // dcs_wedge.geom: the facing of an unfolded face, 0: none
 
 layout(location = 0) out vec4 outCounter0;
 #if DCS_TARGETS > 1
@@ -52,6 +53,12 @@ layout(location = 6) out vec4 outCounter6;
 layout(location = DCS_TARGETS) out vec4 outChecksum;
 
 void main() {
+  // A fragment of a folded sliver (dcs_wedge.geom) counts with the opposite sign: the signed
+  // coverage of a wedge's front faces is 1 at every pixel inside its outline.
+  int coverage = gFacing == 0 || gl_FrontFacing == (gFacing > 0) ? 1 : -1;
+#ifdef DCS_PROFILE
+  dcsProfileStep = uint(coverage);
+#endif
   ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 gp = texelFetch(gPosition, px, 0);
   if (gp.w == 0.0) discard;
@@ -60,7 +67,7 @@ void main() {
   // (shared.h): its own triangle then lies clearly on one side of every plane(p, e).
   vec3 p = penumbraShadowOrigin(gp.xyz, texelFetch(gNormal, px, 0).xyz, eyePosition);
   uint mask[MASK_WORDS];
-  int delta = dcsEdgeUpdate(px, p, gEdge, passFirst, passCount, mask);
+  int delta = coverage * dcsEdgeUpdate(px, p, gEdge, passFirst, passCount, mask);
   int covered = 0;
   for (int w = 0; w < MASK_WORDS; ++w) covered += bitCount(mask[w]);
   if (delta == 0 || covered == 0) discard;

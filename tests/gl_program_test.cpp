@@ -58,6 +58,25 @@ TEST(ShaderLoader, ErrorInAnIncludedFileNamesThatFileAndLine) {
   gl::Context::takeErrorCount();
 }
 
+// A stage gets only the defines its text (with its includes) names, so that a stage that does
+// not depend on a define compiles to the same text in every variant of a program and the
+// driver's shader cache compiles it once (dcs's geometry shader across counter layouts).
+TEST(ShaderLoader, AStageGetsOnlyTheDefinesItNames) {
+  ShaderDir dir;
+  dir.write("inc.glsl", "#ifdef FROM_INCLUDE\n#endif\n");
+  dir.write("probe.frag", "#include \"inc.glsl\"\nfloat f() { return float(USED) + VALUE_X; }\n");
+  dir.use();
+  const std::string text =
+      gl::assembleShader("probe.frag", {"USED 2", "UNUSED 3", "VALUE 4", "FROM_INCLUDE", "VALUE_X(a) a"}).text;
+  EXPECT_NE(text.find("#define USED 2\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("#define FROM_INCLUDE\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("#define VALUE_X(a) a\n"), std::string::npos) << text;
+  EXPECT_EQ(text.find("UNUSED"), std::string::npos) << text;
+  EXPECT_EQ(text.find("VALUE 4"), std::string::npos) << text;  // VALUE_X is another name
+  EXPECT_EQ(gl::assembleShader("probe.frag", {"USED 2", "UNUSED 3"}).text,
+            gl::assembleShader("probe.frag", {"USED 2", "UNUSED 5"}).text);
+}
+
 TEST(ShaderLoader, LogLocationsNameTheirFiles) {
   const std::vector<std::string> files = {"a.frag", "shared.h", "b.glsl"};
   EXPECT_EQ(gl::nameLogLocations("0:4(12): error: x\n0:200007(1): error: y\n", files), "a.frag:4(12): error: x b.glsl:7(1): error: y");

@@ -1,6 +1,7 @@
 #include "gl/shader_source.h"
 
 #include <algorithm>
+#include <cctype>
 #include <regex>
 #include <sstream>
 
@@ -49,13 +50,32 @@ void resolveIncludes(const std::string& src, int index, std::vector<std::string>
 
 }  // namespace
 
+namespace {
+// Whether `name` occurs in `text` as a whole identifier.
+bool mentions(const std::string& text, const std::string& name) {
+  auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (std::size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1)) {
+    const std::size_t end = at + name.size();
+    if ((at == 0 || !ident(text[at - 1])) && (end == text.size() || !ident(text[end]))) return true;
+  }
+  return false;
+}
+}  // namespace
+
 ShaderText assembleShader(const std::string& file, const std::vector<std::string>& defines) {
   ShaderText s;
   s.files = {file, "shared.h"};
+  std::string body = lineDirective(1, 1) + shaderSource("shared.h") + "\n" + lineDirective(0, 1);
+  resolveIncludes(shaderSource(file), 0, s.files, body);
+  // Only the defines this stage's text names: a stage that does not depend on a define keeps
+  // the same text across a program's variants, so the driver's shader cache compiles it once
+  // (dcs: the geometry shader of every counter layout).
   s.text = "#version 450 core\n";
-  for (auto& d : defines) s.text += "#define " + d + "\n";
-  s.text += lineDirective(1, 1) + shaderSource("shared.h") + "\n" + lineDirective(0, 1);
-  resolveIncludes(shaderSource(file), 0, s.files, s.text);
+  for (auto& d : defines) {
+    const std::string name = d.substr(0, d.find_first_of(" ("));
+    if (mentions(body, name)) s.text += "#define " + d + "\n";
+  }
+  s.text += body;
   return s;
 }
 

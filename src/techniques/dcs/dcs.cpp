@@ -713,6 +713,7 @@ class DepthComplexitySampling final : public Technique {
                                      "DCS_OPACITY " + std::to_string(coding_.mode),
                                      "DCS_COVERAGE " + std::to_string(coverage)};
     if (options_.profile) defs.push_back("DCS_PROFILE");
+    if (options_.endPlanes) defs.push_back("DCS_END_PLANES");
     std::vector<std::string> perSample = defs;
     perSample.push_back("PER_SAMPLE_OUT");
     const bool compute = options_.computePath;

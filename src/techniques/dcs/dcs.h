@@ -22,6 +22,9 @@ struct DcsOptions {
   // The counter pass's wedges: rasterised (their solids' front faces, shaders/dcs_wedge.geom) or
   // binned into screen tiles by a compute shader and evaluated per pixel (shaders/dcs_wedge.comp).
   bool computePath = false;
+  // Wedge solids cut by their end cones' planes (shaders/dcs_wedge.geom, dcsSidePlanes): the raster
+  // path draws the tighter solid (the compute path always tests those planes).
+  bool endPlanes = true;
   // Count where the wedge pass's fragments go (statistics "profile*"); atomics slow it down.
   // A debugging aid, also switched on by the environment variable PENUMBRA_DCS_PROFILE=1.
   bool profile = false;
