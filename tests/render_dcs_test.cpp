@@ -792,7 +792,7 @@ TEST(DcsComputePath, EqualsTheRasterPathAndTheReference) {
 }
 
 // Issue 19 section 1 on the raster path: the wedge solids cut by their end cones' planes and
-// the view reach fewer surfaces (engine, 64 px: 0.62 M fragments against 1.81 M without the end
+// the view reach fewer surfaces (engine, 64 px: 0.56 M fragments against 1.82 M without the end
 // planes, measured 2026-12-06), with the same per-sample results and the same (pixel, edge) pairs.
 TEST(DcsRasterPath, EndPlanesCutTheFillNotTheResult) {
   const Scene sc = loadScene(scenePath("scenes/engine.json"));

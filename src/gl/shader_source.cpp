@@ -48,9 +48,6 @@ void resolveIncludes(const std::string& src, int index, std::vector<std::string>
   }
 }
 
-}  // namespace
-
-namespace {
 // Whether `name` occurs in `text` as a whole identifier.
 bool mentions(const std::string& text, const std::string& name) {
   auto ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
@@ -60,6 +57,7 @@ bool mentions(const std::string& text, const std::string& name) {
   }
   return false;
 }
+
 }  // namespace
 
 ShaderText assembleShader(const std::string& file, const std::vector<std::string>& defines) {

@@ -41,7 +41,7 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
       ParamSpec::boolean("end-planes", o.endPlanes,
                          "raster path: each wedge solid cut by the planes of the cones its light part casts from the "
                          "edge's ends (fewer fragments where a large light meets a short edge; engine 256^2: 28.5 M -> "
-                         "8.7 M) or drawn with one side plane at each end"),
+                         "8.8 M) or drawn with one side plane at each end"),
       ParamSpec::choice("coverage", kCoverageChoices[std::size_t(o.coverage)], kCoverageChoices,
                         "covered-sample test: exact (3D, per sample), naive (the paper's loop over 8-bit packed "
                         "positions, 7.1) or lut (the paper's edge LUT, 7.3); the 2D modes serve rect and disk lights, "
