@@ -278,6 +278,7 @@ bool emitSolid(int id, DcsEdge e, DcsSolid s) {
     int ends = attempt == 0 ? sides : 0, cuts = ends + (attempt < 2 ? 4 : 0);
     // Without the end planes, the eye must be clear of the five planes by itself.
     if (attempt == 1 && nearest >= -nearRadius) return false;
+    if (attempt == 1 && sides == 0) continue;  // the first attempt's cuts again
     facing = s.kind == DCS_SOLID_WEDGE ? wedgePolyhedron(s) : pyramidPolyhedron(s);
     bool cut = true;
     for (int k = 0; k < cuts && cut; ++k) {
