@@ -4,6 +4,7 @@ penumbra_add_gl_test(test_render
   ${CMAKE_CURRENT_SOURCE_DIR}/render_hard_sv_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_pipeline_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_dcs_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/render_dcs_paths_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_shadow_map_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_pcss_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_msm_test.cpp
