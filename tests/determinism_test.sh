@@ -6,8 +6,11 @@
 # filters (pcss, vssm, msm, msm-soft, evsm) and the denoiser (raytrace-denoised, its filter on
 # all cores); the EGL and OSMesa backends must agree bit for bit too. Pixel data is compared with
 # exr_diff (colour and visibility layers), not the files' bytes.
-# Usage: determinism_test.sh PENUMBRA EXR_DIFF SRCDIR. Exits 77 (skipped) only without a GL context.
-P="$1"; DIFF="$2"; SRC="$3"; T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
+# Usage: determinism_test.sh PENUMBRA EXR_DIFF SRCDIR GROUP: a group of scenes and techniques
+# (the case below; one CTest test each, tests/determinism.cmake, so that each stays well under
+# 30 s).
+# Exits 77 (skipped) only without a GL context.
+P="$1"; DIFF="$2"; SRC="$3"; GROUP="$4"; T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 SIZE=${DETERMINISM_SIZE:-128}
 fail=0; runs=0; compared=0
 "$P" render -W 32 -H 32 --samples 1 -o "$T/probe.exr" 2>"$T/err"; rc=$?
@@ -54,30 +57,52 @@ check() {
   [ $ok -eq 1 ] && echo "ok: $tech $scene ($SAMPLES samples): bit-identical ($what)"
 }
 SAMPLES=16; MAP="--param map=256"
-# Case 1: every path, and both backends.
-for t in hard-sv dcs; do OSMESA=1 check scenes/hard/01-cube-on-plane.json $t; done
-for t in mvr vwss reproject pcss vssm msm msm-soft evsm; do OSMESA=1 check scenes/hard/01-cube-on-plane.json $t $MAP; done
-check scenes/hard/01-cube-on-plane.json raytrace-denoised
-# Case 13: stacks of thin plates (17: past dcs's narrowest counter base; 257: past 8 bits).
-for t in hard-sv dcs; do check tests/data/scene/13-plates-17.json $t; OSMESA=1 check tests/data/scene/13-plates-257.json $t; done
-for t in mvr vwss; do check tests/data/scene/13-plates-17.json $t $MAP; done
-# Case 15: overlapping penumbrae (two plates; the 9x9x9 sphere grid, 46k triangles, 8 samples).
-for t in hard-sv dcs; do check scenes/hard/15-two-plates.json $t; done
-for t in mvr vwss; do check scenes/hard/15-two-plates.json $t $MAP; done
-SAMPLES=8
-for t in hard-sv dcs; do check scenes/hard/15-sphere-grid.json $t; done
-for t in mvr vwss; do check scenes/hard/15-sphere-grid.json $t $MAP; done
-# Measured, not asserted: reproject-unsync writes its maps with plain stores (last writer wins),
-# a race by design; one llvmpipe thread is deterministic, several are not (README "Determinism").
-SAMPLES=16; base="$T/unsync"
-render "${base}_t1_r1.exr" egl 1 scenes/hard/01-cube-on-plane.json reproject-unsync $MAP &&
-  render "${base}_t1_r2.exr" egl 1 scenes/hard/01-cube-on-plane.json reproject-unsync $MAP &&
-  same "${base}_t1_r1.exr" "${base}_t1_r2.exr" "reproject-unsync, LP_NUM_THREADS=1 run 1 and 2" &&
-  echo "ok: reproject-unsync with LP_NUM_THREADS=1: bit-identical"
-for run in 1 2 3; do
-  render "${base}_t8_r$run.exr" egl 8 scenes/hard/01-cube-on-plane.json reproject-unsync $MAP || break
-  echo "measured: reproject-unsync LP_NUM_THREADS=8 run $run against LP_NUM_THREADS=1:" \
-       "$("$DIFF" "${base}_t1_r1.exr" "${base}_t8_r$run.exr" | grep visibility || echo identical)"
-done
+CUBE=scenes/hard/01-cube-on-plane.json
+case "$GROUP" in
+cube-volumes)
+  # Case 1: the shadow-volume count and the blended dcs counters, both backends.
+  for t in hard-sv dcs; do OSMESA=1 check $CUBE $t; done ;;
+cube-maps)
+  # Case 1: the depth-test (mvr) and integer-atomic (vwss, reproject) paths, both backends.
+  for t in mvr vwss reproject; do OSMESA=1 check $CUBE $t $MAP; done
+  # Measured, not asserted: reproject-unsync writes its maps with plain stores (last writer
+  # wins), a race by design; one llvmpipe thread is deterministic, several are not (README
+  # "Determinism").
+  base="$T/unsync"
+  render "${base}_t1_r1.exr" egl 1 $CUBE reproject-unsync $MAP &&
+    render "${base}_t1_r2.exr" egl 1 $CUBE reproject-unsync $MAP &&
+    same "${base}_t1_r1.exr" "${base}_t1_r2.exr" "reproject-unsync, LP_NUM_THREADS=1 run 1 and 2" &&
+    echo "ok: reproject-unsync with LP_NUM_THREADS=1: bit-identical"
+  for run in 1 2 3; do
+    render "${base}_t8_r$run.exr" egl 8 $CUBE reproject-unsync $MAP || break
+    echo "measured: reproject-unsync LP_NUM_THREADS=8 run $run against LP_NUM_THREADS=1:" \
+         "$("$DIFF" "${base}_t1_r1.exr" "${base}_t8_r$run.exr" | grep visibility || echo identical)"
+  done ;;
+cube-filters)
+  # Case 1: the single-map filters' summed-area tables, both backends.
+  for t in pcss vssm msm; do OSMESA=1 check $CUBE $t $MAP; done ;;
+cube-moments)
+  # Case 1: the moment filters, both backends, and the denoiser (its filter on all cores).
+  for t in msm-soft evsm; do OSMESA=1 check $CUBE $t $MAP; done
+  check $CUBE raytrace-denoised ;;
+plates-volumes)
+  # Case 13: stacks of thin plates (17: past dcs's narrowest counter base; 257: past 8 bits).
+  for t in hard-sv dcs; do check tests/data/scene/13-plates-17.json $t; OSMESA=1 check tests/data/scene/13-plates-257.json $t; done ;;
+plates-maps)
+  for t in mvr vwss; do check tests/data/scene/13-plates-17.json $t $MAP; done ;;
+two-plates)
+  # Case 15: overlapping penumbrae of two plates.
+  for t in hard-sv dcs; do check scenes/hard/15-two-plates.json $t; done
+  for t in mvr vwss; do check scenes/hard/15-two-plates.json $t $MAP; done ;;
+sphere-grid-dcs)
+  # Case 15: the 9x9x9 sphere grid (46k triangles), 8 samples; dcs alone (3 s a render with
+  # one llvmpipe thread).
+  SAMPLES=8 check scenes/hard/15-sphere-grid.json dcs ;;
+sphere-grid)
+  SAMPLES=8 check scenes/hard/15-sphere-grid.json hard-sv
+  for t in mvr vwss; do SAMPLES=8 check scenes/hard/15-sphere-grid.json $t $MAP; done ;;
+*) echo "FAIL: unknown group '$GROUP' (see tests/determinism.cmake)"; exit 1 ;;
+esac
+[ "$runs" -gt 0 ] || { echo "FAIL: group $GROUP rendered nothing"; exit 1; }
 echo "$runs renders, $compared comparisons"
 exit $fail

@@ -11,7 +11,7 @@ function(penumbra_layer_probe kind layer header)
   target_link_libraries(${name} PRIVATE ${layer})
   add_test(NAME layering_${name} COMMAND ${CMAKE_COMMAND} --build ${CMAKE_BINARY_DIR} --target ${name})
   # One build at a time in this tree (ninja's log is not shared safely between runs).
-  set_tests_properties(layering_${name} PROPERTIES RESOURCE_LOCK penumbra_build_tree)
+  set_tests_properties(layering_${name} PROPERTIES RESOURCE_LOCK penumbra_build_tree LABELS cpu)
   if(kind STREQUAL "refused")
     string(REPLACE "." "\\." pattern "${header}")
     set_tests_properties(layering_${name} PROPERTIES

@@ -12,18 +12,45 @@ penumbra_add_gl_test(test_render
   ${CMAKE_CURRENT_SOURCE_DIR}/render_shipped_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_robustness_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/gl_program_test.cpp
-
-  ${CMAKE_CURRENT_SOURCE_DIR}/render_timing_test.cpp)
+  ${CMAKE_CURRENT_SOURCE_DIR}/render_timing_test.cpp
+  # The sanitizer run's GL tests (label sanitize): each technique once, each exact technique
+  # against the reference on one hard case, the error paths that must stay one line.
+  SANITIZE
+    Table/EveryTechnique.*
+    Scenes/HardSvVsRaytrace.*/01_cube_on_plane
+    Scenes/DcsVsRaytrace.*/15_two_plates_N16
+    Scenes/DcsSemiOpaque.*/glass_layers_N16
+    Bases/DcsOverflow.*/base16_plates17
+    DcsOverflowRefusal.*
+    Scenes/MultiViewVsRaytrace.*/15_two_plates_mvr
+    Scenes/MultiViewVsRaytrace.*/stained_glass_vwss
+    Scenes/MultiViewVsRaytrace.*/23_analytic_disk_reproject
+    Pcss.ParallelPlanesCaseMatchesTheReference
+    Vssm.ParallelPlanesCaseAndFusionFailure
+    Msm.HardShadowsFromTheLightCentre
+    MsmSoft.ParallelPlanesCase
+    Evsm.ParallelPlanesAndBleedingAgainstVssm
+    RaytraceDenoised.StillSceneConvergesToTheSameSamples
+    Pipeline.NonFiniteImagesAreAnErrorNamingTheTechnique
+    Pipeline.GlossyShadingIsTheSharedBrdfOnGpuAndCpu
+    Robustness.FarFromTheOriginEqualsTheUntranslatedScene
+    MultiView.VwssWithoutPointsIsAnError
+    MultiView.DepthPassWithoutFragmentsIsAnError
+    ShaderLoader.*
+  SLOW
+    DcsRasterPath.EndPlanesCutTheFillNotTheResult
+    MultiView.VwssSplitsPointsThatExceedOneStorageBlock)
 
 # The CLI: exit codes and one-line errors for bad input (tests/cli_test.sh).
 add_test(NAME cli_exit_codes COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/cli_test.sh $<TARGET_FILE:penumbra>
          ${PROJECT_SOURCE_DIR})
-set_tests_properties(cli_exit_codes PROPERTIES SKIP_RETURN_CODE 77)
+set_tests_properties(cli_exit_codes PROPERTIES SKIP_RETURN_CODE 77 LABELS "gl;sanitize")
 
 # README's technique-parameter table equals the declarations (`penumbra list --params --format
 # markdown`, tests/params_readme_test.sh). No GL needed.
 add_test(NAME params_readme COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/params_readme_test.sh $<TARGET_FILE:penumbra>
          ${PROJECT_SOURCE_DIR})
+set_tests_properties(params_readme PROPERTIES LABELS cpu)
 
 # Technique parameters: declarations, dcs through --param, the shared key/value reader. No GL.
 penumbra_add_test(test_technique_params ${CMAKE_CURRENT_SOURCE_DIR}/technique_params_test.cpp LIBS penumbra_techniques)
@@ -42,4 +69,5 @@ penumbra_add_test(test_dcs_edge_lut ${CMAKE_CURRENT_SOURCE_DIR}/dcs_edge_lut_tes
 
 # Resource hygiene: repeated renders leak no GL objects or memory; GL limits and out-of-memory
 # are one-line errors (issue 7).
-penumbra_add_gl_test(test_render_resources ${CMAKE_CURRENT_SOURCE_DIR}/render_resources_test.cpp)
+penumbra_add_gl_test(test_render_resources ${CMAKE_CURRENT_SOURCE_DIR}/render_resources_test.cpp
+  SANITIZE RenderResources.LimitsAreErrorsNotGlErrors)

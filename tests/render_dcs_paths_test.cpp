@@ -56,7 +56,9 @@ TEST(DcsProfile, CountsTheFragmentsThatReachTheShader) {
     for (auto& st : b.timer.stages())
       if (st.stage == "dcs wedges" && st.counted) rasterised = double(st.counts.fragmentInvocations);
     std::printf("fragment invocations of the wedge stage (pipeline statistics): %.0f\n", rasterised);
-    if (rasterised > 0.0) EXPECT_LT(fragments, 0.5 * rasterised) << "the profile counted fragments that fail the depth test";
+    if (rasterised > 0.0) {
+      EXPECT_LT(fragments, 0.5 * rasterised) << "the profile counted fragments that fail the depth test";
+    }
   }
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }
@@ -73,33 +75,44 @@ namespace {
 // the final counts only, no bound pass). Semi-opaque occluders (counts, not just their sign),
 // path crossings, 64 samples over several targets, and the engine's 66,654 edges at 64 px (the
 // dispatches in chunks: one long loop was cut short by llvmpipe).
-TEST(DcsComputePath, EqualsTheRasterPathAndTheReference) {
-  for (auto [scene, samples, size] : {std::tuple{"", 16, 96}, std::tuple{"scenes/stained-glass.json", 16, 96},
-                                      std::tuple{"scenes/hard/15-two-plates.json", 64, 64},
-                                      std::tuple{"scenes/hard/28-rect-partly-inside.json", 16, 64},
-                                      std::tuple{"scenes/engine.json", 16, 64}}) {
-    SCOPED_TRACE(scene);
-    const Scene sc = *scene ? loadScene(scenePath(scene)) : defaultScene();
-    Comparison c = renderAndCompare(sc, "dcs", settings(size, samples), params({"path=compute", "profile=1"}));
-    auto raster = makeTechnique("dcs", params({"profile=1"}));
-    FrameResult r = Renderer(context(), sc, settings(size, samples)).render(*raster);
-    EXPECT_EQ(compareImages(c.frame.lights[0].visibility, r.lights[0].visibility).maxAbs, 0.0);
-    EXPECT_GE(c.errors.sampleAgreement, 0.999);
-    EXPECT_EQ(statistic(c.frame, "negativeCountPixels"), 0.0);
-    EXPECT_EQ(statistic(c.frame, "inconsistentPixels"), 0.0);
-    EXPECT_EQ(statistic(c.frame, "boundMaxCount"), statistic(c.frame, "maxCount"));
-    // The same (pixel, edge) pairs on every scene. Until the cut solids the raster path found a
-    // few more on the built-in scene (96 px: llvmpipe 2, 256 px: 10): one thin wedge under a
-    // light spanning nearly a half-space had a cap whose corners crossed and covered a pixel
-    // three times; such a polyhedron is no longer drawn (dcs_wedge.geom, orientedAsFacing), and
-    // a fold of a sliver face counts with its sign (engine, 64 px: one pair).
-    EXPECT_EQ(statistic(c.frame, "maxCount"), statistic(r, "maxCount"));
-    EXPECT_EQ(statistic(c.frame, "profileUpdating"), statistic(r, "profileUpdating"));
-    EXPECT_EQ(statistic(c.frame, "profileWeighted"), statistic(r, "profileWeighted"));
-    EXPECT_LE(statistic(c.frame, "profileFragments"), statistic(c.frame, "profileCandidates"));
-  }
+struct ComputePathCase {
+  const char* scene;
+  int samples, size;
+};
+class DcsComputePath : public ::testing::TestWithParam<ComputePathCase> {};
+
+TEST_P(DcsComputePath, EqualsTheRasterPathAndTheReference) {
+  const auto [scene, samples, size] = GetParam();
+  const Scene sc = *scene ? loadScene(scenePath(scene)) : defaultScene();
+  Comparison c = renderAndCompare(sc, "dcs", settings(size, samples), params({"path=compute", "profile=1"}));
+  auto raster = makeTechnique("dcs", params({"profile=1"}));
+  FrameResult r = Renderer(context(), sc, settings(size, samples)).render(*raster);
+  EXPECT_EQ(compareImages(c.frame.lights[0].visibility, r.lights[0].visibility).maxAbs, 0.0);
+  EXPECT_GE(c.errors.sampleAgreement, 0.999);
+  EXPECT_EQ(statistic(c.frame, "negativeCountPixels"), 0.0);
+  EXPECT_EQ(statistic(c.frame, "inconsistentPixels"), 0.0);
+  EXPECT_EQ(statistic(c.frame, "boundMaxCount"), statistic(c.frame, "maxCount"));
+  // The same (pixel, edge) pairs on every scene. Until the cut solids the raster path found a
+  // few more on the built-in scene (96 px: llvmpipe 2, 256 px: 10): one thin wedge under a
+  // light spanning nearly a half-space had a cap whose corners crossed and covered a pixel
+  // three times; such a polyhedron is no longer drawn (dcs_wedge.geom, orientedAsFacing), and
+  // a fold of a sliver face counts with its sign (engine, 64 px: one pair).
+  EXPECT_EQ(statistic(c.frame, "maxCount"), statistic(r, "maxCount"));
+  EXPECT_EQ(statistic(c.frame, "profileUpdating"), statistic(r, "profileUpdating"));
+  EXPECT_EQ(statistic(c.frame, "profileWeighted"), statistic(r, "profileWeighted"));
+  EXPECT_LE(statistic(c.frame, "profileFragments"), statistic(c.frame, "profileCandidates"));
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }
+
+INSTANTIATE_TEST_SUITE_P(Scenes, DcsComputePath,
+                         ::testing::Values(ComputePathCase{"", 16, 96}, ComputePathCase{"scenes/stained-glass.json", 16, 96},
+                                           ComputePathCase{"scenes/hard/15-two-plates.json", 64, 64},
+                                           ComputePathCase{"scenes/hard/28-rect-partly-inside.json", 16, 64},
+                                           ComputePathCase{"scenes/engine.json", 16, 64}),
+                         [](const ::testing::TestParamInfo<ComputePathCase>& i) {
+                           return (*i.param.scene ? sceneTestName(i.param.scene) : std::string("default")) + "_N" +
+                                  std::to_string(i.param.samples);
+                         });
 
 // Issue 19 section 1 on the raster path: the wedge solids cut by their end cones' planes and
 // the view reach fewer surfaces (engine, 64 px: 0.56 M fragments against 1.82 M without the end

@@ -80,7 +80,7 @@ std::vector<std::uint8_t> wholeLightAbove(const FrameResult& f, const Light& lig
 // to be fitted to the samples: half-angle 59.35 deg at 16, 59.40 at 64, which moved pcss's bias
 // from -4.8e-3 to +4.3e-3).
 TEST(Timing, SingleViewMapsIgnoreSamplesAndSeed) {
-  for (const char* path : {"", "scenes/hard/23-analytic-disk.json", "scenes/hard/31-big-sphere.json"}) {
+  for (const char* path : {"", "scenes/hard/23-analytic-disk.json", "scenes/hard/28-sphere-touching.json"}) {
     Scene scene = *path ? loadScene(scenePath(path)) : defaultScene();
     // Untextured: a textured light's mean luminance over the samples is theirs to change.
     scene.lights[0].emissionFrames.clear();
@@ -125,7 +125,7 @@ TEST(Timing, SingleViewMapsIgnoreSamplesAndSeed) {
 // receivers' centroid (a sphere light's axis), the widest receiver and the pixels outside.
 TEST(Timing, GpuFrustumFitMatchesTheCpu) {
   context();
-  for (const char* path : {"", "scenes/hard/31-big-sphere.json"}) {
+  for (const char* path : {"", "scenes/hard/28-sphere-touching.json"}) {
     Scene scene = *path ? loadScene(scenePath(path)) : defaultScene();
     scene.makeCameraRelative();
     GpuScene gpu(scene, 80, 64);

@@ -1,16 +1,18 @@
 #!/bin/sh
-# ASan + UBSan: configure build-asan/ with PENUMBRA_SANITIZE=ON, build it, run the whole CTest
-# suite under the sanitizers. Any sanitizer report fails the test it happens in (halt on error,
+# ASan + UBSan: configure build-asan/ with PENUMBRA_SANITIZE=ON, build the programs the tests
+# run (target penumbra_test_programs: not the standalone bench binaries), run every cpu test and
+# the sanitize-labelled gl tests (tests/CMakeLists.txt "Labels") under the sanitizers. Any sanitizer report fails the test it happens in (halt on error,
 # UB is not recoverable). Leak checking is on; tests/lsan.supp suppresses only leaks whose stack
 # is inside Mesa / LLVM / libEGL / llvmpipe system libraries, never penumbra code.
 # Usage: tests/sanitize.sh [extra ctest args...]   (from anywhere; BUILD=dir overrides build-asan)
+# Extra -L / -R arguments narrow the labelled set further (ctest ANDs its -L options).
 set -eu
 cd "$(dirname "$0")/.."
 SRC=$(pwd)
 BUILD=${BUILD:-build-asan}
 start=$(date +%s)
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPENUMBRA_SANITIZE=ON >/dev/null
-cmake --build "$BUILD"
+cmake --build "$BUILD" --target penumbra_test_programs
 built=$(date +%s)
 # detect_leaks: on. The GL driver (llvmpipe) is not instrumented; its own allocations are covered
 # by the suppression file. abort_on_error keeps the exit non-zero for CTest.
@@ -25,7 +27,7 @@ runCtest() {
   rc=$(sed -n 's/^ctest-exit //p' "$LOG")
   rc=${rc:-1}
 }
-runCtest -j2 "$@"
+runCtest -j2 -L '^(cpu|sanitize)$' "$@"
 # LeakSanitizer's own tracer can crash at process exit ("Tracer caught signal 11", "LeakSanitizer
 # has encountered a fatal error") while the GL driver's worker threads are being torn down: a
 # test that passed, then a sanitizer-internal failure (2026-12-02: twice in the full -j2 suite,
