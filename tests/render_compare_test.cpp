@@ -209,9 +209,9 @@ TEST(Compare, FlickerIsZeroOnAStillAndExactForDcs) {
   for (auto& run : r.runs) {
     if (run.reference) continue;
     EXPECT_GT(run.referenceMotion, 0.01) << "the blades' shadows move";
-    if (run.technique == "dcs") EXPECT_LT(run.flicker, 1e-4) << "dcs changes exactly as the reference";
-    if (run.technique == "mvr") EXPECT_LT(run.flicker, 0.05);
-    if (run.technique == "hard-sv") EXPECT_GT(run.flicker, 0.01) << "hard shadows do not move like soft ones";
+    if (run.technique == "dcs") { EXPECT_LT(run.flicker, 1e-4) << "dcs changes exactly as the reference"; }
+    if (run.technique == "mvr") { EXPECT_LT(run.flicker, 0.05); }
+    if (run.technique == "hard-sv") { EXPECT_GT(run.flicker, 0.01) << "hard shadows do not move like soft ones"; }
     EXPECT_GE(run.meanFrameRmse, 0.0);
   }
   EXPECT_TRUE(r.hasTemporal());
@@ -228,8 +228,8 @@ TEST(Compare, PosedSceneMovesOnlyWhatSpins) {
     ASSERT_EQ(a.size(), b.size());
     float moved = 0.0f;
     for (std::size_t i = 0; i < a.size(); ++i) moved = std::max(moved, glm::length(a[i] - b[i]));
-    if (fan.meshes[m].spin.active()) EXPECT_GT(moved, 0.1f) << fan.meshes[m].name;
-    else EXPECT_EQ(moved, 0.0f) << fan.meshes[m].name;
+    if (fan.meshes[m].spin.active()) { EXPECT_GT(moved, 0.1f) << fan.meshes[m].name; }
+    else { EXPECT_EQ(moved, 0.0f) << fan.meshes[m].name; }
   }
   // The light turns 6 degrees/s about the vertical through the origin; its height is kept.
   EXPECT_NEAR(later.lights[0].position.y, fan.lights[0].position.y, 1e-5f);

@@ -131,7 +131,7 @@ TEST(RenderResources, FreshRenderersLeakNothing) {
                 zinkDcsGrowth, zinkDcsRenders, kZinkDcsRenderBoundKiB);
   if (kCheckRss) {
     EXPECT_LT(rss1 - rss0, kRssBoundKiB) << "VmRSS grew from " << rss0 << " to " << rss1 << " KiB";
-    if (zinkDcsRenders > 0) EXPECT_LT(zinkDcsGrowth, kZinkDcsRenderBoundKiB * zinkDcsRenders) << "zink, dcs renders";
+    if (zinkDcsRenders > 0) { EXPECT_LT(zinkDcsGrowth, kZinkDcsRenderBoundKiB * zinkDcsRenders) << "zink, dcs renders"; }
   }
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }
@@ -170,7 +170,7 @@ TEST(RenderResources, ReusedRendererIsStable) {
       const long rssGrowth = rssKiB() - rss0;
       std::printf("[ resources ] reused renderer, %s: VmRSS growth over 16 frames %ld KiB (bound %ld%s)\n", c.technique,
                   rssGrowth, kRssBoundKiB, kCheckRss ? "" : ", not checked under ASan");
-      if (kCheckRss) EXPECT_LT(rssGrowth, kRssBoundKiB) << c.technique;
+      if (kCheckRss) { EXPECT_LT(rssGrowth, kRssBoundKiB) << c.technique; }
     }
     EXPECT_EQ(liveCounts(), baseline) << c.technique << " destroyed: " << describe(liveCounts());
   }

@@ -184,7 +184,7 @@ TEST(PrefilteredLight, AgainstTheIntegralOverTheTexture) {
       EXPECT_GE(e.values, 3 * 60);
       EXPECT_LE(e.mixture, g.gate) << k.name;
       EXPECT_LE(e.mixture, 0.35 * e.sampled) << k.name << ": well below 16 samples' noise";
-      if (k.roughness == 0.0 && k.tilt == 0.0) EXPECT_LE(e.mixture, e.single) << k.name << ": the mixture's reason";
+      if (k.roughness == 0.0 && k.tilt == 0.0) { EXPECT_LE(e.mixture, e.single) << k.name << ": the mixture's reason"; }
     }
 }
 

@@ -48,7 +48,9 @@ TEST(TechniqueParams, OneKeyOneMeaningPerRange) {
     for (auto& b : techniqueTable())
       for (auto& p : a.params)
         for (auto& q : b.params)
-          if (p.key == q.key && p.rangeText() == q.rangeText()) EXPECT_EQ(p.meaning, q.meaning) << a.name << " / " << b.name << ": " << p.key;
+          if (p.key == q.key && p.rangeText() == q.rangeText()) {
+            EXPECT_EQ(p.meaning, q.meaning) << a.name << " / " << b.name << ": " << p.key;
+          }
 }
 
 TEST(TechniqueParams, DcsTakesItsOptionsThroughParam) {

@@ -1,6 +1,7 @@
 // main() of a standalone study binary (penumbra_bench_<study>): the study's flags parsed into its
-// typed options (bench/studies.h), then the same function `penumbra bench` calls.
-// PENUMBRA_BENCH_STUDY names the study.
+// typed options (bench/studies.h), then the same function `penumbra bench` calls. Compiled once
+// (CLI11 makes it a slow unit) for all of them: each binary's main() is one generated line that
+// names its study (src/cli/CMakeLists.txt).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -127,10 +128,10 @@ int shading(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int penumbraBenchMain(const char* study, int argc, char** argv) {
   // Keyed like studyTable() (bench/studies.h).
   static const std::map<std::string, std::function<int(int, char**)>> mains = {
       {"speed-error", speedError}, {"dcs", dcs}, {"multiview", multiview}, {"single-map", singleMap},
       {"techniques", timings}, {"shading", shading}};
-  return mains.at(PENUMBRA_BENCH_STUDY)(argc, argv);
+  return mains.at(study)(argc, argv);
 }
