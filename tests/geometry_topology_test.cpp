@@ -450,10 +450,11 @@ TEST(GeometrySilhouette, FastOnLargeMeshes) {
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   EXPECT_GT(sides, 0u);
-  // A gate against a quadratic extraction, not a benchmark. Twenty runs (2026-12-06, 2-core
-  // machine, the suite running beside them): 1.07-3.51 ms a silhouette, median 1.66; under
-  // ASan + UBSan ASAN_MS. The bound leaves a factor of 14 over the slowest uninstrumented run.
-  EXPECT_LT(ms / 10, 50.0) << ms / 10 << " ms per silhouette";
+  // A gate against a quadratic extraction (hundreds of times slower here), not a benchmark.
+  // Twenty runs each (tests/spread.sh, 2026-12-06, 2 cores, other tests running beside them):
+  // 1.07-3.51 ms a silhouette (median 1.66); under ASan + UBSan 9.8-23.0 ms (median 15.0) with
+  // three GL tests beside it. The bound, 100 ms, is 4.3 times the slowest of those 40 runs.
+  EXPECT_LT(ms / 10, 100.0) << ms / 10 << " ms per silhouette";
   RecordProperty("ms_per_silhouette_81920_triangles", std::to_string(ms / 10));
 }
 

@@ -7,7 +7,12 @@ none=$(count -LE '^(cpu|gl)$')
 both=$(count -L '^cpu$' -L '^gl$')
 [ "$none" = 0 ] || { echo "FAIL: $none test(s) labelled neither cpu nor gl:"; ctest --test-dir "$B" -N -LE '^(cpu|gl)$'; fail=1; }
 [ "$both" = 0 ] || { echo "FAIL: $both test(s) labelled both cpu and gl"; fail=1; }
-for label in cpu gl sanitize slow browser; do
+# browser, llvmpipe and sanitize are kinds of gl test here.
+for label in browser llvmpipe sanitize; do
+  n=$(count -L "^$label\$" -LE '^gl$')
+  [ "$n" = 0 ] || { echo "FAIL: $n test(s) labelled $label without gl"; fail=1; }
+done
+for label in cpu gl sanitize slow browser llvmpipe; do
   n=$(count -L "^$label\$")
   echo "$label: ${n:-?} tests"
   [ "${n:-0}" -gt 0 ] || { echo "FAIL: no test labelled $label"; fail=1; }

@@ -37,14 +37,18 @@ penumbra_add_gl_test(test_render
     MultiView.VwssWithoutPointsIsAnError
     MultiView.DepthPassWithoutFragmentsIsAnError
     ShaderLoader.*
+  LLVMPIPE
+    Pipeline.EglAndOSMesaGiveTheSameImage
   SLOW
     DcsRasterPath.EndPlanesCutTheFillNotTheResult
     MultiView.VwssSplitsPointsThatExceedOneStorageBlock)
 
-# The CLI: exit codes and one-line errors for bad input (tests/cli_test.sh).
-add_test(NAME cli_exit_codes COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/cli_test.sh $<TARGET_FILE:penumbra>
-         ${PROJECT_SOURCE_DIR})
-set_tests_properties(cli_exit_codes PROPERTIES SKIP_RETURN_CODE 77 LABELS "gl;sanitize")
+# The CLI: exit codes and one-line errors for bad input (tests/cli_test.sh), in two parts: the
+# inputs refused before any GL work (no GL context needed) and the rendering cases.
+add_test(NAME cli_inputs COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/cli_test.sh $<TARGET_FILE:penumbra> ${PROJECT_SOURCE_DIR} inputs)
+set_tests_properties(cli_inputs PROPERTIES LABELS cpu)
+add_test(NAME cli_render COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/cli_test.sh $<TARGET_FILE:penumbra> ${PROJECT_SOURCE_DIR} render)
+set_tests_properties(cli_render PROPERTIES SKIP_RETURN_CODE 77 LABELS "gl;sanitize")
 
 # README's technique-parameter table equals the declarations (`penumbra list --params --format
 # markdown`, tests/params_readme_test.sh). No GL needed.

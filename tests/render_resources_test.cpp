@@ -54,7 +54,10 @@ const std::vector<Case> kCases = {{"hard-sv", {}},          {"dcs", {}},
 // Bound on VmRSS growth over the measured renders, after three warm-up rounds that fill the
 // driver's and the allocator's caches (measured on llvmpipe: +11 MiB over the first 3 rounds,
 // then +3 MiB over the next 340 renders, noise of the allocator). A leak of one 128x128 RGBA32F
-// target (256 KiB) per render would add 21 MiB over the 84 measured renders.
+// target (256 KiB) per render would add 21 MiB over the 84 measured renders. Twenty runs on
+// llvmpipe (tests/spread.sh, 2026-12-06): fresh renderers +0.2 to +3.6 MiB (median 2.1), a
+// reused renderer -12 to +84 KiB over its 16 frames; on zink a reused renderer +12 KiB to
+// +2.1 MiB (dcs up to 1.0 MiB, hard-sv up to 2.1 MiB). The bound is 2.2 times the largest.
 constexpr long kRssBoundKiB = 8 * 1024;
 // zink over lavapipe (tests/zink.sh) keeps driver memory for every dcs program set a fresh
 // renderer compiles and deletes: measured +3.6 MiB per dcs render, steady over 17 rounds, and
@@ -68,6 +71,12 @@ constexpr long kRssBoundKiB = 8 * 1024;
 // wedge's polyhedron: a geometry shader that takes llvmpipe 4.6 s to compile where the old one
 // took 1.35 s) it measures 24.8 MiB a render (2026-12-06): 32 MiB now. The way down is the
 // polyhedra built by a compute pass, compiled once a process (an open item of issue 19).
+// On zink the test bounds the whole growth by one budget, kRssBoundKiB and this much per dcs
+// render: charging the dcs renders what RSS grew across each of them and the rest the remainder
+// failed one run in twenty (the driver frees some of a render's memory only later: the remainder
+// spread from -21.7 to +8.1 MiB against its 8 MiB bound). Twenty runs on zink (2026-12-06): the
+// dcs renders 24.9-27.5 MiB each, the whole growth at most 8.1 + 14 x 27.5 = 394 MiB against a
+// budget of 8 + 14 x 32 = 456 MiB.
 constexpr long kZinkDcsRenderBoundKiB = 32 * 1024;
 constexpr int kSize = 128, kSamples = 8;
 constexpr int kWarmupRounds = 3, kRounds = 14;  // 6 x 17 = 102 renders
@@ -120,18 +129,22 @@ TEST(RenderResources, FreshRenderersLeakNothing) {
     EXPECT_EQ(liveCounts(), baseline) << "after round " << r << ": " << describe(liveCounts())
                                       << "baseline: " << describe(baseline);
   }
-  const long rss1 = rssKiB() - zinkDcsGrowth;  // zink: the dcs renders are bounded on their own
+  const long rss1 = rssKiB();
+  // zink: the driver's memory per compiled dcs program set joins the budget (see above).
+  const long bound = kRssBoundKiB + long(zinkDcsRenders) * kZinkDcsRenderBoundKiB;
   std::printf("[ resources ] %d renders of %d px: live GL objects %ld before, up to %ld during a render, %ld after; "
               "VmRSS %ld KiB -> %ld KiB over the last %d (%+ld KiB, bound %ld%s)\n",
               renders, kSize, std::accumulate(baseline.begin(), baseline.end(), 0L),
-              during, gl::liveObjectCount(), rss0, rss1, kRounds * int(kCases.size()), rss1 - rss0, kRssBoundKiB,
+              during, gl::liveObjectCount(), rss0, rss1, kRounds * int(kCases.size()), rss1 - rss0, bound,
               kCheckRss ? "" : ", not checked under ASan");
-  if (zink)
-    std::printf("[ resources ] zink: dcs renders grew VmRSS by %ld KiB over %d (bound %ld a render), excluded above\n",
-                zinkDcsGrowth, zinkDcsRenders, kZinkDcsRenderBoundKiB);
+  RecordProperty("rss_growth_kib", std::to_string(rss1 - rss0));
+  if (zink) {
+    std::printf("[ resources ] zink: %d measured dcs renders, VmRSS grew by %ld KiB across them (%ld a render)\n",
+                zinkDcsRenders, zinkDcsGrowth, zinkDcsGrowth / std::max(zinkDcsRenders, 1));
+    RecordProperty("zink_dcs_rss_growth_kib_per_render", std::to_string(zinkDcsGrowth / std::max(zinkDcsRenders, 1)));
+  }
   if (kCheckRss) {
-    EXPECT_LT(rss1 - rss0, kRssBoundKiB) << "VmRSS grew from " << rss0 << " to " << rss1 << " KiB";
-    if (zinkDcsRenders > 0) { EXPECT_LT(zinkDcsGrowth, kZinkDcsRenderBoundKiB * zinkDcsRenders) << "zink, dcs renders"; }
+    EXPECT_LT(rss1 - rss0, bound) << "VmRSS grew from " << rss0 << " to " << rss1 << " KiB";
   }
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }
@@ -170,6 +183,7 @@ TEST(RenderResources, ReusedRendererIsStable) {
       const long rssGrowth = rssKiB() - rss0;
       std::printf("[ resources ] reused renderer, %s: VmRSS growth over 16 frames %ld KiB (bound %ld%s)\n", c.technique,
                   rssGrowth, kRssBoundKiB, kCheckRss ? "" : ", not checked under ASan");
+      RecordProperty(std::string("rss_growth_kib_") + c.technique, std::to_string(rssGrowth));
       if (kCheckRss) { EXPECT_LT(rssGrowth, kRssBoundKiB) << c.technique; }
     }
     EXPECT_EQ(liveCounts(), baseline) << c.technique << " destroyed: " << describe(liveCounts());

@@ -235,13 +235,14 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   if (scene.isAnimated()) scene = scene.posedAt(o.time);  // "spin": the pose at --time
   scene.makeCameraRelative();  // in place: the Renderer would otherwise translate a copy
   RenderSettings settings = settingsFor(o, scene);
+  // Parameters are read (and refused) before any GL work, as compare does.
+  TechniqueParams params(o.params);
+  auto tech = makeTechnique(info.name, params);
+  params.checkConsumed();
   auto context = gl::Context::create(parseBackend(o.backend));
   PLOG_INFO("renderer: {} ({})", context->renderer(), context->version());
   checkImageSize(*context, settings);
   Renderer renderer(*context, scene, settings);
-  TechniqueParams params(o.params);
-  auto tech = makeTechnique(info.name, params);
-  params.checkConsumed();
   // (a shading mode the technique cannot feed is refused by the renderer, naming it)
   FrameResult frame = renderer.render(*tech, technique);
   writeFrame(output, frame);

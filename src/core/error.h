@@ -14,12 +14,17 @@ namespace penumbra {
 
 enum class ExitCode : int { Ok = 0, Error = 1, Usage = 2, ThresholdExceeded = 3, NoContext = 77 };
 
+// `text` with its control characters (below 0x20, and 0x7f) escaped: \n, \r, \t, else \xNN.
+std::string escapeControls(const std::string& text);
+
 class Error : public std::runtime_error {
  public:
   // `where` is the file, parameter or object the problem concerns ("scenes/a.json",
-  // "--samples", "light[2]"); `what` says the problem in a few words.
+  // "--samples", "light[2]"); `what` says the problem in a few words. The message is one line
+  // whatever the two hold (a file name or a JSON key may hold a newline): control characters
+  // are written escaped, as `\n`, `\t` or `\x1b`.
   Error(std::string where, const std::string& what, ExitCode code = ExitCode::Error)
-      : std::runtime_error(where.empty() ? what : where + ": " + what),
+      : std::runtime_error(escapeControls(where.empty() ? what : where + ": " + what)),
         where_(std::move(where)), code_(code) {}
   const std::string& where() const { return where_; }
   ExitCode exitCode() const { return code_; }
