@@ -106,7 +106,7 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
     const std::string mapParam = "map=" + std::to_string(map);
     std::set<int> studies;
     for (int s : o.studies) studies.insert(s);
-    std::fprintf(out, "Multi-view shadow-map studies (issue 5): %s, %dx%d image, %d^2 maps, median of %d frames after %d "
+    std::fprintf(out, "Multi-view shadow-map studies: %s, %dx%d image, %d^2 maps, median of %d frames after %d "
                 "warm-up, times in ms (glFinish + steady clock), renderer %s\n\n",
                 scenePath.c_str(), width, height, map, frames, warmup, ctx->renderer().c_str());
 

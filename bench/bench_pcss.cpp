@@ -46,7 +46,7 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
     Renderer renderer(*ctx, scene, s);
     auto rayTech = makeTechnique("raytrace");
     FrameResult ref = renderer.render(*rayTech);
-    std::fprintf(out, "pcss studies (issue 6): %s (%zu triangles), %dx%d image, %d^2 map, median of %d frames after %d "
+    std::fprintf(out, "pcss studies: %s (%zu triangles), %dx%d image, %d^2 map, median of %d frames after %d "
                 "warm-up, ms (glFinish + steady clock), renderer %s\n\n",
                 scenePath.c_str(), scene.triangleCount(), width, height, map, frames, warmup, ctx->renderer().c_str());
     std::fprintf(out, "1. Sterna Table 1 shape: shadow-mask passes, 16 PCF samples, 32 blocker-search samples\n");

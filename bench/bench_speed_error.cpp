@@ -43,7 +43,7 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
   try {
     auto ctx = gl::Context::create(o.backend);
     fs::create_directories(outDir);
-    std::fprintf(out, "Speed against error (issue 7): %zu scenes, %d px wide, samples %s, median of %d frames after %d warm-up "
+    std::fprintf(out, "Speed against error: %zu scenes, %d px wide, samples %s, median of %d frames after %d warm-up "
                  "(glFinish + steady clock), visibility RMSE against raytrace-converged (1024 spp); renderer %s\n\n",
                  scenes.size(), width, samples.c_str(), frames, warmup, ctx->renderer().c_str());
 

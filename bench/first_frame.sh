@@ -1,5 +1,5 @@
 #!/bin/sh
-# First-frame dcs timings (issue 19 section 3): a fresh `penumbra render` per run (a light's first frame), 3 runs per
+# First-frame dcs timings: a fresh `penumbra render` per run (a light's first frame), 3 runs per
 # configuration, after one untimed run that warms Mesa's shader cache. Usage: [NS="16 64"] sh bench/first_frame.sh PENUMBRA OUTDIR (256^2; NS: sample counts)
 P="$1"; O="$2"; mkdir -p "$O"
 for sc in default scenes/engine.json scenes/bunny-crowd.json; do

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Where FLIP and RMSE disagree (issue 18): over the speed-error study's per-scene reports
+"""Where FLIP and RMSE disagree: over the speed-error study's per-scene reports
 (bench/results/<machine>/speed-error/<scene>/report.json), per scene and sample count, the rank
 correlation (Spearman) of the techniques' mean HDR-FLIP with their shaded-image and visibility
 RMSE against the converged reference, and the pairs of techniques the two order differently by

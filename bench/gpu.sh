@@ -1,5 +1,5 @@
 #!/bin/sh
-# A GPU run prepared (issue 15 section 5): the GL render tests and `penumbra bench --quick` on a
+# A GPU run prepared: the GL render tests and `penumbra bench --quick` on a
 # bare machine with an NVIDIA GPU and no packages, from a build made on this Debian machine.
 #
 #   sh bench/gpu.sh pack [BUILD_DIR]     here (default build/): the binaries, stripped, and the

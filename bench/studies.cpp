@@ -54,7 +54,7 @@ int timings(const StudyRun& r, std::FILE* out) {
   return techniqueTimings(o, out);
 }
 
-// Issue 19: dcs's raster and compute paths against raytrace, mvr and hard-sv on the engine at
+// dcs's raster and compute paths against raytrace, mvr and hard-sv on the engine at
 // 256^2 and 512^2, 16 and 64 samples, in one run; the fill and the bound from a profiled frame
 // (a later frame, as the timed ones).
 int dcsScale(const StudyRun& r, std::FILE* out) {
@@ -100,7 +100,7 @@ const std::vector<Study>& studyTable() {
       {"multiview", "VWSS paper tables 1-2, figures 8 and 13, map-resolution convergence", multiview},
       {"single-map", "Sterna table 1, VSSM against PCSS as the light grows, VSSM stages, single-map errors", singleMap},
       {"techniques", "per-stage timings of the main techniques on the engine", timings},
-      {"dcs-scale", "dcs raster and compute paths against raytrace, mvr and hard-sv on the engine (issue 19)", dcsScale},
+      {"dcs-scale", "dcs raster and compute paths against raytrace, mvr and hard-sv on the engine", dcsScale},
       {"shading", "shading modes (ratio, modulate, per-sample) against the converged shaded reference", shading},
   };
   return table;

@@ -97,7 +97,7 @@ std::vector<glm::vec3> cornerNormals(const EdgeTopology& topology, double crease
 // step, is smooth round its side).
 constexpr double kDefaultCreaseAngle = 0.78539816339744831;
 
-// Shading normals for the G-buffer (issue 16 section 1): leaves a mesh that has one normal per
+// Shading normals for the G-buffer: leaves a mesh that has one normal per
 // position (from its file: glTF NORMAL, OBJ vn, PLY nx/ny/nz; or from a primitive) as it is;
 // otherwise sets mesh.normals to cornerNormals(buildEdgeTopology(mesh), creaseAngle), splitting
 // a vertex where its corners get different normals (the copy takes the position and uv; the

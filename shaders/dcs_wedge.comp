@@ -1,6 +1,6 @@
 // The compute path of the counter pass (dcs `path=compute`): the wedges binned into screen tiles
 // and evaluated per pixel there, in place of rasterising their front faces (dcs_wedge.geom).
-// Issue 19: the raster path's fill is the surfaces behind each front face, most of which lie
+// The raster path's fill is the surfaces behind each front face, most of which lie
 // outside the solid; here a tile keeps the edges whose solid meets the bounding box of its
 // visible points (tiled light culling, with the wedge solids as the lights) and a pixel runs the
 // update (common_dcs_update.glsl, the raster path's function) only where its point is inside the

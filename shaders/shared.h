@@ -141,7 +141,7 @@ PENUMBRA_FN vec3 penumbraShadowOrigin(vec3 p, vec3 n, vec3 eye) {
   return o;
 }
 
-// ---- the unshadowed term of the ratio estimator (issue 16 sections 2-3) ----------------------
+// ---- the unshadowed term of the ratio estimator ----------------------
 // atan2(y, x) for y >= 0, in [0, pi], to about 1e-7 relative: Cephes' atanf (S. Moshier), its
 // range reduction by tan(pi/8) and tan(3 pi/8) and its polynomial. GLSL only asks atan for an
 // absolute error of about 2^-11 and llvmpipe's gave the polygon formula 3e-4 relative errors
@@ -349,7 +349,7 @@ PENUMBRA_FN float penumbraCapCosine(float cosBeta, float sin2Alpha) {
 // need no clamping and the integral is the normal component of an inverse-square field, which
 // for a uniform ball is that of its centre (Newton's shell theorem): pi R^2 cos(theta_s) / d^2.
 // That is also the irradiance of a Lambertian sphere of radiance L seen fully above the horizon.
-// Where the ball crosses the horizon (issue 16 section 2), it is cut into shells about p: the
+// Where the ball crosses the horizon, it is cut into shells about p: the
 // shell of radius r meets the ball in a cap of angular radius alpha(r), cos(alpha) =
 // (d^2 + r^2 - R^2) / (2 d r), and contributes the cap's clipped cosine integral
 // (penumbraCapCosine) times the ball's intensity per volume, 3 / (4 R) of L: a 1D integral over
@@ -402,7 +402,7 @@ PENUMBRA_FN float penumbraSampleGeometry(vec3 p, vec3 ng, vec3 ns, vec3 x, vec3 
   return max(dot(ns, l), 0.0f) * emitter / r2;
 }
 
-// ---- BRDF (issue 16 section 4) -------------------------------------------------------------
+// ---- BRDF -------------------------------------------------------------
 // LAMBERT: albedo / pi (scene-file materials without "metallic"/"roughness", OBJ without Ks).
 // METALLIC_ROUGHNESS: the glTF 2.0 specification's BRDF (Appendix B, "BRDF Implementation"):
 //   c_diff = mix(baseColor, 0, metallic), f0 = mix(0.04, baseColor, metallic), alpha = roughness^2,

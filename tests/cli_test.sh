@@ -35,7 +35,7 @@ inputs() {
   expect 2 "\-\-line" -- "$P" lut --line 3 -o "$T"
   expect 0 "" -- "$P" lut --samples 8 --line 16 --cube 4 -o "$T"
   test -s "$T/edge_rect_stratified_correlated_n8_seed1.lut" || { echo "FAIL: lut wrote no table"; fail=1; }
-  # Issue 14 section 6: lut creates a missing output folder as compare does (it refused it),
+  # Lut creates a missing output folder as compare does (it refused it),
   # and a device or a file given as a folder says so (it said "does not exist").
   expect 0 "" -- "$P" lut --samples 4 --line 16 --cube 4 -o "$T/new/lut/dir"
   test -s "$T/new/lut/dir/edge_rect_stratified_correlated_n4_seed1.lut" || { echo "FAIL: lut did not create its folder"; fail=1; }
@@ -71,7 +71,7 @@ inputs() {
     { echo "FAIL: info does not count the dropped faces"; cat "$T/out"; fail=1; }
   printf '{"asset":{"version":"2.0"},"buffers":[{"byteLength":8,"uri":"../x.bin"}]}' > "$T/bad.gltf"
   expect 1 "bad.gltf: buffer 0: uri '../x.bin' leaves its folder" -- "$P" info "$T/bad.gltf"
-  # Memory before allocating (issue 14 section 5): a 4096 x 4096 sphere (33.5 M triangles, 5.4 GiB
+  # Memory before allocating: a 4096 x 4096 sphere (33.5 M triangles, 5.4 GiB
   # measured) under a 3 GiB address-space limit is refused before it is built, in well under a
   # second (it grew to 17 GB and crashed before). scenes/hard/31-big-sphere.json is its 22.6 M
   # triangle sibling that renders with 4.1 GiB.
@@ -120,7 +120,7 @@ render() {
   expect 2 "expected key=value" -- "$P" render -t mvr -W 32 -H 32 --param map -o "$T/p.png"
   expect 2 "given twice" -- "$P" render -t mvr -W 32 -H 32 --param map=64 --param map=128 -o "$T/p.png"
   expect 2 "expected a number" -- "$P" render -t vwss -W 32 -H 32 --param scale=big -o "$T/p.png"
-  # Non-finite numbers (issue 14): refused in one line, before any rendering.
+  # Non-finite numbers: refused in one line, before any rendering.
   expect 2 "\-\-time: must be a finite number of seconds, got nan" -- "$P" render -W 32 -H 32 --time nan -o "$T/n.png"
   expect 2 "\-\-time: must be a finite number of seconds, got inf" -- "$P" compare -W 32 -H 32 --time inf --techniques none -o "$T/cmpn"
   expect 2 "\-\-max-error: must be a finite RMSE >= 0, got -1" -- "$P" compare -W 32 -H 32 --techniques none --max-error -1 -o "$T/cmpn"
@@ -141,7 +141,7 @@ render() {
   # Hard case 30: nearly transparent occluders (opacity 3e-9 overflowed dcs's units to -2^31:
   # RMSE 0.98, exit 0); now dcs equals the reference.
   expect 0 "" -- "$P" compare "$SRC/scenes/hard/30-tiny-opacity.json" -W 64 -H 64 --samples 8 --techniques dcs --timing-frames 1 --warmup 0 --max-error 0.001 -o "$T/cmp30"
-  # GL limits and out-of-memory (issue 7): one-line errors, never a crash or a GL error.
+  # GL limits and out-of-memory: one-line errors, never a crash or a GL error.
   noglerr() { if grep -q 'GL error\|GL: ' "$T/err"; then echo "FAIL: GL error logged"; cat "$T/err"; fail=1; fi; }
   expect 2 "map: 100000 is outside" -- "$P" render -t mvr -W 32 -H 32 --param map=100000 -o "$T/p.png"; noglerr
   expect 2 "image size 100000x32" -- "$P" render -W 100000 -H 32 -o "$T/p.png"; noglerr

@@ -20,7 +20,7 @@ TEST(DcsPacking, EveryLayoutHoldsAsManyDigitsAs24BitsAllow) {
   }
 }
 
-// Issue 19 section 2: partial counts may pass their digit (carry into the next, borrow back)
+// Partial counts may pass their digit (carry into the next, borrow back)
 // when the channel's partial sums stay exact; the final value decodes to the final counts.
 // Each step adds +-1 to a random digit, the partial counts wander in [-reach, reach], the last
 // steps walk every count back into [0, base).
@@ -106,7 +106,7 @@ TEST(DcsPacking, PlannerPicksTheNarrowestBaseThatHoldsTheCount) {
   }
 }
 
-// Issue 19 section 2: the engine's counts end at 29 (with the bias) but pass 263 on the way.
+// The engine's counts end at 29 (with the bias) but pass 263 on the way.
 // The paper's rule packs base 4096 (2 a channel: 16 samples in 2 targets, 64 in 2 passes);
 // holding the final counts, with the partial sums exact, packs base 32 (4 a channel: 1 target,
 // 64 samples in 4 targets and one pass).
@@ -168,7 +168,7 @@ TEST(DcsPacking, TargetsAndPassesCoverEverySample) {
 }
 
 // A light's first frame, no bound measured yet, plans for the widest base that costs no more
-// targets than base 256 and no extra pass (issue 19 section 3: the bound pass it replaces cost
+// targets than base 256 and no extra pass (the bound pass it replaces cost
 // 54-70% of a counter pass). 16 samples: base 256 takes 2 targets (12 a target), so does 4096
 // (8); 2^24 would take 4. 32 samples: 256 takes 3 targets, 4096 would take 4: 256 stays. 64
 // samples: 256 and 4096 need 2 passes, base 64 one (16 a target, 4 targets).

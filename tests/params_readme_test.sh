@@ -1,5 +1,5 @@
 #!/bin/sh
-# README's table of technique parameters is the declarations' (issue 15): the lines between
+# README's table of technique parameters is the declarations': the lines between
 # <!-- technique-params:begin --> and <!-- technique-params:end --> in README.md equal
 # `penumbra list --params --format markdown`. Usage: params_readme_test.sh PENUMBRA SRCDIR
 P="$1"; SRC="$2"; T=$(mktemp -d); trap 'rm -rf "$T"' EXIT

@@ -219,7 +219,7 @@ double ballIrradianceDense(double cosBeta, double d, double R, int n) {
 
 }  // namespace
 
-// Issue 16 section 2: Snyder's closed form for a cap crossing the horizon (shared.h
+// Snyder's closed form for a cap crossing the horizon (shared.h
 // penumbraCapCosine) against a 400 x 400 quadrature over the cap, wholly above, crossing and
 // wholly below the horizon.
 TEST(ClosedForms, CapCosineIsTheClippedIntegral) {

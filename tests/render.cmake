@@ -72,6 +72,6 @@ penumbra_add_test(test_dcs_opacity ${CMAKE_CURRENT_SOURCE_DIR}/dcs_opacity_test.
 penumbra_add_test(test_dcs_edge_lut ${CMAKE_CURRENT_SOURCE_DIR}/dcs_edge_lut_test.cpp LIBS penumbra_techniques)
 
 # Resource hygiene: repeated renders leak no GL objects or memory; GL limits and out-of-memory
-# are one-line errors (issue 7).
+# are one-line errors.
 penumbra_add_gl_test(test_render_resources ${CMAKE_CURRENT_SOURCE_DIR}/render_resources_test.cpp
   SANITIZE RenderResources.LimitsAreErrorsNotGlErrors)

@@ -1,4 +1,4 @@
-// compareTechniques (issue 7): sweeps render each technique once per preset that changes what
+// compareTechniques: sweeps render each technique once per preset that changes what
 // it renders, a samples sweep brings in the converged reference, and --frames measures flicker
 // against the reference's own change (exact for dcs, zero for every technique on a still).
 #include <gtest/gtest.h>
@@ -51,7 +51,7 @@ TEST(Compare, SweepPresetsAndDeduplication) {
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }
 
-// Issue 14: one technique's failure is its row of the report, not the end of the run. vssm
+// One technique's failure is its row of the report, not the end of the run. vssm
 // refuses a map that is not a power of two when it renders (its min-max hierarchy halves the
 // map); dcs and hard-sv, before and after it, go on and measure as they would alone.
 class CompareFailure : public TempDirTest {};
@@ -138,7 +138,7 @@ TEST(Compare, AFailedReferenceEndsTheRun) {
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }
 
-// Issue 14: receivers beyond the shadow maps' max-angle are left unshadowed by design. compare
+// Receivers beyond the shadow maps' max-angle are left unshadowed by design. compare
 // counts them per pixel, measures the error without them and writes their mask; with a point
 // light inside the cube (hard case 27) they are mvr's whole error (0.51 with them, 0.018
 // without at 128 px); dcs leaves none.

@@ -1,4 +1,4 @@
-// dcs's parameters (issue 15) and its wedge paths at scale (issue 19): the variants are dcs with
+// dcs's parameters and its wedge paths at scale: the variants are dcs with
 // parameters, the fill profile counts what reaches the wedge shader, the compute path and the
 // raster path's cut solids give the same (pixel, edge) pairs and per-sample results.
 #include "render_test_util.h"
@@ -8,7 +8,7 @@
 namespace penumbra::test {
 namespace {
 
-// Issue 15: dcs's options through --param. The variants are presets of the same declarations,
+// dcs's options through --param. The variants are presets of the same declarations,
 // so `dcs` with a variant's parameters renders the variant's image exactly.
 TEST(DcsParams, VariantsAreDcsWithParameters) {
   Scene scene = loadScene(scenePath("scenes/stained-glass.json"));
@@ -30,7 +30,7 @@ TEST(DcsParams, VariantsAreDcsWithParameters) {
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }
 
-// The profile (issue 19's fill measure) changes nothing in the image, and counts what reaches
+// The profile (the fill measure) changes nothing in the image, and counts what reaches
 // the wedge shader after the depth test: with its atomic counters the test would otherwise run
 // after the shader and every rasterised fragment would be counted (476 M on the engine at 256 px
 // against 28.5 M reaching the shader). On the default scene at 96 px: every count below the
@@ -69,7 +69,7 @@ TEST(DcsProfile, CountsTheFragmentsThatReachTheShader) {
 namespace penumbra::test {
 namespace {
 
-// Issue 19: the compute path (wedges binned into tiles, evaluated per pixel inside the solid)
+// The compute path (wedges binned into tiles, evaluated per pixel inside the solid)
 // gives the raster path's per-sample results: the same visibility, the same updating (pixel,
 // edge) pairs where the profile counts them, and its bound is the true maximum count (it packs
 // the final counts only, no bound pass). Semi-opaque occluders (counts, not just their sign),
@@ -114,7 +114,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DcsComputePath,
                                   std::to_string(i.param.samples);
                          });
 
-// Issue 19 section 1 on the raster path: the wedge solids cut by their end cones' planes and
+// The raster path: the wedge solids cut by their end cones' planes and
 // the view reach fewer surfaces (engine, 64 px: 0.56 M fragments against 1.82 M without the end
 // planes, measured 2026-12-06), with the same per-sample results and the same (pixel, edge) pairs.
 TEST(DcsRasterPath, EndPlanesCutTheFillNotTheResult) {

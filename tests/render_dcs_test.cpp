@@ -1,4 +1,4 @@
-// `dcs` against the Embree reference with the same light samples (issue 3): per-(pixel, sample)
+// `dcs` against the Embree reference with the same light samples: per-(pixel, sample)
 // visibility identical on >= 99.9% of pairs outside the 1-pixel edge band and visibility RMSE
 // <= 1e-3 there, on the shipped scenes and the hard cases, for N = 16 .. 128; standard vs
 // accurate silhouettes; counter overflow handled for every base.
@@ -49,7 +49,7 @@ std::vector<Case> cases() {
   std::vector<Case> out;
   out.push_back({"scenes/engine.json", 16});
   out.push_back({"scenes/hard/15-sphere-grid.json", 16});
-  // Issue 14 section 5: samples past Embree's FLT_LARGE (raytrace aborted before).
+  // Samples past Embree's FLT_LARGE (raytrace aborted before).
   out.push_back({"scenes/hard/31-huge-light.json", 16});
   for (const char* s : {"scenes/stained-glass.json", "scenes/dcs-silhouettes.json", "scenes/hard/01-cube-on-plane.json", "scenes/hard/02-camera-in-shadow.json",
                         "scenes/hard/03-thin-pole-low-light.json", "scenes/hard/04-open-quad.json",
@@ -60,14 +60,14 @@ std::vector<Case> cases() {
                         "scenes/hard/19-camera-inside-occluder.json", "scenes/hard/20-light-behind-camera.json",
                         "scenes/hard/23-analytic-square.json", "scenes/hard/23-analytic-disk.json"})
     for (int n : {16, 64}) out.push_back({s, n});
-  // Issue 14: scale and offset (hard cases 25, 26).
+  // Scale and offset (hard cases 25, 26).
   for (const char* s : {"scenes/hard/25-cube-huge-floor.json", "scenes/hard/25-plate-huge-floor.json",
                         "scenes/hard/26-cube-far-1e5.json", "scenes/hard/26-quad-straddled.json"})
     out.push_back({s, 16});
   for (const char* s : {"scenes/hard/01-cube-on-plane.json", "scenes/hard/15-two-plates.json",
                         "scenes/stained-glass.json", "scenes/hard/05-open-cylinder.json"})
     for (int n : {32, 128}) out.push_back({s, n});
-  // Hard cases 27-29 (issue 14): lights on, in, through and touching closed meshes, below the
+  // Hard cases 27-29: lights on, in, through and touching closed meshes, below the
   // floor, inside an open tube; the straddling area lights at 64 samples too.
   for (const char* s : {"scenes/hard/27-point-at-vertex.json", "scenes/hard/27-point-on-edge.json",
                         "scenes/hard/27-point-on-face.json", "scenes/hard/27-point-inside.json",
@@ -163,7 +163,7 @@ TEST(Dcs, AnimatedTexturedLightMatchesTheReferenceAtEveryTime) {
   EXPECT_GT(compareImages(visibility[0], visibility[1]).rmse, 0.01) << "the frames should light differently";
 }
 
-// No frame runs a separate bound pass (issue 19 section 3): a light's first frame plans for the
+// No frame runs a separate bound pass: a light's first frame plans for the
 // widest base at base 256's cost (at 16 samples 4096: 2 targets, as 256 takes) and measures
 // the bound in its counter pass; later frames plan from that bound, narrower, and give the same
 // images; neither renders again.
@@ -184,7 +184,7 @@ TEST(Dcs, FirstFramePlansWideLaterFramesReuseTheMeasuredBound) {
   EXPECT_EQ(first.lights[0].perSample, second.lights[0].perSample);
 }
 
-// Issue 19 section 2: on the engine the partial counts reach ten times the final ones (the
+// On the engine the partial counts reach ten times the final ones (the
 // bound, boundMaxCount, against maxCount). The first frame packs by the paper's rule (base 4096,
 // 2 targets at 16 samples); the second plans for the final counts with exact partial sums
 // (dcs/packing.h: base 32, 4 a channel, 1 target), checks each pixel where a count may pass its
@@ -669,7 +669,7 @@ namespace {
 
 class DcsSilhouettePaths : public ::testing::TestWithParam<const char*> {};
 
-// Issue 3: the CPU and GPU (compute shader) accurate-silhouette paths give the same edge set.
+// The CPU and GPU (compute shader) accurate-silhouette paths give the same edge set.
 TEST_P(DcsSilhouettePaths, CpuAndGpuGiveTheSameEdges) {
   Scene scene = loadScene(scenePath(GetParam()));
   RenderSettings s = settings(32, 1);

@@ -1,4 +1,4 @@
-// `raytrace-denoised` (issue 17 section 3): 1-4 shadow rays per pixel, temporal accumulation and a
+// `raytrace-denoised`: 1-4 shadow rays per pixel, temporal accumulation and a
 // penumbra-sized cross-bilateral filter, against the Embree reference with the same samples and
 // the converged one, on a still scene over frames (the accumulation converges to the N samples'
 // ratio) and with a moving occluder (flicker and lag). Tolerances are the measured values

@@ -1,5 +1,5 @@
 // hard-sv against the Embree reference with the single light sample at the light centre:
-// visibility must agree on >= 99.5% of surface pixels outside the 1-pixel edge band (issue 2),
+// visibility must agree on >= 99.5% of surface pixels outside the 1-pixel edge band,
 // including the camera-inside-the-shadow-volume, open-mesh, non-manifold, flipped-triangle and
 // light-behind-camera cases of ../shared/docs/hard-cases.md.
 #include "render_test_util.h"

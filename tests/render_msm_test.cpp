@@ -1,4 +1,4 @@
-// `msm` and `msm-soft` (issue 17 section 1) against the Embree reference with the same light
+// `msm` and `msm-soft` against the Embree reference with the same light
 // samples, beside vssm, their direct competitor: light bleeding on the engine and the sphere grid
 // (hard case 15, vssm's worst), the parallel-planes case, occluder fusion, and the summed-area
 // table's precision at the far corner of a 2048^2 map (hard case 17). Tolerances are the measured
@@ -117,7 +117,7 @@ TEST(Msm, BadParametersAreRefused) {
 namespace penumbra::test {
 namespace {
 
-// evsm (issue 17 section 2) in vssm's PCSS summed-area framework: the parallel-planes case as
+// evsm in vssm's PCSS summed-area framework: the parallel-planes case as
 // vssm and msm-soft (measured 0.0144), and less light bleeding than vssm, more than msm-soft
 // (measured at 128 px: engine 0.078, sphere grid 0.218, two plates 0.057; vssm 0.112, 0.263,
 // 0.079). The exponents (defaults c+ = 40, c- = 10) trade: at 80 / 40 the engine and the sphere

@@ -1,4 +1,4 @@
-// `pcss` (issue 6) against the Embree reference with the same light samples. PCSS is a
+// `pcss` against the Embree reference with the same light samples. PCSS is a
 // single-view approximation: its error is measured with explicit tolerances, and its known
 // failures (occluder fusion, VWSS paper Fig. 10) must show in the comparison.
 #include "render_test_util.h"

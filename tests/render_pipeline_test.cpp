@@ -125,7 +125,7 @@ TEST(Pipeline, RepeatedRendersAreIdentical) {
   EXPECT_EQ(compareImages(a.color, b.color).maxAbs, 0.0);
 }
 
-// Issue 14 section 5: one vertex buffer past 2^31 bytes crashed llvmpipe; GpuScene splits them
+// One vertex buffer past 2^31 bytes crashed llvmpipe; GpuScene splits them
 // at RenderSettings::maxVertexBufferBytes. Split into buffers of 7 triangles (meshes straddle
 // buffers), every draw path gives the image of one buffer: the G-buffer (none), the opaque
 // occluder pass of one draw per buffer (mvr on all-opaque occluders) and the per-material
@@ -159,7 +159,7 @@ TEST(Pipeline, RejectsBadImageSizes) {
   EXPECT_THROW(Renderer(context(), scene, s), Error);
 }
 
-// Issue 14: a NaN or an infinity in an output image is an error naming the technique, never
+// A NaN or an infinity in an output image is an error naming the technique, never
 // an image (`--time nan` rendered 800 of 1024 pixels NaN with exit 0; the CLI now refuses it,
 // the pipeline is the last guard). Here a light of NaN intensity (the shaded image) and the
 // spinning fan posed at t = NaN (NaN light samples: the visibility).
@@ -246,7 +246,7 @@ double relativeShadedRmse(const FrameResult& a, const FrameResult& b) {
 }
 }  // namespace
 
-// Issue 16 section 1: shading normals. A sphere of 32 segments and one of 256 shade alike (the
+// Shading normals. A sphere of 32 segments and one of 256 shade alike (the
 // interpolated vertex normals), where face normals left the 32-segment one faceted.
 TEST(Pipeline, SmoothNormalsShadeTessellationsAlike) {
   FrameResult img[2];
@@ -354,7 +354,7 @@ void expectRatioShadingIsClosedForm(const Scene& scene, Expected expected, doubl
 }
 }  // namespace
 
-// Issue 16 sections 2-3: with nothing in the way (V = 1, so no noise) the ratio estimator is its
+// With nothing in the way (V = 1, so no noise) the ratio estimator is its
 // unshadowed term, for untextured rect lights Lambert's polygon irradiance: the shaded image of
 // a floor under a rect light equals the parallel-rectangle configuration factor (an independent
 // closed form, analytic_oracle.h) to 1e-4 relative at every pixel. Measured 3.8e-5 on llvmpipe
@@ -383,7 +383,7 @@ TEST(Pipeline, RatioShadingOfAnUnoccludedSphereLightIsItsClosedForm) {
   }, 8e-3);  // the converged reference: measured 5.4e-3
 }
 
-// The sphere light across the floor's plane (issue 16 section 2: the horizon-crossing case, the
+// The sphere light across the floor's plane (the horizon-crossing case, the
 // ball cut into shells, shared.h penumbraBallIrradiance): the GPU's ratio shading equals the
 // CPU's evaluation of the same function to 1e-4 (measured 1.9e-5; the floor's normals agree, so
 // one plane clips it; points within 1.1 R of the centre are left out: inside the ball there is
@@ -438,7 +438,7 @@ TEST(Pipeline, RatioShadingIsPerSampleWithoutAClosedForm) {
   EXPECT_LE(e.maxAbs, 1e-5 * peak) << "ratio and per-sample differ by more than rounding";
 }
 
-// Issue 16 section 4: the glTF metallic-roughness BRDF is one function (shared.h penumbraBrdf)
+// The glTF metallic-roughness BRDF is one function (shared.h penumbraBrdf)
 // on the GPU and the CPU. A glossy floor (roughness 0.3; a dielectric and a gold-like metal)
 // under a rect light, shaded per sample (eq. 6) with the same samples: every pixel equals the
 // CPU's sum of f L_k G_k over the pixel's samples to 1e-4 relative (nothing occludes: T = 1).

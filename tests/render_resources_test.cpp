@@ -1,4 +1,4 @@
-// Resource hygiene (issue 7): repeated renders in one process leak no GL objects (the wrappers'
+// Resource hygiene: repeated renders in one process leak no GL objects (the wrappers'
 // live-object counts, gl::liveObjectCount) and no memory (VmRSS growth after warm-up stays under
 // a bound), and give the same image every time.
 #include <gtest/gtest.h>
@@ -65,12 +65,12 @@ constexpr long kRssBoundKiB = 8 * 1024;
 // while every GL object penumbra made is deleted (the live counts below return to 0) and the
 // same renders on llvmpipe grow by 8 KiB. The driver's own, not ours: on zink the dcs renders'
 // growth is bounded per render (with a margin over what it measures), the other techniques'
-// renders keep kRssBoundKiB together. Since issue 15 (shader headers inlined wherever included,
-// so more text a program) it measures 4.5-5.1 MiB a render (4 runs, 2026-12-02), against the
-// 5 MiB bound it had: 8 MiB then. Since issue 19's cut wedge solids (dcs_wedge.geom builds each
+// renders keep kRssBoundKiB together. Since shader headers were inlined wherever included
+// (more text a program) it measures 4.5-5.1 MiB a render (4 runs, 2026-12-02), against the
+// 5 MiB bound it had: 8 MiB then. Since the cut wedge solids (dcs_wedge.geom builds each
 // wedge's polyhedron: a geometry shader that takes llvmpipe 4.6 s to compile where the old one
 // took 1.35 s) it measures 24.8 MiB a render (2026-12-06): 32 MiB now. The way down is the
-// polyhedra built by a compute pass, compiled once a process (an open item of issue 19).
+// polyhedra built by a compute pass, compiled once a process (an open item).
 // On zink the test bounds the whole growth by one budget, kRssBoundKiB and this much per dcs
 // render: charging the dcs renders what RSS grew across each of them and the rest the remainder
 // left no margin (the driver frees some of a render's memory only later: over twenty runs the

@@ -1,4 +1,4 @@
-// The multi-view shadow-map techniques (issue 5: mvr, vwss, reproject) against the Embree
+// The multi-view shadow-map techniques (mvr, vwss, reproject) against the Embree
 // reference with the same light samples, and against each other. Shadow maps are approximate:
 // per-(pixel, sample) decisions are gated outside the 1-pixel edge band with explicit
 // tolerances, measured on this machine at 128 px and N = 16 (README "Multi-view shadow maps").
@@ -173,7 +173,7 @@ TEST(MultiView, VwssSplitsPointsThatExceedOneStorageBlock) {
   EXPECT_LE(big.errors.visibility.rmse, mvr256 + 0.01);
 }
 
-// Never silent (issue 14, section 4): a point-generation pass that yields no point while
+// Never silent: a point-generation pass that yields no point while
 // occluders fill the central view is an error naming vwss, not an unshadowed image. Provoked
 // with a fragment shader that stores nothing (what Mesa 22.3's zink did to the real one).
 TEST(MultiView, VwssWithoutPointsIsAnError) {
@@ -201,7 +201,7 @@ TEST(MultiView, VwssWithoutPointsIsAnError) {
   gl::Context::takeErrorCount();
 }
 
-// Never silent (issue 14, section 4): a depth-map pass that draws no fragment while occluders
+// Never silent: a depth-map pass that draws no fragment while occluders
 // cover its view is an error naming the technique (mvr's maps, the single view of pcss and
 // vssm, reproject's central map). Provoked with a depth shader that discards every fragment.
 TEST(MultiView, DepthPassWithoutFragmentsIsAnError) {
@@ -265,8 +265,8 @@ TEST(MultiView, VwssFixesTheLeaksOfFragmentReprojection) {
 // Interleaved sampling: each set of samples has its own maps (layer = set * N + k).
 // Hard case 29: vwss culls back faces (as seen from its central eye) only when that cannot drop
 // a nearest occluder. A light below the single-sided floor, inside a closed box or inside the
-// cube needs them: culled, the floor or the box vanish from the maps (before issue 14 the
-// default, RMSE 0.28 / 0.89 / 0.96 at 128 px); kept, vwss is as close to the reference as mvr
+// cube needs them: culled, the floor or the box vanish from the maps (culling was once the
+// default: RMSE 0.28 / 0.89 / 0.96 at 128 px); kept, vwss is as close to the reference as mvr
 // (below the floor, inside the cube) or several times closer than culled (inside the box, where
 // the walls seen at grazing angles leave holes in the splatted maps). A cube lit from above keeps
 // culling, with the same result as forcing it.

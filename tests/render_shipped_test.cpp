@@ -1,7 +1,7 @@
 // Every shipped scene (scenes/*.json and the built-in default) against the Embree reference with
 // the same light samples, for the techniques whose error is not zero by construction and that the
 // per-technique tests gate only on hard cases: the single-map family (pcss, pcss-ultra, vssm,
-// msm-soft, evsm) and raytrace-denoised (issue 17: "tests against the reference on the hard cases
+// msm-soft, evsm) and raytrace-denoised ("tests against the reference on the hard cases
 // and shipped scenes with explicit, measured tolerances"). Each gate is the RMSE of the visibility
 // buffer and of the shaded image, measured on llvmpipe at 128 px and 16 samples (2026-12-03),
 // with a margin of about 25%: a change that makes a technique worse on a scene a user renders

@@ -1,4 +1,4 @@
-// Time that measures the technique (issue 15 section 5): the harness's readbacks apart from the
+// Time that measures the technique: the harness's readbacks apart from the
 // technique's stages, shadow-map frusta fitted on the GPU (no G-buffer readback), single-view
 // frusta fitted to the light (not its samples), and per-stage pipeline statistics.
 #include <algorithm>

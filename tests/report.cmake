@@ -1,4 +1,4 @@
-# The comparison report (issue 7): writers without GL; compareTechniques (sweeps, flicker) with
+# The comparison report: writers without GL; compareTechniques (sweeps, flicker) with
 # GL; the HTML page opened in headless Chromium.
 penumbra_add_test(test_report ${CMAKE_CURRENT_SOURCE_DIR}/report_test.cpp LIBS penumbra_compare penumbra_cli_options)
 

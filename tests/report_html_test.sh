@@ -1,5 +1,5 @@
 #!/bin/sh
-# The HTML report in headless Chromium (issues 7 and 18): `compare` with a sweep and --frames
+# The HTML report in headless Chromium: `compare` with a sweep and --frames
 # writes index.html; Chromium loads it from disk (no network), every image loads (the page's own
 # check sets data-images="loaded/total"), the plot has a point per plotted run, every point has
 # its label (a <text> with the technique's name, shown or on hover), no colour is shared by two

@@ -1,4 +1,4 @@
-// The comparison report without GL (issue 7): the Pareto front, sweep and inset parsing, inset
+// The comparison report without GL: the Pareto front, sweep and inset parsing, inset
 // choice, and what report.csv / plot.svg / index.html contain for a hand-made result.
 #include <gtest/gtest.h>
 
@@ -150,7 +150,7 @@ TEST(Report, PlotAndPageShowEveryRun) {
   EXPECT_NE(table.find("conv img"), std::string::npos) << "the shaded error against the converged reference";
 }
 
-// Issue 18: points carry their technique and family, each has a <text> label with the
+// Points carry their technique and family, each has a <text> label with the
 // technique's name (the Pareto front's and each family's best shown, the rest hidden until
 // hovered), families differ in colour, and the shaded and FLIP axes plot their own errors.
 TEST(Report, PlotLabelsFamiliesAndAxes) {
@@ -223,7 +223,7 @@ TEST(Report, WantedLabelsFindRoomInACluster) {
   EXPECT_GE(count(svg, "<line class=\"leader\""), 1u) << "the cluster needs leader lines";
 }
 
-// Issue 14: a failed run is a row in every output (the reason, no numbers, no point), with
+// A failed run is a row in every output (the reason, no numbers, no point), with
 // the CSV's columns unchanged; the other runs are as before.
 TEST(Report, AFailedRunIsARowEverywhere) {
   CompareResult r = handMade();

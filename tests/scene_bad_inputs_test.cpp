@@ -396,7 +396,7 @@ TEST(SceneBadInputs, HeadersClaimingABillionElementsAreRejectedBeforeAllocating)
               "134 bytes (1 triangle): truncated");
 }
 
-// Issue 14 section 6: a binary STL whose count disagrees with its size was read as ascii and
+// A binary STL whose count disagrees with its size was read as ascii and
 // reported "0 triangles, 0 dropped" (no triangles left); the message now gives both counts,
 // also for a header beginning with "solid" (as many exporters write) and for extra bytes.
 TEST(SceneBadInputs, BinaryStlWhoseCountDisagreesWithItsSizeSaysBoth) {
@@ -528,7 +528,7 @@ TEST(SceneBadInputs, ZeroSizedLightsAreRejectedForEveryShape) {
   EXPECT_TRUE(warned);
 }
 
-// Issue 14 section 6: a key given twice in a scene file kept the last value silently. Refused
+// A key given twice in a scene file kept the last value silently. Refused
 // with the key, the file and where it is; comments still parse.
 TEST(SceneBadInputs, DuplicateKeysAreRefusedWithTheKeyAndWhere) {
   test::TempDir dir;
@@ -550,7 +550,7 @@ TEST(SceneBadInputs, DuplicateKeysAreRefusedWithTheKeyAndWhere) {
   EXPECT_EQ(loadScene(ok).meshes.size(), 2u);
 }
 
-// Issue 14 section 6: a folder given as a mesh said "not found"; a material name with no
+// A folder given as a mesh said "not found"; a material name with no
 // materials defined listed "(known: )".
 TEST(SceneBadInputs, MisleadingMessagesSayWhatIsWrong) {
   test::TempDir dir;
@@ -569,7 +569,7 @@ TEST(SceneBadInputs, MisleadingMessagesSayWhatIsWrong) {
   expectError([&] { loadScene(known); }, known, "unknown material 'red' (known: blue)");
 }
 
-// Issue 14 sections 5 and 6: an area light float cannot hold. Size 1e19 reached Embree and
+// An area light float cannot hold. Size 1e19 reached Embree and
 // aborted (its rays are valid up to 1.8e18); 1e-30 was refused as needing "a positive size".
 // Both bounds come from float (sqrt(FLT_MAX / 12) for squared distances; 4 float spacings at
 // the light's position), not from the scene's size.
@@ -593,7 +593,7 @@ TEST(SceneBadInputs, LightExtentsFloatCannotHoldAreRefusedSayingSo) {
               cube, "the light reaches 5.71e+18 from the origin");
 }
 
-// Issue 14 section 6: OBJ mtllib/usemtl were ignored (a red Kd rendered grey). Faces after
+// OBJ mtllib/usemtl were ignored (a red Kd rendered grey). Faces after
 // `usemtl NAME` now get that material's Kd, map_Kd and d / Tr, one mesh per material.
 const Material& materialOf(const Scene& s, const std::string& meshSuffix) {
   for (const SceneMesh& m : s.meshes)

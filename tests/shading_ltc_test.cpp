@@ -45,7 +45,7 @@ glm::dvec3 direction(double theta, double phi) {
 
 }  // namespace
 
-// The checked-in table is what the code fits (issue 16 section 2: reproducible byte for byte):
+// The checked-in table is what the code fits (reproducible byte for byte):
 // the embedded copy is the file's bytes, and a fresh fit of four roughness columns (with the
 // t = 0 column each starts from) gives exactly those cells. The whole fit: `penumbra lut --ltc`
 // (43 s on 2 cores), luts/README.md.
@@ -153,7 +153,7 @@ void rectIntegrals(const RectCase& k, double& truth, double& ltc, double& norm) 
 }
 }  // namespace
 
-// Issue 16 section 2: what the LTC gives against the true lobe over rect lights: rects centred
+// What the LTC gives against the true lobe over rect lights: rects centred
 // on the mirror direction, beyond it and sideways (in the lobe's tail), small (half-size 0.1 at
 // distance 1) and large (0.5), for roughness 0.2-0.6 and views from normal to 75 degrees. The
 // error relative to the true integral on the mirror direction, and relative to norm (the whole

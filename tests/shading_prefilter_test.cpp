@@ -1,4 +1,4 @@
-// Textured rect and disk lights' unshadowed term (issue 16 section 2, third bullet): the
+// Textured rect and disk lights' unshadowed term: the
 // prefiltered emission (Heitz et al. 2016 section 5.3; src/shading/prefiltered_light.h, shared.h
 // penumbraPrefilterFootprint) times the closed-form integral of the lobe, against the integral
 // over the texture by quadrature, beside the sum over 16 light samples the renderer would

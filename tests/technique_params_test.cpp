@@ -1,4 +1,4 @@
-// Technique parameters (issue 15): every technique reads exactly the parameters it declares,
+// Technique parameters: every technique reads exactly the parameters it declares,
 // dcs takes its options through --param, and the key/value reader words its errors alike for
 // --param text and scene JSON. No GL needed (techniques create GL objects in prepare only).
 #include <gtest/gtest.h>

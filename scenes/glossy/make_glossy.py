@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-# Writes scenes/glossy/glossy.gltf (issue 16 section 6): a glossy floor (roughness 0.3), smooth
+# Writes scenes/glossy/glossy.gltf: a glossy floor (roughness 0.3), smooth
 # curved occluders with vertex normals (a ball, a torus, a capsule), glTF metallic-roughness
 # materials and one EXT_lights_area rect light. scenes/glossy.json places it and adds a textured
 # rect light and a sphere light. Deterministic: run it again and the file is the same bytes.

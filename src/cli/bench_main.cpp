@@ -51,7 +51,7 @@ int speedError(int argc, char** argv) {
 }
 
 int dcs(int argc, char** argv) {
-  CLI::App app{"the DCS studies of issue 4 in one run", "penumbra_bench_dcs"};
+  CLI::App app{"the DCS paper's studies in one run", "penumbra_bench_dcs"};
   DcsStudyOptions o;
   app.add_option("scene", o.scene, "scene for the mode, sample-count, shading and interleaving studies");
   app.add_option("--semi", o.semi, "scene with semi-opaque occluders (its opaque twin is made in memory)");
@@ -64,7 +64,7 @@ int dcs(int argc, char** argv) {
 }
 
 int multiview(int argc, char** argv) {
-  CLI::App app{"the multi-view shadow-map studies of issue 5 in one run", "penumbra_bench_multiview"};
+  CLI::App app{"the multi-view shadow-map studies in one run", "penumbra_bench_multiview"};
   MultiviewOptions o;
   app.add_option("scene", o.scene, "base scene: the floor then the occluders to instance");
   app.add_option("-W", o.width);
@@ -80,7 +80,7 @@ int multiview(int argc, char** argv) {
 }
 
 int singleMap(int argc, char** argv) {
-  CLI::App app{"the pcss studies of issue 6 in one run", "penumbra_bench_pcss"};
+  CLI::App app{"the single-map (pcss, vssm) studies in one run", "penumbra_bench_pcss"};
   SingleMapOptions o;
   app.add_option("scene", o.scene);
   app.add_option("-W", o.width);

@@ -1,4 +1,4 @@
-// The speed-against-error plot (issue 18): x = median total ms per frame, y = an error
+// The speed-against-error plot: x = median total ms per frame, y = an error
 // (ErrorAxis: the visibility RMSE, the shaded image's RMSE or the mean FLIP), both logarithmic.
 // Colour by technique family (Okabe-Ito, colour-blind safe), marker shape and shade by variant
 // within the family, the legend grouped by family; one curve per technique (its sweep presets,

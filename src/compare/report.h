@@ -12,7 +12,7 @@
 
 namespace penumbra {
 
-// "Which technique when" from a run's measurements (issue 18), one sentence a line: the Pareto
+// "Which technique when" from a run's measurements, one sentence a line: the Pareto
 // front in words (the fastest technique at each error level), each family's best point, and the
 // techniques that failed or left pixels unshadowed on this scene. On the visibility axis.
 std::vector<std::string> whichTechniqueWhen(const CompareResult& r);

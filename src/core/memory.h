@@ -1,4 +1,4 @@
-// Memory before allocating (issue 14 section 5): a scene that needs more memory than this
+// Memory before allocating: a scene that needs more memory than this
 // process may allocate is refused with one line before it is built, not killed half-way by
 // std::bad_alloc or the OOM killer.
 #pragma once
@@ -15,7 +15,7 @@ double memoryBudgetBytes();
 // allocate (<which limit>)") when `bytes` exceeds memoryBudgetBytes().
 void checkMemory(const std::string& where, const std::string& what, double bytes);
 
-// Estimated bytes per triangle, measured on UV spheres (issue 14 section 5): loading and
+// Estimated bytes per triangle, measured on UV spheres: loading and
 // cleaning a mesh (positions, welding, the sorted half-edges of the topology pass) peaked at
 // 162 bytes per triangle (`penumbra info` on 33.5 M triangles: 5.4 GiB); the GL's expanded
 // vertex buffers hold 3 vertices of 36 bytes per triangle (renderer.cpp GVertex). Below what was measured, so that

@@ -107,7 +107,7 @@ GpuScene::GpuScene(const Scene& scene, int width, int height, std::size_t maxVer
   // holds geometric normals, the ones the horizon rule and the reference's ray offset use.
   // They go into vertex buffers of at most maxVertexBufferBytes (whole triangles), each filled
   // from one staging array that is reused, so neither a GL size nor the staging memory grows
-  // with the scene (issue 14 section 5: one 2.1 GiB buffer crashed llvmpipe).
+  // with the scene (one 2.1 GiB buffer crashed llvmpipe).
   const std::size_t triangles = scene.triangleCount();
   // On a software renderer the GL's buffers are this process's memory: check their total
   // before making them (each one alone is also checked by gl::Buffer).

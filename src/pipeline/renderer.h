@@ -57,7 +57,7 @@ struct RenderSettings {
   bool interleaveFilter = true;
   // The largest vertex buffer GpuScene makes; a bigger scene is split into several buffers
   // (one draw per buffer and material). GL sizes and offsets are GLsizei/GLint (2^31 - 1) and
-  // llvmpipe's vertex fetch crashed on a 2.1 GiB buffer (issue 14 section 5), so the default
+  // llvmpipe's vertex fetch crashed on a 2.1 GiB buffer, so the default
   // stays far below; tests set it small to exercise the split.
   std::size_t maxVertexBufferBytes = std::size_t(256) << 20;
   // The G-buffer read back into FrameResult::gbuffer every frame (harness time, stage "gbuffer

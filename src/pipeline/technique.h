@@ -74,7 +74,7 @@ class Technique {
   virtual std::vector<std::pair<std::string, double>> statistics() const { return {}; }
   // Per pixel of the last light (top row first), 1 where the technique left the visibility
   // unshadowed by design rather than computing it (shadow maps: receivers beyond max-angle);
-  // empty when there are none. compare counts them and writes their mask (issue 14).
+  // empty when there are none. compare counts them and writes their mask.
   virtual std::vector<std::uint8_t> unshadowedPixels() const { return {}; }
 
  private:
@@ -164,7 +164,7 @@ class TechniqueArgs {
   std::string technique_;
 };
 
-// The families the report colours and groups techniques by (issue 18): how a technique finds
+// The families the report colours and groups techniques by: how a technique finds
 // visibility, not its code.
 enum class TechniqueFamily {
   ExactPerSample,  // a result per light sample equal to ray tracing's (raytrace, dcs*)

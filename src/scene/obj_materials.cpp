@@ -1,4 +1,4 @@
-// OBJ materials (issue 14 section 6): `mtllib` files are read for what a soft-shadow renderer
+// OBJ materials: `mtllib` files are read for what a soft-shadow renderer
 // uses — Kd (base colour), map_Kd (base-colour texture) and d / Tr (opacity, d = 1 - Tr; the
 // MTL format of Wavefront's "Advanced Visualizer" manual, where Tr is the transparency some
 // exporters write instead of d). Faces after `usemtl NAME` get that material: the OBJ is split
@@ -116,7 +116,7 @@ struct MtlReader {
     int current = -1;  // index into model.materials; -1 before newmtl or for a repeated name
     bool hasD = false, hasTr = false;
     float tr = 0.0f;
-    // Ks and Ns onto the glTF metallic-roughness BRDF (issue 16 section 4): Ks > 0 turns the
+    // Ks and Ns onto the glTF metallic-roughness BRDF: Ks > 0 turns the
     // specular lobe on, as a dielectric's (F0 0.04, metallic 0: MTL's Ks scales a Phong lobe, it
     // is not a reflectance at normal incidence, so its strength and colour are not used, said
     // once per file); Ns, the Blinn-Phong exponent, gives GGX alpha = sqrt(2 / (Ns + 2)) (Walter

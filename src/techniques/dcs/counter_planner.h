@@ -1,6 +1,6 @@
 // Adaptive sampling (DCS 5.3) from frame to frame: the counter packing of each light's next
 // counter pass, planned from the counts its previous pass measured, and the check that a pass's
-// counts fit the plan it ran with (issue 19 sections 2-3). No GL here: dcs.cpp runs the passes.
+// counts fit the plan it ran with. No GL here: dcs.cpp runs the passes.
 //
 // The paper's counter base holds the largest value any counter reaches, D(c) + bias + the
 // positive updates that cover one of its samples; every counter pass measures exactly that per

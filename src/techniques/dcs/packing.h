@@ -9,7 +9,7 @@
 // order, so a digit may pass its base for a while (it carries into its neighbour and a later
 // negative update borrows it back): the final value decodes to the right counts when each final
 // count fits its digit and the partial sums of the channel stay exact (exactWhileCounting).
-// Issue 19 section 2: a complex scene's partial counts reach ten times its final ones (engine,
+// A complex scene's partial counts reach ten times its final ones (engine,
 // 16 samples: 263 against 29 with the bias), which the paper's rule pays for in base 4096.
 // A final count past its digit changes the plain digit sum by -(B - 1) and an index-weighted
 // one as well (shaders/dcs_resolve.frag); dcs.cpp renders again with the paper's rule then.
