@@ -35,6 +35,12 @@ layout(binding = PENUMBRA_UNIT_LTC) uniform sampler2DArray ltcTable;  // layer 0
 uniform float ltcSize;                                               // cells a side
 uniform int lightPrefiltered;  // 1: the light's prefiltered emission is bound (a textured rect or disk)
 layout(binding = PENUMBRA_UNIT_LIGHT_PREFILTERED) uniform sampler2DArray prefiltered;  // a layer a level
+#ifdef EXACT_UNSHADOWED
+// ratio-exact: the unshadowed term of this light integrated on the CPU (shading/light_integral.h,
+// transmittance 1) instead of the closed forms and the LTC, so that a measurement never depends
+// on the LTC's fit; without the light's colour and intensity, as `unshadowed` below.
+layout(binding = PENUMBRA_UNIT_UNSHADOWED) uniform sampler2D exactUnshadowed;
+#endif
 uniform float prefilterSigma0;
 uniform int prefilterLevels;
 #endif
@@ -168,6 +174,9 @@ void main() {
   vec3 diffuseMean = geometric > 0.0 ? diffuseUnit / geometric : diffuseOf(s, centre);
   vec3 unshadowed = (closed.x >= 0.0 ? closed * diffuseMean : diffuse * sampleWeight) +
                     (ltc.x >= 0.0 ? ltc : specular * sampleWeight);
+#ifdef EXACT_UNSHADOWED
+  unshadowed = texelFetch(exactUnshadowed, px, 0).rgb;
+#endif
   vec3 ratio = ratioFromSamples != 0 ? ratioOf(shadowed, weights)
                                      : ratioOf(texelFetch(visibility, px, 0).rgb * float(sampleCount), unshadowedV);
   outColor = vec4(lightEmission * unshadowed * ratio, 1.0);

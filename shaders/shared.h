@@ -41,6 +41,7 @@
 #define PENUMBRA_UNIT_MATERIAL_MR_TEX 22 // glTF metallicRoughnessTexture (G roughness, B metallic)
 #define PENUMBRA_UNIT_LTC 23            // RGBA32F 2D array: the LTC GGX table (luts/ltc_ggx.lut)
 #define PENUMBRA_UNIT_LIGHT_PREFILTERED 24  // RGBA32F 2D array: a textured light's prefiltered emission
+#define PENUMBRA_UNIT_UNSHADOWED 25     // RGBA32F: ratio-exact's unshadowed term of one light (CPU integral)
 #define PENUMBRA_IMAGE_SAMPLE_VIS 0     // image unit of the per-sample visibility array
 
 // ---- shader storage / uniform buffer bindings ----------------------------------------------

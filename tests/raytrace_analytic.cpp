@@ -172,7 +172,7 @@ TEST(RaytraceAnalytic, ConvergedMatchesClosedForm) {
       g.normal.push_back({0.0f, 1.0f, 0.0f});
       g.valid.push_back(1);
     }
-    const VisibilityResult r = rt.converged(g, scene.lights[0], scene, 1024);
+    const VisibilityResult r = rt.converged(g, scene.lights[0], scene, {.minSamples = 1024});
     EXPECT_EQ(r.samples, 1024);
     EXPECT_TRUE(r.perSample.empty());
     // The polygonal disc (64 sides) hides slightly less than the circle: cos(pi/64) area ratio.

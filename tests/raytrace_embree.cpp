@@ -276,8 +276,8 @@ TEST(Raytrace, DeterministicAcrossThreadCounts) {
   EXPECT_GT(partial, 1000);
   EXPECT_GT(zero, 1000);
   EXPECT_GT(one_, 1000);
-  const VisibilityResult ca = one.converged(g, s.lights[0], s, 64);
-  const VisibilityResult cb = two.converged(g, s.lights[0], s, 64);
+  const VisibilityResult ca = one.converged(g, s.lights[0], s, {.minSamples = 64});
+  const VisibilityResult cb = two.converged(g, s.lights[0], s, {.minSamples = 64});
   EXPECT_EQ(std::memcmp(ca.visibility.data.data(), cb.visibility.data.data(),
                         ca.visibility.data.size() * 4),
             0);
@@ -323,11 +323,11 @@ TEST(Raytrace, ConvergedExtremes) {
   g.normal = {{0, 1, 0}, {0, 1, 0}};
   g.valid = {1, 1};
   const double before = rt.raysCast();
-  const VisibilityResult r = rt.converged(g, light, s, 1024);
+  const VisibilityResult r = rt.converged(g, light, s, {.minSamples = 1024});
   EXPECT_EQ(r.visibility.at(0, 0, 0), 1.0f);
   EXPECT_EQ(r.visibility.at(1, 0, 0), 0.0f);
   EXPECT_EQ(rt.raysCast() - before, 2048.0);
-  EXPECT_THROW(rt.converged(g, light, s, 0), Error);
+  EXPECT_THROW(rt.converged(g, light, s, {.minSamples = 0}), Error);
 }
 
 TEST(Raytrace, SurfaceEpsilonIsRelativeToThePoint) {

@@ -384,7 +384,7 @@ TEST(DcsCoverageModes, RefusesALutOfAnotherPattern) {
 }
 
 // Sampling strategies (issue 4, DCS paper 5.1-5.2, Fig. 5): visibility RMSE of dcs against the
-// converged reference (1024 stratified samples per pixel, a fresh set per pixel) for the
+// converged reference (2048 stratified samples per pixel, fresh sets per pixel) for the
 // paper's configurations at N = 16 and 64. The documented ordering: more samples, less error;
 // decorrelated sets (rotated per pixel) trade the correlated pattern's structured error for
 // noise of about the same RMSE; interleaved sets gathered by the normal/depth-aware filter have
@@ -405,7 +405,7 @@ TEST(DcsSampling, StrategiesAgainstTheConvergedReference) {
   FrameResult converged;
   {
     Renderer r(context(), scene, settings(128, 16));
-    auto t = makeTechnique("raytrace-converged");
+    auto t = convergedReference();
     converged = r.render(*t);
   }
   std::map<std::pair<std::string, int>, double> rmse;

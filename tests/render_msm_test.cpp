@@ -53,7 +53,7 @@ TEST(Msm, HardShadowsFromTheLightCentre) {
 TEST(MsmSoft, ParallelPlanesCase) {
   Scene scene = loadScene(scenePath("scenes/hard/23-analytic-square.json"));
   Renderer renderer(context(), scene, settings(128, 16));
-  auto converged = makeTechnique("raytrace-converged");
+  auto converged = convergedReference();
   FrameResult ref = renderer.render(*converged);
   Comparison r = renderAndCompare(scene, "msm-soft", settings(128, 16));
   const double closed = measureErrors(r.frame, ref).visibility.rmse;  // the same scene, settings and G-buffer

@@ -214,7 +214,7 @@ TEST(Vssm, Fp32SummedAreaTableFailsAtTheFarCornerExactDoesNot) {
 namespace penumbra::test {
 namespace {
 
-// Hard case 23 against the converged reference (1024 stratified samples a pixel, which stands
+// Hard case 23 against the converged reference (2048 stratified samples a pixel, which stands
 // for the closed form): the filtered single-view methods are within 0.02 (the hard-case table's
 // tolerance for filtered methods); they do not depend on the light samples, so this is their
 // fair comparison.
@@ -222,7 +222,7 @@ TEST(SingleView, AnalyticCasesAgainstTheConvergedReference) {
   for (const char* path : {"scenes/hard/23-analytic-square.json", "scenes/hard/23-analytic-disk.json"}) {
     Scene scene = loadScene(scenePath(path));
     Renderer renderer(context(), scene, settings(128, 64));
-    auto converged = makeTechnique("raytrace-converged");
+    auto converged = convergedReference();
     FrameResult ref = renderer.render(*converged);
     for (const char* name : {"pcss-ultra", "vssm"}) {
       auto t = makeTechnique(name);

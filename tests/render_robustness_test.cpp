@@ -34,7 +34,7 @@ struct Rms {
 };
 
 // Hard case 25, closed form: the square plate of hard case 23 over floors of 12, 100 and 1e4
-// units. The converged reference (1024 stratified samples a pixel) must lie within 1.5x its own
+// units. The converged reference (2048 stratified samples a pixel) must lie within 1.5x its own
 // sampling noise of the exact visible fraction in the penumbra; the noise is measured as the
 // RMS difference of two independent converged estimates over sqrt(2). Before the fix (an
 // offset of 1e-4 of the scene's radius) the reference's RMSE grew with the floor: 0.0042 at 12,
@@ -44,14 +44,14 @@ TEST(Robustness, ConvergedReferenceMatchesTheClosedFormAtEveryFloorSize) {
   for (const char* size : {"12", "100", "10000"}) {
     Scene scene = loadScene(scenePath("scenes/hard/23-analytic-square.json"), {std::string("objects.0.size=") + size});
     Renderer renderer(context(), scene, settings(96, 16));
-    auto converged = makeTechnique("raytrace-converged");
+    auto converged = convergedReference();
     FrameResult f = renderer.render(*converged);
     ASSERT_EQ(gl::Context::takeErrorCount(), 0);
     // A second, independent estimate on the same G-buffer (the renderer's camera-relative scene).
     Scene local = scene;
     local.makeCameraRelative();
     const EmbreeReference rt(local);
-    const VisibilityResult second = rt.converged(f.gbuffer, local.lights[0], local, 1024, 0.0f, 7u);
+    const VisibilityResult second = rt.converged(f.gbuffer, local.lights[0], local, {.maxSamples = 2048}, 0.0f, 7u);
     Rms error, noise;
     int penumbra = 0;
     for (int y = 0; y < f.gbuffer.height; ++y)

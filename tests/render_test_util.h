@@ -62,6 +62,13 @@ inline Comparison renderAndCompare(const Scene& scene, const std::string& techni
 
 inline TechniqueParams params(const std::vector<std::string>& keyValues) { return TechniqueParams(keyValues); }
 
+// raytrace-converged with at most `maxSamples` light (and BRDF) samples a pixel: tests that
+// measure visibility against it need only its minimum (2048, the default here); tests of shading
+// a cap that keeps them under their time budget (its 1e-3 target is reached where it can be).
+inline std::unique_ptr<Technique> convergedReference(int maxSamples = 2048) {
+  return makeTechnique("raytrace-converged", TechniqueParams({"reference-max-samples=" + std::to_string(maxSamples)}));
+}
+
 // A Technique::statistics() value of a frame (fails the test if absent).
 inline double statistic(const FrameResult& f, const std::string& key) {
   if (auto v = findStatistic(f, key)) return *v;

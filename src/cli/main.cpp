@@ -27,7 +27,7 @@ void addCommon(CLI::App* app, cli::CommonOptions& o, bool renderOptions) {
   app->add_option("--pattern", o.pattern, "per-pixel sets: correlated | decorrelated | interleaved")->capture_default_str();
   app->add_option("--seed", o.seed, "sample seed")->capture_default_str();
   app->add_option("--time", o.time, "animation time in seconds (animated textured lights)")->capture_default_str();
-  app->add_option("--shading", o.shading, "ratio (unshadowed term x shadow ratio, Heitz et al. 2018) | modulate (DCS eq. 3) | per-sample (eq. 6)")->capture_default_str();
+  app->add_option("--shading", o.shading, "ratio (unshadowed term x shadow ratio, Heitz et al. 2018) | ratio-exact (the unshadowed term integrated on the CPU, not the LTC) | modulate (DCS eq. 3) | per-sample (eq. 6)")->capture_default_str();
   app->add_flag("--no-interleave-filter", o.noInterleaveFilter,
                 "with --pattern interleaved: skip the normal/depth-aware gather of the K x K sets");
 }

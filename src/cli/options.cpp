@@ -17,7 +17,8 @@ ShadingMode parseShadingMode(const std::string& s) {
   if (s == "modulate") return ShadingMode::Modulate;
   if (s == "per-sample") return ShadingMode::PerSample;
   if (s == "ratio") return ShadingMode::Ratio;
-  throw Error("--shading", "unknown shading mode '" + s + "' (modulate, per-sample, ratio)", ExitCode::Usage);
+  if (s == "ratio-exact") return ShadingMode::RatioExact;
+  throw Error("--shading", "unknown shading mode '" + s + "' (modulate, per-sample, ratio, ratio-exact)", ExitCode::Usage);
 }
 
 SampleStrategy parseSampleStrategy(const std::string& s) {

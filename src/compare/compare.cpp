@@ -37,6 +37,19 @@ double CompareRun::errorOn(ErrorAxis axis) const {
   return -1.0;
 }
 
+std::vector<std::pair<const ComparePreset*, double>> referenceNoiseOn(const CompareResult& r, ErrorAxis axis) {
+  std::vector<std::pair<const ComparePreset*, double>> out;
+  if (axis == ErrorAxis::Flip) return out;
+  for (const CompareRun& run : r.runs) {
+    if (!run.referenceNoise) continue;
+    const double v = axis == ErrorAxis::Visibility ? run.referenceNoise->visibility : run.referenceNoise->shaded;
+    const ComparePreset& p = r.presets[run.preset];
+    if (std::none_of(out.begin(), out.end(), [&](auto& o) { return o.first->width == p.width && o.first->height == p.height; }))
+      out.emplace_back(&p, v);
+  }
+  return out;
+}
+
 bool CompareResult::hasConverged() const {
   return std::any_of(runs.begin(), runs.end(), [](auto& r) { return r.converged.has_value(); });
 }
@@ -121,6 +134,13 @@ class Comparison {
         if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
         keys.push_back(key);
         jobs_[p].push_back({&info, params.read()});
+      }
+    // The converged reference reads its own parameters (`reference-*`) from the same set.
+    if (converged_)
+      for (auto& preset : result_.presets) {
+        TechniqueParams params(preset.params);
+        o_.convergedReference.make(params);
+        all.noteReads(params);
       }
     all.checkConsumed();
   }
@@ -214,18 +234,25 @@ class Comparison {
       result_.insetSource = o_.insets.empty() ? "chosen" : "given";
     }
     if (converged_) {
-      const std::string key = fmt::format("{}x{}", preset_.width, preset_.height);
+      TechniqueParams params(result_.presets[presetIndex_].params);
+      auto conv = o_.convergedReference.make(params);
+      // One per image size (and reference-* parameters, should a sweep vary them).
+      std::string key = fmt::format("{}x{}", preset_.width, preset_.height);
+      const std::string file = key + (params.read().empty() ? "" : fmt::format("_{}", convergedRefs_.size()));
+      for (auto& r : params.read()) key += " " + r;
       progress.step("reference: " + o_.convergedReference.name + at());
       if (!convergedRefs_.count(key)) {
-        auto conv = o_.convergedReference.make(TechniqueParams{});
         Slot slot;
         convergedRefs_[key] = rendererFor(0, preset_.shading, slot).render(*conv);
         if (!o_.outDir.empty() && o_.writeExr)
-          writeFrame((std::filesystem::path(o_.outDir) / (o_.convergedReference.name + "_" + key + ".exr")).string(),
+          writeFrame((std::filesystem::path(o_.outDir) / (o_.convergedReference.name + "_" + file + ".exr")).string(),
                      convergedRefs_[key]);
       }
       refs.converged = &convergedRefs_[key];
       run.converged = measureErrors(refs.frame, *refs.converged);
+      run.referenceNoise = referenceNoise(*refs.converged);
+      run.referenceStatistics = refs.converged->statistics;
+      if (!run.referenceNoise) PLOG_WARN("{}{} states no noise: the report shows no error floor", o_.convergedReference.name, at());
     }
     run.errors = measureErrors(refs.frame, refs.frame);
     refs.flip = std::make_unique<HdrFlipReference>((refs.converged ? *refs.converged : refs.frame).color, o_.pixelsPerDegree);

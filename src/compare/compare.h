@@ -74,6 +74,10 @@ struct CompareRun {
   std::vector<std::pair<std::string, double>> statistics;
   TechniqueErrors errors;                    // against the same-sample reference
   std::optional<TechniqueErrors> converged;  // against raytrace-converged
+  // The same-sample reference's row of a comparison with a converged reference: that converged
+  // reference's own noise (compare/measure.h) and its statistics (samples per pixel, ...).
+  std::optional<ReferenceNoise> referenceNoise;
+  std::vector<std::pair<std::string, double>> referenceStatistics;
   // --frames > 1: RMS over frames and surface pixels of (this frame's change in visibility
   // - the reference's change), i.e. flicker the reference does not have; the reference's own
   // RMS change; the mean visibility RMSE over the frames.
@@ -99,6 +103,10 @@ struct CompareRun {
   double errorOn(ErrorAxis axis) const;
 };
 
+// The converged references' noise on `axis` (the plot's error floors), one per image size, in
+// the order of the runs; none on the FLIP axis.
+
+
 // The sum of a run's pipeline statistics over its stages.
 PipelineCounts totalCounts(const CompareRun& run);
 
@@ -113,6 +121,10 @@ struct CompareResult {
   bool hasFlip() const;
   nlohmann::json json() const;  // report.json
 };
+
+// The converged references' noise on `axis` (the plot's error floors), one per image size, in
+// the order of the runs; none on the FLIP axis.
+std::vector<std::pair<const ComparePreset*, double>> referenceNoiseOn(const CompareResult& r, ErrorAxis axis);
 
 // Renders the references and every technique at every preset, writing images (.exr, .png,
 // heat maps, inset crops) into options.outDir as it goes. Parameters are checked (a key no

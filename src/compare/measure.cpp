@@ -46,6 +46,28 @@ double temporalRms(const std::vector<FrameVisibility>& a, const std::vector<Fram
 
 }  // namespace
 
+std::optional<ReferenceNoise> referenceNoise(const FrameResult& ref) {
+  const auto& valid = ref.gbuffer.valid;
+  // sqrt of the mean of `variance` over surface pixels and channels; false if it has none.
+  auto rms = [&](const Image& variance, double& sum, std::int64_t& count) {
+    if (variance.pixelCount() != valid.size() || variance.channels != 3) return false;
+    for (std::size_t i = 0; i < valid.size(); ++i)
+      if (valid[i])
+        for (int c = 0; c < 3; ++c) sum += double(variance.data[i * 3 + std::size_t(c)]), ++count;
+    return true;
+  };
+  ReferenceNoise n;
+  double sum = 0.0;
+  std::int64_t count = 0;
+  if (!rms(ref.colorVariance, sum, count)) return std::nullopt;
+  n.shaded = count ? std::sqrt(sum / double(count)) : 0.0;
+  sum = 0.0, count = 0;
+  for (const LightResult& l : ref.lights)
+    if (!rms(l.visibilityVariance, sum, count)) return std::nullopt;
+  n.visibility = count ? std::sqrt(sum / double(count)) : 0.0;
+  return n;
+}
+
 TechniqueErrors measureErrors(const FrameResult& frame, const FrameResult& ref) {
   PENUMBRA_CHECK(frame.lights.size() == ref.lights.size() && !ref.lights.empty(), "frames of different scenes");
   TechniqueErrors e;

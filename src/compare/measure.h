@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/metrics.h"
@@ -28,6 +29,17 @@ struct TechniqueErrors {
   std::int64_t unshadowedPixels = 0;
   ErrorStats visibilityExceptUnshadowed;
 };
+
+// A reference's own noise, from the variances it estimated for its pixels (FrameResult::
+// colorVariance, LightResult::visibilityVariance): the root of their mean over surface pixels
+// and channels (and lights), i.e. the RMSE its noise alone puts into any technique's error
+// against it. Below it a technique's error is the reference's, not the technique's.
+struct ReferenceNoise {
+  double visibility = 0.0;  // all lights' visibility buffers
+  double shaded = 0.0;      // the shaded image
+};
+// Null when the frame's technique estimated no noise.
+std::optional<ReferenceNoise> referenceNoise(const FrameResult& reference);
 
 // Errors of `frame` against `reference` (same scene, settings and samples).
 TechniqueErrors measureErrors(const FrameResult& frame, const FrameResult& reference);

@@ -162,6 +162,15 @@ nlohmann::json CompareResult::json() const {
       t["pipelineStatistics"] = {{"stages", counts}, {"total", countsJson(totalCounts(r))}};
     }
     if (r.converged) t["convergedErrors"] = errorsJson(*r.converged);
+    if (r.referenceNoise) {
+      nlohmann::json stats = nlohmann::json::object();
+      for (auto& [k, v] : r.referenceStatistics) stats[k] = v;
+      t["convergedReferenceNoise"] = {{"visibilityRmse", r.referenceNoise->visibility},
+                                      {"shadedRmse", r.referenceNoise->shaded},
+                                      {"statistics", stats},
+                                      {"meaning", "the RMSE the converged reference's own noise puts into every error "
+                                                  "against it: the error floor"}};
+    }
     if (r.flip) t["flip"] = {{"mean", *r.flip}, {"against", r.converged ? "converged" : "same-sample"}};
     if (r.flicker >= 0.0)
       t["temporal"] = {{"flicker", r.flicker}, {"referenceMotion", r.referenceMotion}, {"meanVisibilityRmse", r.meanFrameRmse}};

@@ -206,6 +206,10 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
     y0 = std::min(y0, std::log10(errorOf(i))), y1 = std::max(y1, std::log10(errorOf(i)));
   }
   if (runs.empty()) x0 = 0, x1 = 1, y0 = -3, y1 = 0;
+  // The converged reference's own noise: a dotted floor per image size, inside the axis.
+  const auto floors = referenceNoiseOn(r, axis);
+  for (auto& [preset, noise] : floors)
+    if (noise > 0.0) y0 = std::min(y0, std::log10(std::max(noise, kExact))), y1 = std::max(y1, std::log10(std::max(noise, kExact)));
   auto pad = [](double& lo, double& hi) {
     if (hi - lo < 0.5) {
       double mid = 0.5 * (lo + hi);
@@ -244,6 +248,16 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
   s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">median ms per frame (log)</text>\n", left + pw / 2, H - 10);
   s += fmt::format("<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\">{} (log)</text>\n", top + ph / 2,
                    escapeMarkup(errorAxisName(r, axis)));
+
+  for (auto& [preset, noise] : floors) {
+    if (!(noise > 0.0)) continue;
+    const double y = Y(std::max(noise, kExact));
+    const std::string size = floors.size() > 1 ? fmt::format(" ({}x{})", preset->width, preset->height) : "";
+    s += fmt::format("<g class=\"reference-noise\"><line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" "
+                     "stroke=\"#555\" stroke-dasharray=\"1,3\"/><text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\" "
+                     "fill=\"#555\">reference noise{5} {6:.2g}</text></g>\n",
+                     left, y, left + pw, left + pw - 4, y - 4, size, noise);
+  }
 
   // Pareto front (dashed steps), then one curve per technique.
   std::vector<std::pair<double, double>> pts;

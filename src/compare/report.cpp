@@ -105,6 +105,14 @@ std::vector<std::string> whichTechniqueWhen(const CompareResult& r) {
   return out;
 }
 
+// One line on a converged reference's own noise: what the "conv" columns cannot resolve.
+std::string noiseText(const CompareRun& run) {
+  std::string samples;
+  for (auto& [k, v] : run.referenceStatistics) samples += fmt::format(", {} {:.0f}", k, v);
+  return fmt::format("converged reference's own noise (the error floor): vis RMSE {:.2g}, img RMSE {:.3g}{}",
+                     run.referenceNoise->visibility, run.referenceNoise->shaded, samples);
+}
+
 std::string reportTable(const CompareResult& r) {
   const bool conv = r.hasConverged(), temporal = r.hasTemporal(), flip = r.hasFlip();
   const bool counted = std::any_of(r.runs.begin(), r.runs.end(), [](const CompareRun& x) { return !x.counts.empty(); });
@@ -145,6 +153,7 @@ std::string reportTable(const CompareResult& r) {
     t += "  " + stagesText(run);
     if (!run.harnessStages.empty()) t += " | harness: " + harnessText(run);
     t += "\n";
+    if (run.referenceNoise) t += "  " + noiseText(run) + "\n";
   }
   return t;
 }
@@ -249,7 +258,8 @@ std::string reportHtml(const CompareResult& r) {
                    "error (visibility: all lights' buffers; shaded: the linear image; both RMSE over surface pixels; FLIP: "
                    "the mean HDR-FLIP of the shaded image, Andersson et al. 2020/2021, at ") +
        fmt::format("{:.1f}", info.value("flipPixelsPerDegree", kFlipDefaultPixelsPerDegree)) + " pixels per degree) against the " +
-       (conv ? "converged reference (raytrace-converged, 1024 stratified samples per pixel)"
+       (conv ? "converged reference (raytrace-converged: MIS of light and BRDF samples to a target standard error; "
+               "the dotted line is its own noise, the error floor below which a difference is the reference's)"
              : "ray-traced reference with the same light samples") +
        ". Colour: the technique's family; shape and shade: the variant. Points on the dashed Pareto front (outlined) are "
        "faster than every more accurate point; the front and each family's best point are labelled, hover a point (or tick "
@@ -324,6 +334,9 @@ std::string reportHtml(const CompareResult& r) {
     h += " flicker: RMS over frames and pixels of the frame-to-frame change in visibility minus the reference's change (what "
          "moves that the reference does not); reference motion: the reference's own RMS change.";
   h += "</p>\n";
+  for (const CompareRun& run : r.runs)
+    if (run.referenceNoise)
+      h += "<p class=\"note\">" + escapeMarkup(runLabel(r, run) + ": " + noiseText(run)) + "</p>\n";
 
   // Images, one gallery per preset.
   h += "<h2>Images</h2>\n<p class=\"note\">Left: the shaded image; middle: the visibility error of the first light against the "

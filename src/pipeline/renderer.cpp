@@ -10,6 +10,7 @@
 #include "core/log.h"
 #include "core/memory.h"
 #include "sampling/shared.hpp"
+#include "shading/light_integral.h"
 #include "shading/ltc.h"
 #include "shading/prefiltered_light.h"
 
@@ -20,6 +21,7 @@ const char* toString(ShadingMode m) {
     case ShadingMode::Modulate: return "modulate";
     case ShadingMode::PerSample: return "per-sample";
     case ShadingMode::Ratio: return "ratio";
+    case ShadingMode::RatioExact: return "ratio-exact";
   }
   return "?";
 }
@@ -317,11 +319,15 @@ Renderer::Renderer(gl::Context& context, const Scene& given, const RenderSetting
   colorFbo_ = gl::Framebuffer({&color_}, nullptr);
   emptyVao_ = gl::VertexArray::create();
   // The one shading program this renderer's mode needs (the mode is fixed per renderer).
-  const char* mode = settings.shading == ShadingMode::PerSample ? "PER_SAMPLE"
-                     : settings.shading == ShadingMode::Ratio   ? "RATIO"
-                                                                : "MODULATE";
-  shade_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {mode});
-  if (settings.shading == ShadingMode::Ratio) {
+  const bool ratio = settings.shading == ShadingMode::Ratio || settings.shading == ShadingMode::RatioExact;
+  const char* mode = settings.shading == ShadingMode::PerSample ? "PER_SAMPLE" : ratio ? "RATIO" : "MODULATE";
+  if (settings.shading == ShadingMode::RatioExact) {
+    shade_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {mode, "EXACT_UNSHADOWED"});
+    exactUnshadowed_ = gl::Texture::make2D(GL_RGBA32F, settings.width, settings.height);
+  } else {
+    shade_ = gl::Program({"fullscreen.vert", "pipeline_shade.frag"}, {mode});
+  }
+  if (ratio) {
     const shading::LtcTable& table = shading::builtinLtcTable();
     ltc_ = gl::Texture::make2DArray(GL_RGBA32F, table.size(), table.size(), 2);
     ltc_.upload(&table.minv[0].x, 4, 0);
@@ -393,7 +399,8 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   StageTimer& timer = result.timer;
   timer.setCounter(statistics_.get());
   bool perSample = settings_.shading == ShadingMode::PerSample;
-  const bool ratio = settings_.shading == ShadingMode::Ratio;
+  const bool exact = settings_.shading == ShadingMode::RatioExact;
+  const bool ratio = settings_.shading == ShadingMode::Ratio || exact;
   const bool sumsSamples = perSample || ratio;  // shading reads every sample (eq. 6, the ratio), not V alone
   if (perSample && !technique.providesPerSample() && !technique.shadesLights())
     throw Error(name.empty() ? "renderer" : name,
@@ -417,7 +424,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   const float background[4] = {scene_.background.r, scene_.background.g, scene_.background.b, 0};
   glClearNamedFramebufferfv(colorFbo_.id(), GL_COLOR, 0, background);
 
-  Image cpuRadiance;  // the lights a technique shaded itself (LightPass::cpuRadiance)
+  Image cpuRadiance;  // the lights a technique shaded itself (LightPass::cpuShading)
   for (std::size_t li = 0; li < scene_.lights.size(); ++li) {
     const Light& light = scene_.lights[li];
     LightSampleSet samples = makeLightSamples(scene_, light, settings_.sampling, settings_.time);
@@ -442,9 +449,9 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     if (wantSamples) perSample_.clear(glm::vec4(0.0f));
     LightResult lr;
     lr.samples = samples.count;
-    Image lightRadiance;
+    CpuShading own;
     LightPass pass{scene_, light, int(li), samples, *gpu_, timer, cpuGBuffer, visibility_,
-                   wantSamples ? &perSample_ : nullptr, &lr.perSample, &lr.visibility, &lightRadiance};
+                   wantSamples ? &perSample_ : nullptr, &lr.perSample, &lr.visibility, &own};
     gpu_->bindGBuffer();
     technique.renderVisibility(pass);
     lr.unshadowed = timer.harness("unshadowed readback", [&] { return technique.unshadowedPixels(); });
@@ -480,16 +487,32 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       vis = &filtered_;
     }
 
-    // The technique shaded the light itself: its radiance is added to the image read back.
-    if (technique.shadesLights() && lightRadiance.pixelCount() == 0)
+    // The technique shaded the light itself: its radiance is added to the image read back, its
+    // variances to the frame's (independent lights: variances add).
+    const auto rgbImage = [&](const Image& im) {
+      return im.width == settings_.width && im.height == settings_.height && im.channels == 3;
+    };
+    if (technique.shadesLights() && own.radiance.pixelCount() == 0)
       throw Error(name, fmt::format("light '{}': the technique shades its lights but gave no shaded image", light.name));
     if (technique.shadesLights()) {
-      if (lightRadiance.width != settings_.width || lightRadiance.height != settings_.height || lightRadiance.channels != 3)
-        throw Error(name, fmt::format("light '{}': the technique's shaded image is not {}x{} RGB", light.name,
-                                      settings_.width, settings_.height));
-      if (cpuRadiance.pixelCount() == 0) cpuRadiance = Image(settings_.width, settings_.height, 3, 0.0f);
-      for (std::size_t i = 0; i < cpuRadiance.data.size(); ++i) cpuRadiance.data[i] += lightRadiance.data[i];
-    } else timer.time("shading", [&] {
+      if (!rgbImage(own.radiance) || (own.radianceVariance.pixelCount() && !rgbImage(own.radianceVariance)))
+        throw Error(name, fmt::format("light '{}': the technique's shaded image or its variance is not {}x{} RGB",
+                                      light.name, settings_.width, settings_.height));
+      const auto add = [&](Image& sum, const Image& term) {
+        if (sum.pixelCount() == 0) sum = Image(settings_.width, settings_.height, 3, 0.0f);
+        for (std::size_t i = 0; i < sum.data.size(); ++i) sum.data[i] += term.data[i];
+      };
+      add(cpuRadiance, own.radiance);
+      if (own.radianceVariance.pixelCount()) add(result.colorVariance, own.radianceVariance);
+    } else {
+      if (exact) {
+        const CpuGBuffer& g = cpuGBuffer();
+        const Image u = timer.time("exact unshadowed", [&] {
+          return shading::unshadowedIntegral(g, scene_, light, settings_.time, shading::IntegratorOptions{.lightColour = false});
+        });
+        exactUnshadowed_.upload(u.data.data(), 3);
+      }
+      timer.time("shading", [&] {
       const gl::Program& prog = shade_;
       // Eq. 6 and the ratio estimator with interleaving: the light's term is shaded apart (from
       // the unfiltered per-sample results), then filtered into the image. Divergence from
@@ -515,6 +538,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       prog.use();
       setLightUniforms(prog, light, samples);
       prog.set("eyePosition", gpu_->cameraPosition());
+      if (exact) exactUnshadowed_.bind(PENUMBRA_UNIT_UNSHADOWED);
       if (ratio) {
         prog.set("ratioFromSamples", wantSamples ? 1 : 0);
         prog.set("ltcSize", float(ltc_.width()));
@@ -534,7 +558,8 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
         runFilter(lightColor_);
       }
       glDisable(GL_BLEND);
-    });
+      });
+    }
     timer.harness("readback", [&] {
       // A CPU technique's own visibility is the buffer unless the filter changed it.
       if (filter || lr.visibility.pixelCount() == 0) {
@@ -552,6 +577,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     if (std::size_t bad = nonFinitePixels(lr.visibility))
       throw Error(name, fmt::format("light '{}': {} of {} visibility pixels are NaN or infinite", light.name, bad,
                                     lr.visibility.pixelCount()));
+    lr.visibilityVariance = std::move(own.visibilityVariance);
     if (std::any_of(lr.perSample.begin(), lr.perSample.end(), [](float v) { return !std::isfinite(v); }))
       throw Error(name, fmt::format("light '{}': per-sample visibility holds NaN or infinite values", light.name));
     result.lights.push_back(std::move(lr));

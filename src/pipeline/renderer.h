@@ -38,7 +38,10 @@
 
 namespace penumbra {
 
-enum class ShadingMode { Modulate, PerSample, Ratio };
+// RatioExact: Ratio with the unshadowed term integrated on the CPU (shading/light_integral.h:
+// MIS of light and BRDF samples, transmittance 1, to a 1e-3 relative standard error) in place
+// of the closed forms and the LTC: slow, but no measurement then depends on the LTC's fit.
+enum class ShadingMode { Modulate, PerSample, Ratio, RatioExact };
 const char* toString(ShadingMode m);
 
 struct RenderSettings {
@@ -73,10 +76,14 @@ struct LightResult {
   std::vector<float> perSample;  // [pixel * N + k] transmittance, empty if not provided
   int samples = 0;
   std::vector<std::uint8_t> unshadowed;  // Technique::unshadowedPixels() for this light
+  Image visibilityVariance;  // a technique's own noise (CpuShading::visibilityVariance); empty: none
 };
 
 struct FrameResult {
   Image color;  // RGB linear radiance
+  // The variance of each pixel of `color` as estimated by a technique that shades its lights
+  // itself and knows its own noise (the converged reference); empty: none.
+  Image colorVariance;
   std::vector<LightResult> lights;
   CpuGBuffer gbuffer;  // empty unless RenderSettings::gbufferResults or the technique read it
   StageTimer timer;   // the technique's stages and, apart (StageKind::Harness), the harness's
@@ -166,6 +173,7 @@ class Renderer {
   gl::Texture color_, visibility_, perSample_;
   gl::Texture filtered_, lightColor_;  // interleaved sampling: filtered visibility, eq. 6 light term
   gl::Framebuffer colorFbo_, filteredFbo_, lightColorFbo_;
+  gl::Texture exactUnshadowed_;  // ratio-exact: one light's unshadowed term
   gl::Texture ltc_;  // ratio shading: the LTC GGX table (shading/ltc.h), two layers, linear filtering
   // Ratio shading: textured rect and disk lights' prefiltered emission (shading/prefiltered_light.h),
   // one layer a level, by emission texture and support (disk or not); made on first use.

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/image.h"
 #include "core/timer.h"
 #include "sampling/light_samples.h"
 #include "scene/gbuffer.h"
@@ -22,6 +23,16 @@ namespace penumbra {
 
 class GpuScene;  // uploaded geometry + G-buffer, see renderer.h
 namespace gl { class Texture; }
+
+// What a technique that shades a light itself (the converged reference: its own samples, not the
+// pass's set) hands back: the light's outgoing radiance (RGB), which the pipeline adds to the
+// image instead of shading the light, and the variance of each pixel's estimate of it and of the
+// visibility buffer (its own noise; empty where it has no estimate).
+struct CpuShading {
+  Image radiance;
+  Image radianceVariance;
+  Image visibilityVariance;
+};
 
 // What a technique gets for one light.
 struct LightPass {
@@ -42,10 +53,8 @@ struct LightPass {
   // directly (the harness then reads neither back).
   std::vector<float>* cpuPerSample;
   Image* cpuVisibility;
-  // A technique that shades the light itself (the converged reference: its own samples, not the
-  // set above) puts the light's outgoing radiance here (RGB); the pipeline then adds it to the
-  // image instead of shading the light.
-  Image* cpuRadiance;
+  // A technique that shades the light itself (Technique::shadesLights) fills this.
+  CpuShading* cpuShading;
 };
 
 class Technique {
@@ -65,7 +74,7 @@ class Technique {
   virtual void renderVisibility(LightPass& pass) = 0;
   // True when the technique gives per-light-sample visibility (enables eq. 6 shading).
   virtual bool providesPerSample() const { return false; }
-  // True when the technique shades every light itself (LightPass::cpuRadiance; the converged
+  // True when the technique shades every light itself (LightPass::cpuShading; the converged
   // reference): the pipeline's shading mode does not apply to it.
   virtual bool shadesLights() const { return false; }
   // Render-target memory the technique allocated, in bytes (for reports).

@@ -1,9 +1,8 @@
 // Light-sample sets (DCS paper section 5 and 7.1): unit-square point sets, their maps onto the
 // light shapes, and the per-pixel set patterns (correlated, decorrelated rotations, interleaved).
 //
-// Everything here is deterministic: one SplitMix64 generator seeded from the parameters, all
-// arithmetic in double rounded once to float, no std:: distributions (their output differs
-// between standard-library versions).
+// Everything here is deterministic: one SplitMix64 generator (sampling/rng.h) seeded from the
+// parameters, all arithmetic in double rounded once to float.
 #include "sampling/light_samples.h"
 
 #include <algorithm>
@@ -12,6 +11,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "sampling/rng.h"
 #include "sampling/shared.hpp"
 
 namespace penumbra {
@@ -25,23 +25,6 @@ constexpr int kMaxDecorrelatedSets = 4096;
 constexpr int kMaxInterleaveK = 16;
 // Converged reference sample counts are not limited by the GPU layout, only by memory.
 constexpr int kMaxSingleSetCount = 1 << 20;
-
-// SplitMix64 (Steele et al. 2014): tiny, full-period, identical on every platform.
-class Rng {
- public:
-  explicit Rng(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return double(next() >> 11) * 0x1.0p-53; }  // [0,1), 53 bits
-  std::uint32_t below(std::uint32_t n) { return std::uint32_t(uniform() * n); }
-
- private:
-  std::uint64_t state_;
-};
 
 // Independent streams per (seed, purpose, index): the purposes never share a generator state.
 enum Stream : std::uint64_t { kStreamPoints = 1, kStreamRadial = 2, kStreamRotation = 3 };

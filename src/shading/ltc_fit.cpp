@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "shading/brdf_sampling.h"
 #include "sampling/shared.hpp"
 
 namespace penumbra::shading {
@@ -46,27 +47,8 @@ double lobe(const Cell& c, const glm::dvec3& l) {
                                           float(c.alpha)));
 }
 
-// GGX normal sampling (Walter et al. 2007, eq. 35-36) reflected about h, and its density.
-glm::dvec3 sampleGgx(const Cell& c, double u1, double u2) {
-  double phi = 2.0 * kPi * u2;
-  double tan2 = c.alpha * c.alpha * u1 / (1.0 - u1);
-  double cosT = 1.0 / std::sqrt(1.0 + tan2), sinT = std::sqrt(std::max(1.0 - cosT * cosT, 0.0));
-  glm::dvec3 h(sinT * std::cos(phi), sinT * std::sin(phi), cosT);
-  return 2.0 * glm::dot(c.v, h) * h - c.v;
-}
-
-double pdfGgx(const Cell& c, const glm::dvec3& l) {
-  glm::dvec3 h = c.v + l;
-  double len = glm::length(h);
-  if (!(len > 0.0)) return 0.0;
-  h /= len;
-  if (!(h.z > 0.0)) return 0.0;
-  double a2 = c.alpha * c.alpha;
-  double d = h.z * h.z * (a2 - 1.0) + 1.0;
-  double D = a2 / (kPi * d * d);
-  double vh = std::abs(glm::dot(c.v, h));
-  return vh > 0.0 ? D * h.z / (4.0 * vh) : 0.0;
-}
+glm::dvec3 sampleGgx(const Cell& c, double u1, double u2) { return sampleGgxReflection(c.v, c.alpha, u1, u2); }
+double pdfGgx(const Cell& c, const glm::dvec3& l) { return ggxReflectionPdf(c.v, l, c.alpha); }
 
 // An LTC lobe: M = [X Y Z] * [[m11 0 m13] [0 m22 0] [0 0 1]], amplitude norm.
 struct Lobe {
@@ -88,10 +70,7 @@ struct Lobe {
     if (!(cosO > 0.0)) return 0.0;
     return amplitude * (cosO / kPi) * detMinv / (len * len * len);
   }
-  glm::dvec3 sample(double u1, double u2) const {
-    double cosT = std::sqrt(u1), sinT = std::sqrt(1.0 - u1), phi = 2.0 * kPi * u2;
-    return glm::normalize(m * glm::dvec3(sinT * std::cos(phi), sinT * std::sin(phi), cosT));
-  }
+  glm::dvec3 sample(double u1, double u2) const { return glm::normalize(m * sampleCosine(u1, u2)); }
 };
 
 // Balance-heuristic MIS over both distributions on an ns x ns stratified grid each:

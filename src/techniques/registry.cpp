@@ -122,8 +122,8 @@ const std::vector<TechniqueInfo>& techniqueTable() {
                   evsmParams(EvsmOptions{}), EvsmOptions{}, makeExponentialVarianceShadowMaps, TechniqueFamily::SingleMap),
       {"raytrace", "Embree reference with the same light samples as every technique (per sample)", {},
        [](const TechniqueArgs&) { return makeRaytraceSameSamples(); }, TechniqueFamily::ExactPerSample},
-      {"raytrace-converged", "Embree reference, 1024 stratified samples per pixel (visibility and the shaded image)", {},
-       [](const TechniqueArgs&) { return makeRaytraceConverged(1024); }, TechniqueFamily::ExactPerSample},
+      {"raytrace-converged", "Embree reference: visibility from 2048+ stratified light samples per pixel, the shaded image by MIS of light and BRDF to a 1e-3 relative standard error (65536 samples at most), each with its noise",
+       raytraceConvergedParams(), makeRaytraceConverged, TechniqueFamily::ExactPerSample},
       {"raytrace-denoised", "1-4 shadow rays per pixel through Embree, temporal accumulation and a penumbra-sized cross-bilateral filter (NRD SIGMA style)",
        denoisedParams(), makeRaytraceDenoised, TechniqueFamily::Denoised},
   };

@@ -238,7 +238,7 @@ class DepthComplexitySampling final : public Technique {
     f.light = integrationOrigin(lightPass.light);
     LightPass pass{lightPass.scene, f.light, lightPass.lightIndex, lightPass.samples, lightPass.gpu, lightPass.timer,
                    lightPass.cpuGBuffer, lightPass.visibility, lightPass.perSample, lightPass.cpuPerSample,
-                   lightPass.cpuVisibility, lightPass.cpuRadiance};
+                   lightPass.cpuVisibility, lightPass.cpuShading};
     // The paper's 2D covered-sample modes need a planar light (and its centre as the origin);
     // others use the exact test.
     f.coverage = dcs::edgeLutSupports(f.light) && !stats_.shiftedOrigin ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "sampling/shared.hpp"
 
 namespace penumbra {
@@ -24,15 +25,6 @@ namespace {
 // Segment end: the ray stops just before the light sample (t < 1 - 1e-5 of the unnormalised
 // direction), so a sample lying on a surface does not shadow itself.
 constexpr float kTFar = 1.0f - 1e-5f;
-
-// A pixel's BRDF inputs (CpuGBuffer) and the light's emission, for the shaded image.
-struct ShadeInputs {
-  glm::vec3 shadingNormal, baseColor;
-  float metallic = 0.0f, roughness = 1.0f;
-  int model = 0;
-  glm::vec3 emission, lightNormal;  // colour * intensity; LightSampleSet::lightNormal
-  float sampleWeight = 1.0f;        // LightSampleSet::sampleWeight
-};
 
 // A hit counted by the occlusion filter for the current ray.
 struct CountedHit {
@@ -130,35 +122,6 @@ unsigned threadCount(int requested) {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
-// Runs body(y, rays) for every row y on `threads` threads. Rows are taken from a shared counter;
-// each pixel's result depends only on the pixel, so the output does not depend on the thread
-// count or schedule. Rethrows the first exception of any thread.
-template <class Body>
-std::uint64_t forEachRow(int height, unsigned threads, Body body) {
-  std::atomic<int> next{0};
-  std::atomic<std::uint64_t> rays{0};
-  std::exception_ptr error;
-  std::mutex errorMutex;
-  auto worker = [&] {
-    std::uint64_t local = 0;
-    try {
-      for (int y = next++; y < height; y = next++) body(y, local);
-    } catch (...) {
-      std::lock_guard lock(errorMutex);
-      if (!error) error = std::current_exception();
-      next = height;
-    }
-    rays += local;
-  };
-  threads = std::min<unsigned>(threads, std::max(1, height));
-  std::vector<std::thread> pool;
-  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
-  return rays;
-}
-
 void checkGBuffer(const CpuGBuffer& g) {
   const std::size_t n = std::size_t(g.width) * g.height;
   PENUMBRA_CHECK(g.width >= 0 && g.height >= 0 && g.position.size() == n && g.normal.size() == n &&
@@ -219,13 +182,9 @@ struct EmbreeReference::Impl {
   // Visibility of one pixel against `count` samples (positions/luminance arrays of that set),
   // with the conventions of the header: horizon rule, ray origin off the surface. All rays
   // of the pixel go to Embree as one stream.
-  // With `shade`, also the light's outgoing radiance towards the eye into `radiance`: the sum
-  // over the samples of f L_k G_k T_k (shared.h penumbraBrdf, penumbraSampleGeometry: the
-  // pipeline's per-sample shading, eq. 6) times emission and the set's sample weight.
-  glm::vec3 shadePixel(const glm::vec3& p, const glm::vec3& n, const glm::vec3& eye, const glm::vec3* pos,
-                       const glm::vec3* lum, int count, float* perSample, Scratch& s,
-                       std::vector<int>& sampleOf, std::vector<float>& tr, std::uint64_t& rayCount,
-                       const ShadeInputs* shade = nullptr, glm::vec3* radiance = nullptr) const {
+  glm::vec3 tracePixel(const glm::vec3& p, const glm::vec3& n, const glm::vec3& eye, const glm::vec3* pos,
+                       const glm::vec3* lum, int count, float* perSample, Scratch& s, std::vector<int>& sampleOf,
+                       std::vector<float>& tr, std::uint64_t& rayCount) const {
     const glm::vec3 o = shared::penumbraShadowOrigin(p, n, eye);
     s.reset(std::size_t(count));
     sampleOf.clear();
@@ -238,63 +197,13 @@ struct EmbreeReference::Impl {
     traceStream(s, tr.data());
     rayCount += s.rays.size();
     if (perSample) std::fill(perSample, perSample + count, 0.0f);
-    glm::dvec3 sum(0.0), shaded(0.0);
-    const glm::vec3 v = glm::normalize(eye - p);
+    glm::dvec3 sum(0.0);
     for (std::size_t j = 0; j < sampleOf.size(); ++j) {
       const int k = sampleOf[j];
       if (perSample) perSample[k] = tr[j];
       sum += glm::dvec3(lum[k]) * double(tr[j]);  // eq. 2: L_i * (1 - Sat(D)), in sample order
-      if (shade && tr[j] > 0.0f) {
-        const glm::vec3 l = glm::normalize(pos[k] - p);
-        const float g = shared::penumbraSampleGeometry(p, n, shade->shadingNormal, pos[k], shade->lightNormal);
-        const glm::vec3 f = shared::penumbraBrdf(shade->shadingNormal, v, l, shade->baseColor, shade->metallic,
-                                                 shade->roughness, shade->model);
-        shaded += glm::dvec3(lum[k] * f) * double(g * tr[j]);
-      }
     }
-    if (shade && radiance) *radiance = glm::vec3(shaded) * shade->emission * shade->sampleWeight;
     return glm::vec3(sum / double(count));
-  }
-
-  // Traces every surface pixel of `gbuf` (multithreaded by rows) with the `n` samples that
-  // `samplesFor(x, y, pixel, scratchSet)` gives it (positions and luminances; it may fill and
-  // point into `scratchSet`). Per-sample results are kept when `perSample` is set.
-  // With `light`, also the light's shaded image (VisibilityResult::radiance) from the G-buffer's
-  // BRDF inputs.
-  template <class SamplesFor>
-  VisibilityResult traceImage(const CpuGBuffer& gbuf, int n, bool perSample,
-                              SamplesFor&& samplesFor, const Light* light = nullptr) {
-    VisibilityResult out;
-    out.samples = n;
-    out.visibility = Image(gbuf.width, gbuf.height, 3, 0.0f);
-    if (light) out.radiance = Image(gbuf.width, gbuf.height, 3, 0.0f);
-    if (perSample) out.perSample.assign(std::size_t(gbuf.width) * gbuf.height * n, 0.0f);
-    rays += forEachRow(gbuf.height, threads, [&](int y, std::uint64_t& rayCount) {
-      Scratch scratch;
-      std::vector<int> sampleOf;
-      std::vector<float> tr;
-      LightSampleSet scratchSet;
-      for (int x = 0; x < gbuf.width; ++x) {
-        const std::size_t i = std::size_t(y) * gbuf.width + x;
-        if (!gbuf.valid[i]) continue;  // no surface: visibility 0
-        const auto [pos, lum] = samplesFor(x, y, i, scratchSet);
-        const glm::vec3 p = gbuf.position[i], nrm = gbuf.normal[i];
-        ShadeInputs shade;
-        if (light) {
-          const glm::vec3& m = gbuf.material[i];
-          shade = {gbuf.shadingNormal[i], gbuf.baseColor[i], m.x, m.y, int(m.z + 0.5f),
-                   light->color * light->intensity, scratchSet.lightNormal, scratchSet.sampleWeight};
-        }
-        glm::vec3 radiance(0.0f);
-        const glm::vec3 v = shadePixel(p, nrm, gbuf.camera.value_or(p + nrm), pos, lum, n,
-                                       perSample ? &out.perSample[i * n] : nullptr, scratch, sampleOf, tr,
-                                       rayCount, light ? &shade : nullptr, light ? &radiance : nullptr);
-        for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
-        if (light)
-          for (int c = 0; c < 3; ++c) out.radiance.at(x, y, c) = radiance[c];
-      }
-    });
-    return out;
   }
 };
 
@@ -371,29 +280,88 @@ VisibilityResult EmbreeReference::sameSamples(const CpuGBuffer& gbuf, const Ligh
   PENUMBRA_CHECK(n >= 1 && samples.setCount >= 1 && samples.positions.size() == total &&
                      samples.luminance.size() == total,
                  "LightSampleSet arrays do not match count x setCount");
-  return impl_->traceImage(gbuf, n, true, [&](int x, int y, std::size_t, LightSampleSet&) {
-    const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
-    return std::pair(&samples.positions[first], &samples.luminance[first]);
+  VisibilityResult out;
+  out.samples = n;
+  out.visibility = Image(gbuf.width, gbuf.height, 3, 0.0f);
+  out.perSample.assign(std::size_t(gbuf.width) * gbuf.height * n, 0.0f);
+  const Impl& m = *impl_;
+  m.rays += parallelRows(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
+    Scratch scratch;
+    std::vector<int> sampleOf;
+    std::vector<float> tr;
+    for (int x = 0; x < gbuf.width; ++x) {
+      const std::size_t i = std::size_t(y) * gbuf.width + x;
+      if (!gbuf.valid[i]) continue;  // no surface: visibility 0
+      const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
+      const glm::vec3 p = gbuf.position[i], nrm = gbuf.normal[i];
+      const glm::vec3 v = m.tracePixel(p, nrm, gbuf.camera.value_or(p + nrm), &samples.positions[first],
+                                       &samples.luminance[first], n, &out.perSample[i * n], scratch, sampleOf, tr,
+                                       rayCount);
+      for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
+    }
   });
+  return out;
 }
 
-VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light& light,
-                                            const Scene& scene, int count, float time,
+VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light& light, const Scene& scene,
+                                            const shading::IntegratorOptions& options, float time,
                                             std::uint32_t seed) const {
   checkGBuffer(gbuf);
-  // Validates count and light up front, so errors are thrown here rather than in a worker.
-  const int n = makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, 1, time).count;
+  // Validates the options and the light up front, so errors are thrown here rather than in a worker.
+  const shading::LightIntegrator integrator(scene, light, time, options);
   // The shaded image needs the G-buffer's BRDF inputs (a caller may give geometry only).
-  const bool shaded = gbuf.shadingNormal.size() == gbuf.position.size() && gbuf.baseColor.size() == gbuf.position.size() &&
-                      gbuf.material.size() == gbuf.position.size();
-  return impl_->traceImage(gbuf, n, false, [&](int, int, std::size_t i, LightSampleSet& set) {
-    // A fresh stratified set per pixel, seeded by the pixel index (makeLightSampleSet hashes
-    // the seed): decorrelated (section 5.1) and independent of the thread that computes it.
-    // `seed` picks another family of sets (a second estimate, for the sampling noise).
-    const std::uint32_t pixelSeed = seed == 0 ? std::uint32_t(i) : shared::penumbraHash(std::uint32_t(i) ^ shared::penumbraHash(seed));
-    set = makeLightSampleSet(scene, light, SampleStrategy::Stratified, count, pixelSeed, time);
-    return std::pair(set.positions.data(), set.luminance.data());
-  }, shaded ? &light : nullptr);
+  const std::size_t n = gbuf.position.size();
+  const bool shaded = gbuf.shadingNormal.size() == n && gbuf.baseColor.size() == n && gbuf.material.size() == n;
+  VisibilityResult out;
+  out.visibility = Image(gbuf.width, gbuf.height, 3, 0.0f);
+  out.visibilityVariance = Image(gbuf.width, gbuf.height, 3, 0.0f);
+  if (shaded) out.radiance = out.radianceVariance = Image(gbuf.width, gbuf.height, 3, 0.0f);
+  std::vector<int> samples(n, 0);
+  std::vector<std::uint8_t> capped(n, 0);
+  const Impl& m = *impl_;
+  m.rays += parallelRows(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
+    Scratch scratch;
+    const shading::SegmentTracer trace = [&](const glm::vec3& o, const glm::vec3* targets, int count, float* tr) {
+      scratch.reset(std::size_t(count));
+      for (int j = 0; j < count; ++j) scratch.rays.push_back(makeRay(o, targets[j] - o, unsigned(j)));
+      m.traceStream(scratch, tr);
+    };
+    for (int x = 0; x < gbuf.width; ++x) {
+      const std::size_t i = std::size_t(y) * gbuf.width + x;
+      if (!gbuf.valid[i]) continue;  // no surface: visibility 0
+      shading::SurfacePoint sp;
+      sp.p = gbuf.position[i], sp.ng = gbuf.normal[i];
+      sp.eye = gbuf.camera.value_or(sp.p + sp.ng);
+      sp.origin = shared::penumbraShadowOrigin(sp.p, sp.ng, sp.eye);
+      if (shaded) {
+        const glm::vec3& mat = gbuf.material[i];
+        sp.shaded = true, sp.ns = gbuf.shadingNormal[i], sp.baseColor = gbuf.baseColor[i];
+        sp.metallic = mat.x, sp.roughness = mat.y, sp.model = int(mat.z + 0.5f);
+      }
+      // Seeded by the pixel index: decorrelated (section 5.1) and independent of the thread that
+      // computes it. `seed` picks another family of sets (a second estimate, for the noise).
+      const std::uint32_t pixelSeed =
+          seed == 0 ? std::uint32_t(i) : shared::penumbraHash(std::uint32_t(i) ^ shared::penumbraHash(seed));
+      const shading::PixelEstimate e = integrator.estimate(sp, pixelSeed, trace);
+      rayCount += e.rays;
+      samples[i] = e.samples, capped[i] = e.capped;
+      for (int c = 0; c < 3; ++c) {
+        out.visibility.at(x, y, c) = float(e.visibility[c]);
+        out.visibilityVariance.at(x, y, c) = float(e.visibilityVariance[c]);
+        if (shaded) out.radiance.at(x, y, c) = float(e.radiance[c]), out.radianceVariance.at(x, y, c) = float(e.radianceVariance[c]);
+      }
+    }
+  });
+  std::int64_t surface = 0, total = 0;
+  out.samples = std::numeric_limits<int>::max();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!gbuf.valid[i]) continue;
+    ++surface, total += samples[i], out.cappedPixels += capped[i];
+    out.maxSamples = std::max(out.maxSamples, samples[i]), out.samples = std::min(out.samples, samples[i]);
+  }
+  if (surface == 0) out.samples = 0;
+  out.meanSamples = surface ? double(total) / double(surface) : 0.0;
+  return out;
 }
 
 SparseResult EmbreeReference::sparseSamples(const CpuGBuffer& gbuf, const LightSampleSet& samples, int spp,
@@ -406,7 +374,7 @@ SparseResult EmbreeReference::sparseSamples(const CpuGBuffer& gbuf, const LightS
   out.ratio = Image(gbuf.width, gbuf.height, 3, 1.0f);
   out.blocker.assign(std::size_t(gbuf.width) * gbuf.height, 0.0f);
   const Impl& m = *impl_;
-  m.rays += forEachRow(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
+  m.rays += parallelRows(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
     Scratch scratch;
     std::vector<float> tr;
     std::vector<int> sampleOf;

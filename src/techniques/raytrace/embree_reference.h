@@ -2,9 +2,11 @@
 //
 // Mode "same samples": for every pixel of the G-buffer and every light sample of the pixel's
 // set, the transmittance of the segment from the surface point to the sample (opaque hit -> 0,
-// semi-opaque surfaces multiply their (1 - opacity)). Mode "converged": many stratified samples
-// per pixel, decorrelated, for the visibility buffer and the shaded image (the converged truth
-// compare measures every technique's shaded image against).
+// semi-opaque surfaces multiply their (1 - opacity)). Mode "converged": the visibility buffer
+// from many stratified light samples per pixel, decorrelated, and the shaded image by multiple
+// importance sampling of the light and the BRDF to a target standard error
+// (shading/light_integral.h), each with its own noise: the converged truth compare measures
+// every technique's shaded image against.
 //
 // Conventions shared with every GPU technique (so that results are comparable):
 //  * a pixel is shaded only if the G-buffer has a surface there (valid);
@@ -30,6 +32,7 @@
 #include "sampling/light_samples.h"
 #include "scene/gbuffer.h"
 #include "scene/scene.h"
+#include "shading/light_integral.h"
 
 namespace penumbra {
 
@@ -40,8 +43,16 @@ struct VisibilityResult {
   std::vector<float> perSample;  // empty or width*height*N
   int samples = 0;               // N
   // Converged mode with a G-buffer that carries the BRDF inputs: the light's outgoing radiance
-  // (RGB, width x height), the per-sample direct illumination of its `samples` samples; else empty.
+  // (RGB, width x height); else empty.
   Image radiance;
+  // Converged mode: the variance of each pixel's estimate (the square of its standard error,
+  // from the spread of its independent batches) of the visibility and of the radiance (empty
+  // without radiance); light samples per pixel, their mean over surface pixels, their largest
+  // count, and the pixels that stopped at the cap short of the target.
+  Image visibilityVariance, radianceVariance;
+  double meanSamples = 0.0;
+  int maxSamples = 0;
+  std::int64_t cappedPixels = 0;
 };
 
 // Sparse mode (raytrace-denoised): a few of each pixel's samples, their shadow ratio and the
@@ -66,10 +77,12 @@ class EmbreeReference {
   // Same-samples mode.
   VisibilityResult sameSamples(const CpuGBuffer& gbuf, const LightSampleSet& samples) const;
 
-  // Converged mode: `count` stratified samples per pixel, a fresh decorrelated set per pixel
-  // (seeded by the pixel; `seed` != 0 gives an independent estimate).
+  // Converged mode: per pixel, batches of fresh stratified light samples (and BRDF samples,
+  // where the G-buffer has the BRDF inputs) until the options' target or cap (seeded by the
+  // pixel; `seed` != 0 gives an independent estimate). Throws penumbra::Error for bad options.
   VisibilityResult converged(const CpuGBuffer& gbuf, const Light& light, const Scene& scene,
-                             int count = 1024, float time = 0.0f, std::uint32_t seed = 0) const;
+                             const shading::IntegratorOptions& options = {}, float time = 0.0f,
+                             std::uint32_t seed = 0) const;
 
   // Sparse mode: `spp` of the N samples of each pixel's set, samples (h + rotation + j) mod N for
   // j < spp with h a hash of the pixel index (raising `rotation` by spp each frame visits every
