@@ -615,10 +615,10 @@ TEST(Pipeline, RatioExactShadingMeetsTheUnshadowedGoal) {
       double error[2] = {0.0, 0.0};
       FrameResult reference;
       for (ShadingMode mode : {ShadingMode::Ratio, ShadingMode::RatioExact}) {
-        RenderSettings s = settings(96, 16);
+        RenderSettings s = settings(64, 16);
         s.shading = mode;
         Renderer renderer(context(), scene, s);
-        if (mode == ShadingMode::Ratio) reference = renderer.render(*convergedReference(16384), "raytrace-converged");
+        if (mode == ShadingMode::Ratio) reference = renderer.render(*convergedReference(8192), "raytrace-converged");
         auto none = makeTechnique("none");
         const FrameResult f = renderer.render(*none, "none");
         ASSERT_EQ(gl::Context::takeErrorCount(), 0);
