@@ -24,7 +24,13 @@ void ShadowVolumeCounter::prepare(const Scene& scene, GpuScene& gpu, const std::
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     MeshVolumes v;
     v.topology = geo::buildEdgeTopology(scene.meshes[i].mesh);
-    v.units = units.empty() ? 1 : units[i];
+    // A fully transparent material (opacity 0: glTF MASK below its cutoff, a scene file's opacity
+    // 0) never occludes, whatever the caller's units say: the ray tracer leaves it out of its BVH
+    // and the shadow maps never draw it.
+    const int material = scene.meshes[i].material;
+    const bool transparent = material >= 0 && material < int(scene.materials.size()) &&
+                             !(scene.materials[std::size_t(material)].opacity > 0.0f);
+    v.units = transparent ? 0 : units.empty() ? 1 : units[i];
     v.rule = v.units < opaqueUnits ? geo::VolumeRule::PerTriangle : geo::volumeRuleFor(v.topology);
     meshes_.push_back(std::move(v));
   }
