@@ -1,7 +1,8 @@
 // `raytrace-denoised`: the point the industry plots today, a few shadow rays per pixel and a
 // shadow denoiser, in the manner of NVIDIA NRD's SIGMA and AMD FidelityFX's shadow denoiser:
-//  1. `spp` rays per pixel through Embree (the pixel's own light samples, a different `spp` of its
-//     N each frame: every sample once in N / spp frames; embree_reference.h sparseSamples), giving
+//  1. `spp` rays per pixel through Embree (the pixel's own light samples above its horizon, a
+//     different `spp` of those M each frame: every one once in M / spp frames; embree_reference.h
+//     sparseSamples), giving
 //     the shadow ratio sum L T / sum L of those samples and their occluders' distance;
 //  2. temporal accumulation (`temporal`): the ratio's running mean over up to `history` frames
 //     (0: N / spp, one cycle of the samples), reprojected through the previous frame's camera,

@@ -377,7 +377,7 @@ SparseResult EmbreeReference::sparseSamples(const CpuGBuffer& gbuf, const LightS
   m.rays += parallelRows(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
     Scratch scratch;
     std::vector<float> tr;
-    std::vector<int> sampleOf;
+    std::vector<int> sampleOf, above;
     for (int x = 0; x < gbuf.width; ++x) {
       const std::size_t i = std::size_t(y) * gbuf.width + x;
       if (!gbuf.valid[i]) continue;
@@ -385,12 +385,18 @@ SparseResult EmbreeReference::sparseSamples(const CpuGBuffer& gbuf, const LightS
       const glm::vec3 o = shared::penumbraShadowOrigin(p, nrm, gbuf.camera.value_or(p + nrm));
       const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
       const std::uint32_t h = shared::penumbraHash(std::uint32_t(i) ^ 0x9e3779b9u);
-      scratch.reset(std::size_t(spp));
+      // The rotation runs over the samples above the horizon only: a sample below it is 0 in
+      // the unshadowed term too, and tracing one told nothing (such a pixel kept ratio 1 and lit
+      // the inside of a closed box, hard case 34).
+      above.clear();
+      for (int k = 0; k < n; ++k)
+        if (glm::dot(nrm, samples.positions[first + k] - p) > 0.0f) above.push_back(k);
+      const int candidates = int(above.size()), traced = std::min(spp, candidates);
+      scratch.reset(std::size_t(traced));
       sampleOf.clear();
-      for (int j = 0; j < spp; ++j) {
-        const int k = int((h + rotation + std::uint32_t(j)) % std::uint32_t(n));
+      for (int j = 0; j < traced; ++j) {
+        const int k = above[(h + rotation + std::uint32_t(j)) % std::uint32_t(candidates)];
         const glm::vec3& xk = samples.positions[first + k];
-        if (!(glm::dot(nrm, xk - p) > 0.0f)) continue;  // below the horizon: not traced
         scratch.rays.push_back(makeRay(o, xk - o, unsigned(scratch.rays.size())));
         sampleOf.push_back(k);
       }

@@ -84,9 +84,9 @@ class EmbreeReference {
                              const shading::IntegratorOptions& options = {}, float time = 0.0f,
                              std::uint32_t seed = 0) const;
 
-  // Sparse mode: `spp` of the N samples of each pixel's set, samples (h + rotation + j) mod N for
-  // j < spp with h a hash of the pixel index (raising `rotation` by spp each frame visits every
-  // sample once in N / spp frames).
+  // Sparse mode: `spp` of the M samples of each pixel's set above its horizon, those
+  // (h + rotation + j) mod M for j < spp with h a hash of the pixel index (raising `rotation` by
+  // spp each frame visits every one once in M / spp frames); none when M is 0.
   SparseResult sparseSamples(const CpuGBuffer& gbuf, const LightSampleSet& samples, int spp,
                              std::uint32_t rotation) const;
 
