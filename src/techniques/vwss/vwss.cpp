@@ -25,6 +25,7 @@ struct VwssOptions {
   int backFaces = -1;  // 0 cull, 1 keep, -1 (default) keep unless culling provably drops nothing
   double scale = 0.0;  // 0: eq. 3
   long passPoints = 0;  // most points one generation pass holds; 0: the GL's storage-block limit
+  int maxView = 4096;   // the point view's side at most (the GL's limit caps it too)
 };
 
 const char* modeName(VwssMode m) {
@@ -79,12 +80,19 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
     double scale = o_.scale > 0.0 ? o_.scale : scaleEq3_;
     GLint maxFb = 0;
     glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &maxFb);
-    int res = int(std::ceil(double(frame.size) * scale));
-    capped_ = res > maxFb;
-    sourceSize_ = std::min(res, int(maxFb));
+    // Bounded work: eq. 3 grows without bound as the nearest occluder nears the light (an 8 x 8
+    // light 0.35 above a floor asked for 28225^2 points; the GL's 16384^2 took 66 s a frame
+    // here). The view stops at `max-view` (and the GL's limit); the warning says what it cuts.
+    const double wanted = std::ceil(double(frame.size) * scale);
+    const int cap = std::min(o_.maxView, int(maxFb));
+    capped_ = wanted > double(cap);
+    sourceSize_ = capped_ ? cap : int(wanted);
     if (capped_ && !warnedCap_) {
-      PLOG_WARN("{}: eq. 3 asks for a {}^2 point-generation view; capped at the GL's {} (occluders nearer than the light "
-                "size are sampled below mvr's rate)", name(), res, maxFb);
+      const double ratio = double(cap) / double(frame.size);  // eq. 3's (z_n + d) / z_n at the cap
+      PLOG_WARN("{}: eq. 3 asks for a {:.0f}^2 point-generation view; capped at {} ({}): occluders nearer the light than "
+                "{:.3g} are sampled below mvr's rate", name(), wanted, cap,
+                cap == o_.maxView ? "--param max-view" : "the GL's limit",
+                ratio > 1.0 ? double(distance_) / (ratio - 1.0) : double(INFINITY));
       warnedCap_ = true;
     }
 
@@ -348,6 +356,9 @@ std::vector<ParamSpec> vwssParams(VwssMode mode) {
                   .shown("auto"));
   p.push_back(ParamSpec::number("scale", 0.0, 0.0, 64.0, "point-generation resolution over the map resolution; 0: eq. 3")
                   .shown("eq. 3"));
+  p.push_back(ParamSpec::integer("max-view", VwssOptions{}.maxView, 16, 16384,
+                                 "the point-generation view's side at most (and the GL's limit): eq. 3 asks for "
+                                 "(z_n + d) / z_n times the map, unbounded as an occluder nears the light; a capped view warns"));
   if (mode != VwssMode::Unbuffered)
     p.push_back(ParamSpec::integer("pass-points", 0, 0, 1 << 30,
                                    "most points one point-generation pass holds (0: the GL's limit); more are split into "
@@ -362,6 +373,7 @@ std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueArgs& args, 
   if (mode == VwssMode::Buffered) o.splat.mapsPerThread = args.integer("k");
   o.backFaces = args.integer("backfaces");
   o.scale = args.number("scale");
+  o.maxView = args.integer("max-view");
   if (mode != VwssMode::Unbuffered) o.passPoints = args.integer("pass-points");
   return std::make_unique<ViewWarpedSoftShadows>(shadow_map::readMapOptions(args), shadow_map::readPcfTaps(args), o);
 }
