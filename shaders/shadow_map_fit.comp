@@ -22,7 +22,6 @@ uniform int pass;
 uniform ivec2 size;
 uniform vec3 lightCentre, mapAxis, mapRight, mapUp;
 uniform float reachLateral, reachAxialMax, mapNear, tanMax;
-uniform int oneSided;
 
 // Written out and `precise`: the same float operations, in the same order, as the CPU's glm::dot.
 float dot3(vec3 a, vec3 b) {
@@ -58,13 +57,15 @@ void main() {
     precise vec3 r = g.xyz - lightCentre;
     precise float depth = dot3(r, mapAxis) - reachAxialMax;
     precise float lateral = max(abs(dot3(r, mapRight)), abs(dot3(r, mapUp))) + reachLateral;
-    if (!(oneSided != 0 && depth <= 0.0)) {  // behind a one-sided light: it emits nothing there
-      if (depth <= mapNear || lateral > tanMax * depth) {
-        out_ = 1u;
-        atomicAdd(outside, 1u);
-      } else {
-        atomicMax(tanHalfBits, floatBitsToUint(lateral / depth));
-      }
+    // Behind a one-sided light too: it emits nothing there, but the visibility buffer (eq. 2)
+    // counts its samples above the receiver's horizon, which no map holds; left unshadowed, so
+    // counted (a light facing away from everything made every map technique return `none`'s
+    // visibility while reporting no pixel).
+    if (depth <= mapNear || lateral > tanMax * depth) {
+      out_ = 1u;
+      atomicAdd(outside, 1u);
+    } else {
+      atomicMax(tanHalfBits, floatBitsToUint(lateral / depth));
     }
   }
   imageStore(outsideMask, px, uvec4(out_));

@@ -150,7 +150,6 @@ TEST(Timing, GpuFrustumFitMatchesTheCpu) {
         const glm::vec3 axis = glm::normalize(glm::vec3(sum / double(n)) - light.position);
         EXPECT_NEAR(glm::dot(axis, f.axis), 1.0, 1e-6) << at;
       }
-      const bool oneSided = light.shape == LightShape::Rect || light.shape == LightShape::Disk;
       const float tanMax = std::tan(glm::radians(float(maxAngle)));
       float tanHalf = 0.0f;
       std::vector<std::uint8_t> mask(g.position.size(), 0);
@@ -160,7 +159,6 @@ TEST(Timing, GpuFrustumFitMatchesTheCpu) {
         const glm::vec3 r = g.position[i] - light.position;
         const float depth = glm::dot(r, f.axis) - f.sampleAxialMax;
         const float lateral = std::max(std::abs(glm::dot(r, f.right)), std::abs(glm::dot(r, f.up))) + f.sampleLateral;
-        if (oneSided && depth <= 0.0f) continue;
         if (depth <= f.zNear || lateral > tanMax * depth) mask[i] = 1, ++outside;
         else tanHalf = std::max(tanHalf, lateral / depth);
       }

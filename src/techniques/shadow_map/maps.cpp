@@ -253,7 +253,6 @@ MapFrame FrameFit::compute(const GpuScene& gpu, const Light& light, const LightS
   program_.set("reachLateral", f.sampleLateral);
   program_.set("reachAxialMax", f.sampleAxialMax);
   program_.set("tanMax", std::tan(glm::radians(float(options.maxHalfAngle))));
-  program_.set("oneSided", light.shape == LightShape::Rect || light.shape == LightShape::Disk ? 1 : 0);
   dispatchThreads(std::size_t(w) * std::size_t(h));
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
   result_.read(&out.tanHalfBits, 2 * sizeof(std::uint32_t), offsetof(FitResult, tanHalfBits));

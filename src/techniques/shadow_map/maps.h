@@ -50,9 +50,9 @@ struct MapFrame {
   // Lateral and axial reach of the views around the light centre (frame coordinates): of the
   // light samples (multi-view), or of the whole light (single-view, MapReach::Light).
   float sampleLateral = 0.0f, sampleAxialMin = 0.0f, sampleAxialMax = 0.0f;
-  // Surface pixels beyond maxHalfAngle or behind an isotropic light's samples (left unshadowed);
-  // pixels behind a one-sided light, which it does not light, are not counted. Their mask stays
-  // on the GPU (FrameFit::outsideMask).
+  // Surface pixels beyond maxHalfAngle or behind the light's samples (left unshadowed; behind a
+  // one-sided light too, which does not light them but whose visibility buffer, eq. 2, no map
+  // holds). Their mask stays on the GPU (FrameFit::outsideMask).
   std::size_t outsidePixels = 0;
 };
 
