@@ -694,3 +694,18 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DcsSilhouettePaths,
 
 }  // namespace
 }  // namespace penumbra::test
+
+namespace penumbra::test {
+
+// The coplanar-light warning (an area light's sample paths along a surface) meant nothing for a
+// point light on a plane, yet fired: a point light in the floor's plane has no such path, and
+// dcs now counts (and warns about) no coplanar triangle there.
+TEST(DcsCoplanar, APointLightOnAPlaneIsNotACoplanarAreaLight) {
+  Scene scene = loadScene(scenePath("scenes/hard/30-tiny-opacity.json"),
+                          {"lights.0.type=point", "lights.0.position=[1,0,0.5]", "materials.0.opacity=1"});
+  const Comparison r = renderAndCompare(scene, "dcs", settings(32, 16));
+  EXPECT_EQ(statistic(r.frame, "coplanarTriangles"), 0.0);
+  EXPECT_LE(r.errors.visibility.maxAbs, 1e-6);
+}
+
+}  // namespace penumbra::test

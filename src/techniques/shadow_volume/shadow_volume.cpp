@@ -53,7 +53,10 @@ ShadowVolumeCounter::Placement ShadowVolumeCounter::place(const glm::dvec3& cent
     std::vector<std::size_t> foundStart(n + 1, 0);
     if (n > 0) {
       std::vector<std::uint32_t> near = geo::trianglesNearBall(m.topology, centre, radius);
-      for (std::uint32_t t : near) {
+      // An area light in a triangle's plane (its samples' paths from the centre run along the
+      // surface: the known limit dcs warns about); one sample (a point light, the centre) has no
+      // such path, so nothing to warn about.
+      for (std::uint32_t t : n > 1 ? near : std::vector<std::uint32_t>{}) {
         bool inPlane = geo::triangleFacing(m.topology, t, centre) == 0;
         for (std::size_t k = 0; k < n && inPlane; ++k) inPlane = geo::triangleFacing(m.topology, t, glm::dvec3((*samples)[k])) == 0;
         out.coplanarTriangles += inPlane;
