@@ -486,12 +486,13 @@ TEST(Pipeline, GlossyShadingIsTheSharedBrdfOnGpuAndCpu) {
     EXPECT_EQ(g.material[g.width * (g.height / 2) + g.width / 2].z, float(PENUMBRA_BRDF_METALLIC_ROUGHNESS));
     EXPECT_LE(worst, 1e-4) << "metallic " << metallic;
 
-    auto converged = convergedReference(2048);
+    // 1024 of each strategy a pixel (the sanitizer run's budget): far below 128 samples' noise.
+    auto converged = makeTechnique("raytrace-converged", params({"reference-samples=1024", "reference-max-samples=1024"}));
     FrameResult c = renderer.render(*converged, "raytrace-converged");
     ErrorStats e = compareImages(f.color, c.color);
     std::printf("metallic %.0f: 128 samples against the converged shaded image: RMSE %.4g (%.3g of the peak)\n",
                 metallic, e.rmse, e.rmse / peak);
-    EXPECT_LE(e.rmse, 2e-3 * peak);  // measured 4.2e-4 (dielectric), 8.4e-4 (metal) of the peak
+    EXPECT_LE(e.rmse, 2e-3 * peak);  // measured 5.0e-4 (dielectric), 9.0e-4 (metal) of the peak
   }
 }
 
