@@ -83,17 +83,20 @@ namespace penumbra::test {
 
 // Hard case 33: a box of opacity 0 (what a glTF MASK material whose constant alpha is below its
 // cutoff loads as) never occludes. hard-sv drew its volumes and cast the box's full shadow
-// (visibility max error 1.0 against the ray tracer, which leaves it out of its BVH); every
+// (visibility max error 1.0 against the ray tracer, which leaves it out of its BVH); every base
 // technique of the table must light the floor as the ray tracer does.
 TEST(HardCase33, ATransparentOccluderCastsNoShadowInAnyTechnique) {
   const Scene scene = loadScene(scenePath("scenes/hard/33-transparent-occluder.json"));
   for (const TechniqueInfo& t : techniqueTable()) {
-    if (t.name == "raytrace" || t.name == "raytrace-converged") continue;
+    // One of each base (the variants share its occluder drawing), and the references apart.
+    const bool variant = t.name.find('-') != std::string::npos && t.name != "hard-sv" && t.name != "msm-soft" &&
+                         t.name != "raytrace-denoised";
+    if (variant || t.name == "raytrace") continue;
     const Comparison r = renderAndCompare(scene, t.name, settings(64, 16));
     std::printf("%-18s visibility RMSE %.2g, max %.2g\n", t.name.c_str(), r.errors.visibility.rmse, r.errors.visibility.maxAbs);
     // The box's shadow would be errors of 1. Exact and hard techniques equal the ray tracer; the
-    // approximate ones keep their own small errors of an unoccluded floor (measured: multi-view
-    // maps 0.038, pcss-mask's blurred mask 0.062 at most).
+    // approximate ones keep their own small errors of an unoccluded floor (measured: the
+    // multi-view maps 0.038 at most; run over the whole table, pcss-mask's blurred mask 0.062).
     const bool exact = t.family == TechniqueFamily::ExactPerSample || t.family == TechniqueFamily::Hard;
     EXPECT_LE(r.errors.visibility.maxAbs, exact ? 1e-6 : 0.1) << t.name;
     EXPECT_LE(r.errors.visibility.rmse, exact ? 1e-6 : 0.01) << t.name;
