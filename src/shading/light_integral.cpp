@@ -67,6 +67,10 @@ LightIntegrator::LightIntegrator(const Scene& scene, const Light& light, float t
   t_ = glm::normalize(glm::dvec3(light.tangent));
   b_ = glm::cross(n_, t_);
   radius_ = double(light.size.x);
+  // Colour * intensity (unless left to the caller), per unit of the light's measure: a ball's
+  // radiance along a chord is 3 L / (4 R) times the chord.
+  scale_ = (o.lightColour ? glm::dvec3(light.color) * double(light.intensity) : glm::dvec3(1.0)) *
+           (light.shape == LightShape::Sphere ? 3.0 / (4.0 * radius_) : 1.0);
   switch (light.shape) {
     case LightShape::Rect: density_ = 1.0 / (double(light.size.x) * light.size.y); break;
     case LightShape::Disk: density_ = 1.0 / (kPi * radius_ * radius_); break;
@@ -129,10 +133,7 @@ glm::dvec3 LightIntegrator::emission(const glm::dvec3& x) const {
     }
     case LightShape::Point: break;
   }
-  glm::dvec3 e = o_.lightColour ? glm::dvec3(light_.color) * double(light_.intensity) : glm::dvec3(1.0);
-  if (texture_) e *= glm::dvec3(emissionAt(*texture_, uv));
-  if (light_.shape == LightShape::Sphere) e *= 3.0 / (4.0 * radius_);
-  return e;
+  return texture_ ? scale_ * glm::dvec3(emissionAt(*texture_, uv)) : scale_;
 }
 
 PixelEstimate LightIntegrator::estimate(const SurfacePoint& s, std::uint32_t seed, const SegmentTracer& trace) const {
@@ -169,8 +170,6 @@ PixelEstimate LightIntegrator::estimate(const SurfacePoint& s, std::uint32_t see
     const glm::vec3 f = shared::penumbraBrdf(s.ns, glm::vec3(v), glm::vec3(l), s.baseColor, s.metallic, s.roughness, s.model);
     return glm::dvec3(f) * (cosS * cosL / r2);
   };
-  const glm::dvec3 lightEmission = (o_.lightColour ? glm::dvec3(light_.color) * double(light_.intensity) : glm::dvec3(1.0)) *
-                                   (light_.shape == LightShape::Sphere ? 3.0 / (4.0 * radius_) : 1.0);
 
   PixelEstimate out;
   Running vis, rad;
@@ -188,7 +187,7 @@ PixelEstimate LightIntegrator::estimate(const SurfacePoint& s, std::uint32_t see
       if (s.shaded) {
         glm::dvec3 l;
         double r2 = 0.0;
-        const glm::dvec3 g = geometry(x, l, r2) * lightEmission * glm::dvec3(set.luminance[k]);
+        const glm::dvec3 g = geometry(x, l, r2) * scale_ * glm::dvec3(set.luminance[k]);
         double w = 1.0;
         if (brdf) {
           const double pb = brdfPdf(frame.toLocal(l)) * brdfToMeasure(p, x);

@@ -82,6 +82,7 @@ class LightIntegrator {
   IntegratorOptions o_;
   glm::dvec3 c_, n_, t_, b_;
   double radius_ = 0.0, density_ = 0.0;  // density: the light strategy's, 1/A or 1/V
+  glm::dvec3 scale_{1.0};                // emission per unit texture value (emission())
   const Image* texture_ = nullptr;
 };
 
