@@ -11,8 +11,8 @@
 // vertex normal), the horizon rule with the geometric one (README "Conventions"). In the ratio
 // mode the diffuse part's unshadowed term is Lambert's formula times the samples' mean of the
 // diffuse BRDF (1 - F varies over the light; exact for LAMBERT); the specular part's is the LTC
-// integral (shared.h penumbraLightPolygon, the table of src/shading/ltc.h) times the Fresnel-weighted
-// norm f0 (norm - fresnel) + fresnel for rect and disk lights, else the sample sum (sphere
+// integral (shared.h penumbraLightPolygon, the table of src/shading/ltc.h) times norm and Schlick's
+// Fresnel at shared.h penumbraLtcFresnelDirection for rect and disk lights, else the sample sum (sphere
 // lights: no polygon). A textured rect or disk light's two integrals are each times its emission
 // prefiltered for that lobe (Heitz et al. 2016 section 5.3: shared.h penumbraPrefilterFootprint,
 // src/shading/prefiltered_light.h); a textured sphere keeps the sample sum (README "Shading").
@@ -123,7 +123,10 @@ vec3 closedForms(Surface s, out vec3 specular) {
   }
   if (glossy) {
     vec4 terms = textureLod(ltcTable, vec3(uv, 1.0), 0.0);
-    specular = e.y * (penumbraF0(s.base, s.metallic) * (terms.x - terms.y) + vec3(terms.y)) * emittedSpecular;
+    vec3 l = penumbraLtcFresnelDirection(lightShape, s.p, s.ns, s.v, lightPosition, lightNormal, lightTangent, bitangent,
+                                         size, penumbraAlpha(s.roughness));
+    specular = e.y * terms.x * penumbraSchlick(penumbraF0(s.base, s.metallic), dot(s.v, normalize(s.v + l))) *
+               emittedSpecular;
   }
   return e.x * emittedDiffuse;
 }

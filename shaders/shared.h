@@ -498,8 +498,8 @@ PENUMBRA_FN vec3 penumbraBrdf(vec3 n, vec3 v, vec3 l, vec3 baseColor, float meta
 // ns, y = ns x x, z = ns. Divergence: the polygon is first clipped to the horizons of ng (the
 // horizon rule) and of ns (the true lobe is 0 below it; the paper clips only the transformed
 // polygon at z = 0, which we also do: D_o's support). Clipping commutes with the linear map, so
-// the world planes clip before it. The caller multiplies by the Fresnel-weighted norm,
-// f0 (norm - fresnel) + fresnel, and the radiance.
+// the world planes clip before it. The caller multiplies by norm, Schlick's Fresnel at
+// penumbraLtcFresnelDirection and the radiance.
 
 // The table's texture coordinates (ltc.h grid: roughness, sqrt(1 - cos theta_v)) for a table of
 // `size` cells a side, at texel centres.
@@ -508,6 +508,35 @@ PENUMBRA_FN vec2 penumbraLtcCoordinates(float roughness, float nv, float size) {
   return (g * (size - 1.0f) + vec2(0.5f)) / size;
 }
 
+
+// The direction at which the LTC's specular integral takes Schlick's Fresnel factor: towards the
+// light's point nearest the mirror ray's hit on its plane (a rect's clamped to its extents, a
+// disk's radially), moved towards the light's centre by min(2 alpha, 1) (the centre where the
+// mirror ray does not meet the plane in front of p). Divergence from the paper's split (Hill
+// 2016: norm and fresnel, the lobe's Schlick-weighted integral over the whole hemisphere, so
+// F = f0 (norm - fresnel) + fresnel): at grazing views the hemisphere's average is the Fresnel of
+// the lobe's grazing peak, not of the light's part of it, and a dielectric's specular term was
+// 20-46% too high at roughness 0.3-0.7 (tests/shading_ltc_test.cpp; this: 2.5-6%, and 0.3% at
+// roughness 0.05-0.1). A representative point as in Karis 2013 (section "Area lights"), with
+// its distance to the centre our own heuristic, measured only on that test's floor.
+PENUMBRA_FN vec3 penumbraLtcFresnelDirection(int shape, vec3 p, vec3 ns, vec3 v, vec3 centre, vec3 lightNormal,
+                                             vec3 tangent, vec3 bitangent, vec2 size, float alpha) {
+  vec3 m = ns * (2.0f * dot(ns, v)) - v;
+  float towards = dot(m, lightNormal);
+  vec3 q = centre;
+  if (towards < -1e-4f) {  // unit vectors: the hit is at most 1e4 times p's distance to the plane
+    vec3 hit = p + m * (dot(centre - p, lightNormal) / towards) - centre;
+    vec2 uv = vec2(dot(hit, tangent), dot(hit, bitangent));
+    if (shape == PENUMBRA_LIGHT_DISK) {
+      float r = length(uv);
+      if (r > size.x) uv = uv * (size.x / r);
+    } else {
+      uv = clamp(uv, -size, size);
+    }
+    q = centre + (tangent * uv.x + bitangent * uv.y) * (1.0f - min(2.0f * alpha, 1.0f));
+  }
+  return normalize(q - p);
+}
 
 // ---- textured rect and disk lights (Heitz et al. 2016, section 5.3) ------------------------
 // The integral of a lobe D times the emission L over the light is taken as (integral of D) times

@@ -556,11 +556,12 @@ TEST(Pipeline, LtcSpecularAgainstTheConvergedShadedReference) {
       std::printf("%s light, metallic %.0f: floor mean %.3g, peak %.3g; ratio (LTC): relative RMSE %.4f, bias %+.4f; "
                   "eq. 6 at N = 16: relative RMSE %.4f\n", shape == LightShape::Rect ? "rect" : "disk", metallic, e.mean,
                   e.peak, e.ratio, e.bias, e.sum);
-      // Measured on llvmpipe (64 px): rect 0.0085 / 0.075 (dielectric / metal), disk 0.0089 / 0.072; bias
-      // +0.0006 / -0.0145. Eq. 6 with 16 samples: 0.046 / 0.62-0.64.
-      EXPECT_LE(e.ratio, metallic > 0.0f ? 0.085 : 0.01);
-      EXPECT_LE(std::abs(e.bias), metallic > 0.0f ? 0.016 : 0.001);
-      EXPECT_LT(e.ratio, 0.25 * e.sum) << "the LTC's error is well below 16 samples' noise";
+      // Measured on llvmpipe (64 px): rect 0.0039 / 0.047 (dielectric / metal), disk 0.0047 / 0.050; bias
+      // -0.0000 / +0.0014 (the fit of 2026-12-03 with the hemisphere's Fresnel split: rect 0.0085 /
+      // 0.075, disk 0.0089 / 0.072, bias +0.0006 / -0.0145). Eq. 6 with 16 samples: 0.046 / 0.62-0.64.
+      EXPECT_LE(e.ratio, metallic > 0.0f ? 0.06 : 0.006);
+      EXPECT_LE(std::abs(e.bias), metallic > 0.0f ? 0.003 : 0.0005);
+      EXPECT_LT(e.ratio, 0.15 * e.sum) << "the LTC's error is well below 16 samples' noise";
     }
 }
 
@@ -600,43 +601,52 @@ namespace penumbra::test {
 
 // The unshadowed term's goal: `none` (V = 1, the image is the unshadowed term) within 1% relative
 // RMSE (RMSE over the reference's RMS) of the converged shaded reference on rect-lit metal (base
-// colour 1: Fresnel exactly 1) and dielectric floors. The LTC form cannot reach it on glossy
-// metal (Heitz et al. 2016's lobe shape: the fit's error is in every ratio image); `ratio-exact`
-// integrates the term on the CPU instead (shading/light_integral.h, transmittance 1), so that a
-// measurement need not depend on the fit. Measured values printed; gates at the goal.
-TEST(Pipeline, RatioExactShadingMeetsTheUnshadowedGoal) {
-  for (float roughness : {0.1f, 0.5f})
-    for (float metallic : {0.0f, 1.0f}) {
-      Scene scene = floorUnder(LightShape::Rect, {0.0f, 1.0f, -1.0f}, glm::vec2(1.0f, 0.6f));
-      Material& m = scene.materials[0];
-      m.brdf = BrdfModel::MetallicRoughness;
-      m.baseColor = glm::vec3(metallic > 0.0f ? 1.0f : 0.5f);
-      m.metallic = metallic;
-      m.roughness = roughness;
-      double error[2] = {0.0, 0.0};
-      FrameResult reference;
-      for (ShadingMode mode : {ShadingMode::Ratio, ShadingMode::RatioExact}) {
-        RenderSettings s = settings(64, 16);
-        s.shading = mode;
-        Renderer renderer(context(), scene, s);
-        if (mode == ShadingMode::Ratio) reference = renderer.render(*convergedReference(8192), "raytrace-converged");
-        auto none = makeTechnique("none");
-        const FrameResult f = renderer.render(*none, "none");
-        ASSERT_EQ(gl::Context::takeErrorCount(), 0);
-        double se = 0.0, norm = 0.0;
-        for (std::size_t i = 0; i < f.color.data.size(); ++i) {
-          if (!reference.gbuffer.valid[i / 3]) continue;
-          const double want = reference.color.data[i], d = f.color.data[i] - want;
-          se += d * d, norm += want * want;
-        }
-        error[mode == ShadingMode::RatioExact] = std::sqrt(se / norm);
+// colour 1: Fresnel exactly 1) and dielectric floors. The LTC form does not reach it on metal of
+// roughness 0.5 and 1.0 (Heitz et al. 2016's lobe shape at grazing views: the fit's error is in
+// every ratio image; tests/shading_ltc_test.cpp has it per roughness against a quadrature);
+// `ratio-exact` integrates the term on the CPU instead (shading/light_integral.h, transmittance
+// 1), so that a measurement need not depend on the fit. Measured values printed; ratio-exact
+// gated at the goal, the LTC at the goal where it meets it and at 4% where it does not (llvmpipe,
+// 64 px): dielectric 0.0041 / 0.0030 / 0.0036 / 0.0008, metal 0.0020 / 0.0076 / 0.0331 / 0.0188
+// at roughness 0.1 / 0.3 / 0.5 / 1.0 (the fit of 2026-12-03 with the hemisphere's Fresnel split:
+// dielectric 0.0041 / - / 0.0091 / -, metal 0.0020 / - / 0.0536 / -).
+// One test a material (each about 12 s on zink).
+void expectTheUnshadowedGoal(float metallic) {
+  for (float roughness : {0.1f, 0.3f, 0.5f, 1.0f}) {
+    Scene scene = floorUnder(LightShape::Rect, {0.0f, 1.0f, -1.0f}, glm::vec2(1.0f, 0.6f));
+    Material& m = scene.materials[0];
+    m.brdf = BrdfModel::MetallicRoughness;
+    m.baseColor = glm::vec3(metallic > 0.0f ? 1.0f : 0.5f);
+    m.metallic = metallic;
+    m.roughness = roughness;
+    double error[2] = {0.0, 0.0};
+    FrameResult reference;
+    for (ShadingMode mode : {ShadingMode::Ratio, ShadingMode::RatioExact}) {
+      RenderSettings s = settings(64, 16);
+      s.shading = mode;
+      Renderer renderer(context(), scene, s);
+      if (mode == ShadingMode::Ratio) reference = renderer.render(*convergedReference(8192), "raytrace-converged");
+      auto none = makeTechnique("none");
+      const FrameResult f = renderer.render(*none, "none");
+      ASSERT_EQ(gl::Context::takeErrorCount(), 0);
+      double se = 0.0, norm = 0.0;
+      for (std::size_t i = 0; i < f.color.data.size(); ++i) {
+        if (!reference.gbuffer.valid[i / 3]) continue;
+        const double want = reference.color.data[i], d = f.color.data[i] - want;
+        se += d * d, norm += want * want;
       }
-      const double noise = referenceNoise(reference)->shaded;
-      std::printf("%s roughness %.1f: none against the converged reference, relative RMSE: ratio (LTC) %.4f, "
-                  "ratio-exact %.4f\n", metallic > 0.0f ? "metal" : "dielectric", roughness, error[0], error[1]);
-      EXPECT_LE(error[1], 0.01) << "ratio-exact";
-      EXPECT_GT(noise, 0.0);
+      error[mode == ShadingMode::RatioExact] = std::sqrt(se / norm);
     }
+    const double noise = referenceNoise(reference)->shaded;
+    std::printf("%s roughness %.1f: none against the converged reference, relative RMSE: ratio (LTC) %.4f, "
+                "ratio-exact %.4f\n", metallic > 0.0f ? "metal" : "dielectric", roughness, error[0], error[1]);
+    EXPECT_LE(error[1], 0.01) << "ratio-exact";
+    EXPECT_LE(error[0], metallic > 0.0f ? (roughness > 0.4f ? 0.04 : 0.01) : 0.01) << "the LTC";
+    EXPECT_GT(noise, 0.0);
+  }
 }
+
+TEST(Pipeline, RatioExactShadingMeetsTheUnshadowedGoal) { expectTheUnshadowedGoal(1.0f); }
+TEST(Pipeline, RatioExactShadingMeetsTheUnshadowedGoalOnADielectric) { expectTheUnshadowedGoal(0.0f); }
 
 }  // namespace penumbra::test

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "floor_quadrature.h"
 #include "sampling/shared.hpp"
 #include "shading/ltc.h"
 
@@ -46,9 +47,9 @@ glm::dvec3 direction(double theta, double phi) {
 }  // namespace
 
 // The checked-in table is what the code fits (reproducible byte for byte):
-// the embedded copy is the file's bytes, and a fresh fit of four roughness columns (with the
+// the embedded copy is the file's bytes, and a fresh fit of two roughness columns (with the
 // t = 0 column each starts from) gives exactly those cells. The whole fit: `penumbra lut --ltc`
-// (43 s on 2 cores), luts/README.md.
+// (3 minutes on 2 cores), luts/README.md.
 TEST(Ltc, TheFitReproducesTheCheckedInTable) {
   const LtcTable& builtin = shading::builtinLtcTable();
   const LtcTable file = shading::readLtcTable(lutPath());
@@ -56,7 +57,7 @@ TEST(Ltc, TheFitReproducesTheCheckedInTable) {
   EXPECT_EQ(std::memcmp(file.minv.data(), builtin.minv.data(), file.minv.size() * sizeof(glm::vec4)), 0);
   EXPECT_EQ(std::memcmp(file.terms.data(), builtin.terms.data(), file.terms.size() * sizeof(glm::vec4)), 0);
 
-  const std::vector<int> columns = {0, 13, 40, builtin.size() - 1};
+  const std::vector<int> columns = {13, 50};  // 13: where a warm start alone once went astray
   const LtcTable fresh = shading::fitLtcGgx(builtin.fit, columns);
   const int n = builtin.size();
   int compared = 0;
@@ -69,7 +70,28 @@ TEST(Ltc, TheFitReproducesTheCheckedInTable) {
           << "terms of cell (" << a << ", " << row << ")";
       ++compared;
     }
-  EXPECT_EQ(compared, n + 4 * (n - 1));
+  EXPECT_EQ(compared, n + 2 * (n - 1));
+}
+
+// The fit is continuous: no cell's L1 error (the terms' z) jumps from its neighbour's along the
+// view or the roughness, below the last two rows (the horizon, where the error grows fast: 0.37
+// on average in the last row). A warm start gone astray shows as such a jump (a first L1 fit
+// went from 5% to 166% at one cell of column 13 and stayed above 50% down the column);
+// measured: at most 0.086 along the view, 0.040 along roughness.
+TEST(Ltc, TheCheckedInFitIsContinuous) {
+  const LtcTable& t = shading::builtinLtcTable();
+  const int n = t.size();
+  double alongView = 0.0, alongRoughness = 0.0;
+  for (int row = 0; row < n - 2; ++row)
+    for (int a = 0; a < n; ++a) {
+      const double e = cellTerms(t, a, row).z;
+      if (row > 0) alongView = std::max(alongView, std::abs(e - double(cellTerms(t, a, row - 1).z)));
+      if (a > 0) alongRoughness = std::max(alongRoughness, std::abs(e - double(cellTerms(t, a - 1, row).z)));
+    }
+  std::printf("largest step of the L1 error between neighbouring cells: %.3f along the view, %.3f along roughness\n",
+              alongView, alongRoughness);
+  EXPECT_LE(alongView, 0.1);
+  EXPECT_LE(alongRoughness, 0.06);
 }
 
 // The shader's integral (penumbraLightPolygon: the frame from n and v, M^-1 from the table's four
@@ -158,9 +180,10 @@ void rectIntegrals(const RectCase& k, double& truth, double& ltc, double& norm) 
 // distance 1) and large (0.5), for roughness 0.2-0.6 and views from normal to 75 degrees. The
 // error relative to the true integral on the mirror direction, and relative to norm (the whole
 // lobe: what the light adds next to what a light filling the hemisphere would) everywhere; the
-// gates are the measured values (llvmpipe and the CPU agree: this test is the CPU's). The LTC
-// misses most of the tail sideways (the fit's cubic objective weights the peak), and at 75
-// degrees and roughness 0.6 it is 20% off on the mirror direction (luts/ltc_ggx_error.csv).
+// gates are the measured values (llvmpipe and the CPU agree: this test is the CPU's). The fit
+// minimises the lobe's L1 error (ltc_fit.cpp), which spreads the error over the lobe: 2.7% of
+// norm at worst (the paper's cubic objective: 8.1%), but a small light on the mirror direction at
+// 75 degrees and roughness 0.6 gets 46% too little (before 23%; the next worst case 15%).
 TEST(Ltc, PolygonIntegralAgainstTheTrueLobe) {
   double worstOn = 0.0, worstNorm = 0.0;
   for (double r : {0.2, 0.3, 0.45, 0.6})
@@ -183,8 +206,70 @@ TEST(Ltc, PolygonIntegralAgainstTheTrueLobe) {
   std::printf("worst error: %.3g relative on the mirror direction, %.3g of norm in all\n", worstOn, worstNorm);
   RecordProperty("worst_mirror_relative", std::to_string(worstOn));
   RecordProperty("worst_of_norm", std::to_string(worstNorm));
-  EXPECT_LE(worstOn, 0.25);
-  EXPECT_LE(worstNorm, 0.09);
+  EXPECT_LE(worstOn, 0.5);
+  EXPECT_LE(worstNorm, 0.03);
+}
+
+namespace {
+// The LTC's unshadowed specular term on the floor of tests/floor_quadrature.h (a 1 x 0.6 rect
+// light 1 above it, the eye at (0, 1.5, 3.5): the converged reference's test scene) against the
+// independent quadrature of the specular term, on metal of base colour 1 (Fresnel exactly 1: the
+// term is norm times the polygon integral, the table's alone) and a dielectric (f0 = 0.04:
+// Schlick's factor at penumbraLtcFresnelDirection too). Relative RMSE (RMSE over the
+// quadrature's RMS) over an n x n grid of floor points covering the highlight and the light's
+// pool, as the shader computes it (penumbraLightPolygon, the table looked up as the GPU does).
+double ltcFloorError(const LtcTable& table, double roughness, int n, double* bias = nullptr, double metallic = 1.0) {
+  namespace q = quadrature;
+  const q::FloorSetup s;
+  const q::Brdf metal{1.0, metallic, roughness};
+  const q::GaussRule rule(8);
+  double se = 0.0, sum = 0.0, signedSum = 0.0, wantSum = 0.0;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const glm::dvec3 p(-1.2 + 2.4 * (x + 0.5) / n, 0.0, -0.4 + 2.6 * (y + 0.5) / n);
+      const double want = q::exactRadiance(s, metal, p, rule, q::Terms::Specular);
+      const glm::vec3 v = glm::vec3(glm::normalize(s.eye - p)), up(0.0f, 1.0f, 0.0f);
+      const glm::vec4 minv = shading::ltcLookup(table, 0, float(roughness), v.y);
+      const glm::vec4 terms = shading::ltcLookup(table, 1, float(roughness), v.y);
+      const glm::vec3 l = shared::penumbraLtcFresnelDirection(
+          PENUMBRA_LIGHT_RECT, glm::vec3(p), up, v, glm::vec3(s.lightCentre), glm::vec3(0.0f, -1.0f, 0.0f),
+          glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, 1.0f), glm::vec2(float(s.halfW), float(s.halfH)),
+          shared::penumbraAlpha(float(roughness)));
+      const double got = double(shared::penumbraLightPolygon(PENUMBRA_LIGHT_RECT, glm::vec3(p), up, up,
+                                                            glm::vec3(s.lightCentre), glm::vec3(1.0f, 0.0f, 0.0f),
+                                                            glm::vec3(0.0f, 0.0f, 1.0f),
+                                                            glm::vec2(float(s.halfW), float(s.halfH)), true, v, minv)
+                                    .y) *
+                         double(terms.x) * metal.fresnel(glm::dot(glm::dvec3(v), glm::normalize(glm::dvec3(v) + glm::dvec3(l))));
+      se += (got - want) * (got - want), sum += want * want;
+      signedSum += got - want, wantSum += want;
+    }
+  if (bias) *bias = signedSum / wantSum;
+  return std::sqrt(se / sum);
+}
+}  // namespace
+
+TEST(Ltc, UnshadowedTermAgainstTheQuadratureOnRectLitFloors) {
+  const LtcTable& table = shading::builtinLtcTable();
+  int k = 0;
+  for (double r : {0.05, 0.1, 0.3, 0.5, 0.7, 1.0}) {
+    double metalBias = 0.0, dielectricBias = 0.0;
+    const double metal = ltcFloorError(table, r, 24, &metalBias);
+    const double dielectric = ltcFloorError(table, r, 24, &dielectricBias, 0.0);
+    std::printf("roughness %.2f: the LTC's specular term, relative RMSE (bias): metal %.4f (%+.4f), dielectric "
+                "%.4f (%+.4f)\n", r, metal, metalBias, dielectric, dielectricBias);
+    // Measured (the CPU's: the shader's functions compiled as C++): metal 0.0029 / 0.0021 /
+    // 0.0250 / 0.0511 / 0.0237 / 0.0160, dielectric 0.0028 / 0.0023 / 0.0477 / 0.0632 / 0.0254 /
+    // 0.0184 at roughness 0.05 / 0.1 / 0.3 / 0.5 / 0.7 / 1.0. The fit of 2026-12-03 (the paper's
+    // cubic objective, the axis at the mean) with the hemisphere's Fresnel split: metal 0.0029 /
+    // 0.0022 / 0.0443 / 0.1411 / 0.0888 / 0.0158, dielectric 0.0037 / 0.0069 / 0.1326 / 0.2865 /
+    // 0.4021 / 0.1883. Gates 20% above the measured values.
+    const double metalGate[] = {0.0035, 0.0026, 0.03, 0.062, 0.029, 0.02};
+    const double dielectricGate[] = {0.0034, 0.0028, 0.058, 0.076, 0.031, 0.023};
+    EXPECT_LE(metal, metalGate[k]) << "metal, roughness " << r;
+    EXPECT_LE(dielectric, dielectricGate[k]) << "dielectric, roughness " << r;
+    ++k;
+  }
 }
 
 // Bad table files get one clear error each.

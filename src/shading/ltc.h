@@ -12,8 +12,11 @@
 // lobe's mean direction Z in the xz plane (paper section 4 and its released fitLTC.cpp), so M^-1
 // has the pattern [[a 0 b] [0 1 0] [c 0 d]] once divided by its middle element (which the polygon
 // integral ignores: it is invariant to scaling each vertex). norm = integral of the lobe over the
-// hemisphere; fresnel = integral of the lobe times (1 - v.h)^5, so that the Schlick-weighted
-// integral is f0 (norm - fresnel) + fresnel.
+// hemisphere; fresnel = integral of the lobe times (1 - v.h)^5 (the paper's split, f0 (norm -
+// fresnel) + fresnel, of the Schlick-weighted integral over the hemisphere; kept in the table and
+// its report, but the renderer takes Schlick's factor towards a point of the light instead,
+// shared.h penumbraLtcFresnelDirection, which is 4-15 times closer on a dielectric at roughness
+// 0.3-1.0).
 //
 // Grid (paper): cell (a, t), a, t in 0..N-1: roughness r = a / (N - 1), view x = t / (N - 1) with
 // cos(theta_v) = 1 - x^2 (theta_v at most 1.57); looked up at (r, sqrt(1 - cos theta_v)) through
@@ -44,7 +47,7 @@ struct LtcFitOptions {
   int fitSamples = 32;      // the fit's objective on fitSamples^2 stratified directions per lobe (x2: MIS)
   int momentSamples = 256;  // norm, fresnel and the mean direction from momentSamples^2 BRDF samples
   int errorSamples = 64;    // the reported L1 error from errorSamples^2 directions per lobe (x2: MIS)
-  int iterations = 100;     // Nelder-Mead iterations at most per cell (paper: 100)
+  int iterations = 200;     // Nelder-Mead iterations at most per cell (paper: 100, for one parameter fewer)
   int threads = 0;          // 0: hardware concurrency; the result does not depend on it
 };
 
