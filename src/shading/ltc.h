@@ -49,6 +49,8 @@ struct LtcFitOptions {
   int errorSamples = 64;    // the reported L1 error from errorSamples^2 directions per lobe (x2: MIS)
   int iterations = 200;     // Nelder-Mead iterations at most per cell (paper: 100, for one parameter fewer)
   int threads = 0;          // 0: hardware concurrency; the result does not depend on it
+  int rows = 0;             // fit the view rows t < rows of the columns only (0: all; a row depends on
+                            // the rows before it only, so this reproduces them); not stored
 };
 
 struct LtcTable {

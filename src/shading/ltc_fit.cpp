@@ -269,6 +269,8 @@ LtcTable fitLtcGgx(const LtcFitOptions& o, const std::vector<int>& columns, cons
   LtcTable table;
   table.fit = o;
   table.fit.threads = 0;
+  table.fit.rows = 0;
+  const int rows = o.rows > 0 ? std::min(o.rows, n) : n;
   table.minv.assign(std::size_t(n) * std::size_t(n), glm::vec4(0.0f));
   table.terms = table.minv;
 
@@ -300,7 +302,7 @@ LtcTable fitLtcGgx(const LtcFitOptions& o, const std::vector<int>& columns, cons
   // such fit jumped from 5% to 166% L1 error at cos(theta_v) 0.32 and stayed above 50%).
   auto fitColumn = [&](int a) {
     Lobe previous = starts[std::size_t(a)];
-    for (int t = 1; t < n; ++t) {
+    for (int t = 1; t < rows; ++t) {
       Cell c = cellOf(n, a, t);
       Moments mo = momentsOf(c, o.momentSamples);
       Lobe best;
