@@ -208,6 +208,32 @@ std::vector<std::uint32_t> trianglesNearBall(const EdgeTopology& topology, const
   return out;
 }
 
+bool pathMeetsSegment(const EdgeTopology& topology, std::uint32_t t, const glm::dvec3& u, const glm::dvec3& v,
+                      const glm::dvec3& c, const glm::dvec3& s) {
+  const glm::dvec3& n = topology.faceNormals[t];
+  auto orient = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& x) {
+    return signOf(glm::dot(n, glm::cross(b - a, x - a)));
+  };
+  const int oc = orient(u, v, c), os = orient(u, v, s), ou = orient(c, s, u), ov = orient(c, s, v);
+  if (oc == 0 && os == 0) {  // on one line: the intervals along it overlap
+    const glm::dvec3 d = v - u;
+    double lo = glm::dot(c - u, d), hi = glm::dot(s - u, d);
+    if (lo > hi) std::swap(lo, hi);
+    return hi >= 0.0 && lo <= glm::dot(d, d);
+  }
+  return oc * os <= 0 && ou * ov <= 0;
+}
+
+std::size_t findEdge(const EdgeTopology& topology, std::uint32_t a, std::uint32_t b) {
+  const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
+  const auto it = std::lower_bound(topology.edges.begin(), topology.edges.end(), std::pair{lo, hi},
+                                   [](const EdgeTopology::Edge& e, const std::pair<std::uint32_t, std::uint32_t>& k) {
+                                     return std::pair{e.v0, e.v1} < k;
+                                   });
+  return it != topology.edges.end() && it->v0 == lo && it->v1 == hi ? std::size_t(it - topology.edges.begin())
+                                                                     : topology.edges.size();
+}
+
 void pathCrossings(const EdgeTopology& topology, const std::vector<std::uint32_t>& candidates, const glm::dvec3& c,
                    const glm::dvec3& s, std::vector<PathCrossing>& out) {
   const std::vector<glm::vec3>& P = topology.weldedPositions;

@@ -131,5 +131,13 @@ std::vector<std::uint32_t> trianglesNearBall(const EdgeTopology& topology, const
 // Appends the crossings of the path c -> s with the candidate triangles.
 void pathCrossings(const EdgeTopology& topology, const std::vector<std::uint32_t>& candidates, const glm::dvec3& c,
                    const glm::dvec3& s, std::vector<PathCrossing>& out);
+// For c and s in the plane of triangle t (facing 0 at both): the path c -> s meets the closed
+// segment u -> v of that plane (crosses it, touches it, or runs along it). A path along a
+// surface across the surface's border is where the crossings above and the volumes' edge events
+// coincide and are not resolved (dcs refuses it). Orientation tests with t's normal, in double.
+bool pathMeetsSegment(const EdgeTopology& topology, std::uint32_t t, const glm::dvec3& u, const glm::dvec3& v,
+                      const glm::dvec3& c, const glm::dvec3& s);
+// The edge with welded end points a and b (either order), or edges.size().
+std::size_t findEdge(const EdgeTopology& topology, std::uint32_t a, std::uint32_t b);
 
 }  // namespace penumbra::geo

@@ -277,6 +277,33 @@ TEST(GeometryInside, PathCrossingsCountEachFaceOnce) {
   EXPECT_EQ(crossings({0.9, 0.1, 0.2}, {-0.9, 0.1, 0.2}).size(), 2u);
 }
 
+// Hard case 33: a path in a face's plane meets a segment of that plane (the border test dcs
+// refuses a light by): crossing, touching at an end, running along it; not beside or short of it.
+// findEdge finds an edge by its end points in either order.
+TEST(GeometryInside, PathsInAFacesPlaneMeetItsEdges) {
+  const EdgeTopology topo = buildEdgeTopology(cube());
+  std::uint32_t t = 0;
+  while (t < topo.weldedTriangles.size() && !(topo.weldedPositions[topo.weldedTriangles[t].x].x == 0.5f &&
+                                              topo.weldedPositions[topo.weldedTriangles[t].y].x == 0.5f &&
+                                              topo.weldedPositions[topo.weldedTriangles[t].z].x == 0.5f))
+    ++t;
+  ASSERT_LT(t, topo.weldedTriangles.size()) << "a triangle of the +x face";
+  auto vertex = [&](const glm::vec3& p) {
+    return std::uint32_t(std::find(topo.weldedPositions.begin(), topo.weldedPositions.end(), p) - topo.weldedPositions.begin());
+  };
+  const std::uint32_t a = vertex({0.5f, 0.5f, -0.5f}), b = vertex({0.5f, 0.5f, 0.5f});
+  EXPECT_LT(findEdge(topo, a, b), topo.edges.size());
+  EXPECT_EQ(findEdge(topo, a, b), findEdge(topo, b, a));
+  EXPECT_EQ(findEdge(topo, a, a), topo.edges.size());
+  const glm::dvec3 u(0.5, 0.5, -0.5), v(0.5, 0.5, 0.5);
+  EXPECT_TRUE(pathMeetsSegment(topo, t, u, v, {0.5, 0.0, 0.0}, {0.5, 0.8, 0.0}));   // across it
+  EXPECT_TRUE(pathMeetsSegment(topo, t, u, v, {0.5, 0.0, 0.0}, {0.5, 0.5, 0.0}));   // ending on it
+  EXPECT_TRUE(pathMeetsSegment(topo, t, u, v, {0.5, 0.5, -0.2}, {0.5, 0.5, 0.9}));  // along it
+  EXPECT_FALSE(pathMeetsSegment(topo, t, u, v, {0.5, 0.0, 0.0}, {0.5, 0.3, 0.1}));  // short of it
+  EXPECT_FALSE(pathMeetsSegment(topo, t, u, v, {0.5, 0.5, 0.6}, {0.5, 0.5, 0.9}));  // its line, beyond it
+  EXPECT_FALSE(pathMeetsSegment(topo, t, u, v, {0.5, 0.0, 0.7}, {0.5, 0.8, 0.7}));  // beside it
+}
+
 // Hard case 4: the boundary of an open quad is a silhouette from both sides, with opposite
 // signs; the shared diagonal cancels.
 TEST(GeometrySilhouette, OpenQuadPerTriangle) {

@@ -75,13 +75,13 @@ TEST(RaytraceDenoised, FlickerUnderMotion) {
 
 namespace penumbra::test {
 
-// Hard case 34: the camera inside a closed box, the light outside straddling a wall's plane.
+// Hard case 35: the camera inside a closed box, the light outside straddling a wall's plane.
 // Everything in view is in shadow. raytrace-denoised traced each pixel's rotating sample even when
 // it lay below the horizon, kept ratio 1 for such a pixel and lit the walls up to 0.26 (image
 // RMSE 0.11 at 64 px); its rays now rotate over the samples above the horizon, and it equals the
 // ray tracer.
-TEST(HardCase34, DenoisedKeepsAClosedBoxDark) {
-  const Scene scene = loadScene(scenePath("scenes/hard/34-camera-in-closed-box.json"));
+TEST(HardCase35, DenoisedKeepsAClosedBoxDark) {
+  const Scene scene = loadScene(scenePath("scenes/hard/35-camera-in-closed-box.json"));
   for (const char* spp : {"1", "4"}) {
     const Comparison r = renderAndCompare(scene, "raytrace-denoised", settings(64, 16), params({std::string("spp=") + spp}));
     std::printf("spp %s: visibility RMSE %.3g, max %.3g\n", spp, r.errors.visibility.rmse, r.errors.visibility.maxAbs);

@@ -81,12 +81,12 @@ TEST(HardSv, LightCentreInsideAClosedMeshOrBelowTheFloor) {
 
 namespace penumbra::test {
 
-// Hard case 33: a box of opacity 0 (what a glTF MASK material whose constant alpha is below its
+// Hard case 38: a box of opacity 0 (what a glTF MASK material whose constant alpha is below its
 // cutoff loads as) never occludes. hard-sv drew its volumes and cast the box's full shadow
 // (visibility max error 1.0 against the ray tracer, which leaves it out of its BVH); every base
 // technique of the table must light the floor as the ray tracer does.
-TEST(HardCase33, ATransparentOccluderCastsNoShadowInAnyTechnique) {
-  const Scene scene = loadScene(scenePath("scenes/hard/33-transparent-occluder.json"));
+TEST(HardCase38, ATransparentOccluderCastsNoShadowInAnyTechnique) {
+  const Scene scene = loadScene(scenePath("scenes/hard/38-transparent-occluder.json"));
   for (const TechniqueInfo& t : techniqueTable()) {
     // One of each base (the variants share its occluder drawing), and the references apart.
     const bool variant = t.name.find('-') != std::string::npos && t.name != "hard-sv" && t.name != "msm-soft" &&

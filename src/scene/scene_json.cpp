@@ -233,6 +233,24 @@ void readMaterial(Context& ctx, const Json& item, int index) {
   ctx.scene.materials.push_back(std::move(m));
 }
 
+// A rotation by `degrees` about the unit `axis`; cos and sin exact at multiples of 90 degrees
+// (glm::radians(180) has sin 8.7e-8: a ceiling turned over lay 2e-7 off its plane, and a light
+// placed on it lay behind it within rounding, which dcs must refuse).
+glm::mat4 rotationDegrees(float degrees, const glm::vec3& axis) {
+  const double turns = double(degrees) / 90.0;
+  if (turns != std::nearbyint(turns)) return glm::rotate(glm::mat4(1.0f), glm::radians(degrees), axis);
+  const int quarter = int(std::fmod(std::fmod(turns, 4.0) + 4.0, 4.0));
+  const float c = quarter == 0 ? 1.0f : quarter == 2 ? -1.0f : 0.0f, s = quarter == 1 ? 1.0f : quarter == 3 ? -1.0f : 0.0f;
+  // Rodrigues, as glm::rotate: R = c I + s [a]x + (1 - c) a a^T.
+  glm::mat4 r(1.0f);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) r[j][i] = (1.0f - c) * axis[i] * axis[j] + (i == j ? c : 0.0f);
+  r[1][0] -= s * axis.z, r[2][0] += s * axis.y;
+  r[0][1] += s * axis.z, r[2][1] -= s * axis.x;
+  r[0][2] -= s * axis.y, r[1][2] += s * axis.x;
+  return r;
+}
+
 glm::mat4 readTransform(Context& ctx, Fields& f) {
   glm::mat4 matrix(1.0f);
   if (const Json* v = f.get("matrix")) {
@@ -252,13 +270,11 @@ glm::mat4 readTransform(Context& ctx, Fields& f) {
       const float angle = r.number("angle", 0.0f);
       r.finish();
       if (!(glm::length(axis) > 0.0f)) ctx.fail(f.at("rotate.axis"), "must not be zero");
-      rotation = glm::rotate(glm::mat4(1.0f), glm::radians(angle), glm::normalize(axis));
+      rotation = rotationDegrees(angle, glm::normalize(axis));
     } else {
       const glm::vec3 deg = f.toVec(*v, f.at("rotate"), 3);
       // Degrees about X, then Y, then Z (R = Rz Ry Rx).
-      rotation = glm::rotate(glm::mat4(1.0f), glm::radians(deg.z), {0, 0, 1}) *
-                 glm::rotate(glm::mat4(1.0f), glm::radians(deg.y), {0, 1, 0}) *
-                 glm::rotate(glm::mat4(1.0f), glm::radians(deg.x), {1, 0, 0});
+      rotation = rotationDegrees(deg.z, {0, 0, 1}) * rotationDegrees(deg.y, {0, 1, 0}) * rotationDegrees(deg.x, {1, 0, 0});
     }
   }
   const glm::vec3 translate = f.vec3("translate", glm::vec3(0.0f));

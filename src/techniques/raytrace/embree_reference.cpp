@@ -387,7 +387,7 @@ SparseResult EmbreeReference::sparseSamples(const CpuGBuffer& gbuf, const LightS
       const std::uint32_t h = shared::penumbraHash(std::uint32_t(i) ^ 0x9e3779b9u);
       // The rotation runs over the samples above the horizon only: a sample below it is 0 in
       // the unshadowed term too, and tracing one told nothing (such a pixel kept ratio 1 and lit
-      // the inside of a closed box, hard case 34).
+      // the inside of a closed box, hard case 35).
       above.clear();
       for (int k = 0; k < n; ++k)
         if (glm::dot(nrm, samples.positions[first + k] - p) > 0.0f) above.push_back(k);

@@ -1,11 +1,71 @@
 #include "techniques/shadow_volume/shadow_volume.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/error.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
 
 namespace penumbra {
 namespace {
+
+// Where an area light (centre and samples) lies against triangle t's plane: In, the centre and
+// every sample exactly in it (facing 0: the plane does not occlude them, silhouette.h's
+// convention); WithinRounding, not exactly, but every one within 2^-18 of the magnitude of its
+// coordinates of it (a face the light was meant to lie on, off by the rounding of a transform: a light 1e-7
+// behind it is occluded by it, exactly, where the reference's rays, which stop 1e-5 short of the
+// sample, pass); else Off.
+enum class AgainstPlane { Off, In, WithinRounding };
+
+AgainstPlane againstPlane(const geo::EdgeTopology& topology, std::uint32_t t, const glm::dvec3& centre,
+                          const std::vector<glm::vec3>& samples) {
+  const glm::dvec3 p0(topology.weldedPositions[topology.weldedTriangles[t].x]), normal = topology.faceNormals[t];
+  const double len = glm::length(normal);
+  if (!(len > 0.0)) return AgainstPlane::Off;
+  const glm::dvec3 n = normal / len;
+  int facings = 0;
+  bool within = true;
+  auto visit = [&](const glm::dvec3& x) {
+    facings += geo::triangleFacing(topology, t, x) != 0;
+    // Within rounding: the distance below 2^-18 of the magnitude of what it is computed from
+    // (the coordinates along the plane's normal: a light of size 7e18 4 above a floor is not).
+    const double magnitude = glm::dot(glm::abs(n), glm::max(glm::abs(x), glm::abs(p0)));
+    within = within && std::abs(glm::dot(n, x - p0)) <= magnitude * 0x1p-18;
+  };
+  visit(centre);
+  for (const glm::vec3& x : samples) visit(glm::dvec3(x));
+  if (facings == 0) return AgainstPlane::In;
+  return within ? AgainstPlane::WithinRounding : AgainstPlane::Off;
+}
+
+// Of the triangles the light lies in (`in`), those with an edge on the border of that flat
+// region (an open edge, or one whose other triangles are not all in it) that a sample's path
+// from the centre meets. Edges inside the region (a ceiling's diagonal) are fine: measured exact.
+std::size_t acrossBorder(const geo::EdgeTopology& topology, const std::vector<std::uint32_t>& in,
+                         const glm::dvec3& centre, const std::vector<glm::vec3>& samples) {
+  std::size_t count = 0;
+  const auto isIn = [&](std::uint32_t t) { return std::find(in.begin(), in.end(), t) != in.end(); };
+  for (std::uint32_t t : in) {
+    const glm::uvec3& tri = topology.weldedTriangles[t];
+    const std::uint32_t idx[3] = {tri.x, tri.y, tri.z};
+    bool crossed = false;
+    for (int i = 0; i < 3 && !crossed; ++i) {
+      const std::size_t e = geo::findEdge(topology, idx[i], idx[(i + 1) % 3]);
+      if (e == topology.edges.size()) continue;
+      const geo::EdgeTopology::Edge& edge = topology.edges[e];
+      bool inner = edge.incidenceCount == 2;
+      for (std::uint32_t k = 0; k < edge.incidenceCount && inner; ++k)
+        inner = isIn(topology.incidences[edge.firstIncidence + k].triangle);
+      if (inner) continue;
+      const glm::dvec3 u(topology.weldedPositions[idx[i]]), v(topology.weldedPositions[idx[(i + 1) % 3]]);
+      for (std::size_t k = 0; k < samples.size() && !crossed; ++k)
+        crossed = geo::pathMeetsSegment(topology, t, u, v, centre, glm::dvec3(samples[k]));
+    }
+    count += crossed;
+  }
+  return count;
+}
 
 void drawPoints(const gl::Program& prog, const gl::Buffer& buf, std::size_t count, GLenum mode) {
   if (count == 0) return;
@@ -24,6 +84,7 @@ void ShadowVolumeCounter::prepare(const Scene& scene, GpuScene& gpu, const std::
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     MeshVolumes v;
     v.topology = geo::buildEdgeTopology(scene.meshes[i].mesh);
+    v.name = scene.meshes[i].name;
     // A fully transparent material (opacity 0: glTF MASK below its cutoff, a scene file's opacity
     // 0) never occludes, whatever the caller's units say: the ray tracer leaves it out of its BVH
     // and the shadow maps never draw it.
@@ -53,14 +114,20 @@ ShadowVolumeCounter::Placement ShadowVolumeCounter::place(const glm::dvec3& cent
     std::vector<std::size_t> foundStart(n + 1, 0);
     if (n > 0) {
       std::vector<std::uint32_t> near = geo::trianglesNearBall(m.topology, centre, radius);
-      // An area light in a triangle's plane (its samples' paths from the centre run along the
-      // surface: the known limit dcs warns about); one sample (a point light, the centre) has no
-      // such path, so nothing to warn about.
+      // An area light against a triangle's plane. One sample (a point light, the centre) has no
+      // path along a surface, so nothing to check.
+      std::vector<std::uint32_t> in;
+      std::size_t rounding = 0;
       for (std::uint32_t t : n > 1 ? near : std::vector<std::uint32_t>{}) {
-        bool inPlane = geo::triangleFacing(m.topology, t, centre) == 0;
-        for (std::size_t k = 0; k < n && inPlane; ++k) inPlane = geo::triangleFacing(m.topology, t, glm::dvec3((*samples)[k])) == 0;
-        out.coplanarTriangles += inPlane;
+        const AgainstPlane a = againstPlane(m.topology, t, centre, *samples);
+        if (a == AgainstPlane::In) in.push_back(t);
+        rounding += a == AgainstPlane::WithinRounding;
       }
+      const std::size_t border = acrossBorder(m.topology, in, centre, *samples);
+      out.coplanarTriangles += in.size();
+      out.coplanarBorderTriangles += border;
+      out.nearCoplanarTriangles += rounding;
+      if ((border > 0 || rounding > 0) && out.againstMesh.empty()) out.againstMesh = m.name;
       for (std::size_t k = 0; k < n; ++k) {
         foundStart[k] = found.size();
         if (!near.empty()) geo::pathCrossings(m.topology, near, centre, glm::dvec3((*samples)[k]), found);

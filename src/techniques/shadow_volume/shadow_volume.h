@@ -15,6 +15,7 @@
 // horizon rule passes), and dcs's wedges decide side planes with the same test.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "geometry/silhouette.h"
@@ -29,6 +30,7 @@ class ShadowVolumeCounter {
     geo::EdgeTopology topology;
     geo::VolumeRule rule;  // for a light outside (place() may give a closed mesh PerTriangle)
     int units = 1;  // what one volume of the mesh adds to the count (0: the mesh never occludes)
+    std::string name;
   };
 
   // Builds the edge topology of every mesh and the GL resources for `gpu`'s size. `units`
@@ -59,9 +61,14 @@ class ShadowVolumeCounter {
     std::vector<std::uint32_t> firstCrossing;  // per sample, then the end: a range of `crossings`
     std::vector<Crossing> crossings;
     std::size_t perTriangleMeshes = 0;  // closed meshes given one volume per triangle for this light
-    // Triangles in whose plane the centre and every sample lie (a light lying on a face): a
-    // path across such a face's border is not resolved exactly (dcs warns).
+    // Triangles in whose plane the centre and every sample lie (a light lying on a face); of
+    // them, those whose border a sample's path from the centre meets (a path along the surface
+    // across its border is not resolved: dcs refuses); and triangles the light lies against
+    // only within rounding (their facing flips from sample to sample: dcs refuses).
     std::size_t coplanarTriangles = 0;
+    std::size_t coplanarBorderTriangles = 0;
+    std::size_t nearCoplanarTriangles = 0;
+    std::string againstMesh;  // the first mesh with any of them, for the message
   };
   // `samples` (null: the centre only, hard-sv) and the ball of `radius` around `centre` that
   // holds them.
