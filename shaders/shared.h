@@ -114,12 +114,16 @@ PENUMBRA_FN float penumbraDcsTransmittance(float count, int mode, float opaqueUn
 // Avoiding Self-Intersection", Ray Tracing Gems 2019, ch. 6: an offset of 256 ULPs of the point's
 // coordinates, a fixed tiny offset near the origin). We use the largest coordinate for all three
 // axes (one distance along the view ray below, not one integer offset per axis) and keep their
-// constants: 256 ULPs = 2^-15 relative, magnitudes below 1/32 count as 1/32. Points are in
-// camera-relative coordinates (Scene::cameraRelative), so the magnitude is the distance to the
-// camera (at least zNear) and a scene translated anywhere gives the same offset; a scaled scene
-// gets a scaled offset; a mirrored one the same (absolute values).
+// 256 ULPs = 2^-15 relative. Points are in camera-relative coordinates (Scene::cameraRelative),
+// so the magnitude is the distance to the camera (at least zNear / sqrt 3 for a visible point)
+// and a scene translated anywhere gives the same offset; a scaled scene gets a scaled offset, bit
+// for bit at powers of two; a mirrored one the same (absolute values). Divergence: their fixed
+// offset near the origin (magnitudes below 1/32 counted as 1/32, which we had) made a world in
+// millimetres differ from the same world in metres (hard case 36: the cube scene at 2^-13 off at
+// 30 of 4096 values, at 2^-20 at 207); near the camera a visible point cannot be, so the floor is
+// 2^-100, there only to keep the offset positive at a CPU G-buffer's world origin.
 #define PENUMBRA_EPS_RELATIVE (1.0f / 32768.0f)
-#define PENUMBRA_EPS_ORIGIN (1.0f / 32.0f)
+#define PENUMBRA_EPS_ORIGIN 7.88860905e-31f  // 2^-100 (no hex floats in GLSL)
 PENUMBRA_FN float penumbraSurfaceEpsilon(vec3 p) {
   float m = max(max(abs(p.x), abs(p.y)), max(abs(p.z), PENUMBRA_EPS_ORIGIN));
   return m * PENUMBRA_EPS_RELATIVE;
