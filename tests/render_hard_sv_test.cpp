@@ -92,11 +92,12 @@ TEST(HardCase38, ATransparentOccluderCastsNoShadowInAnyTechnique) {
     const bool variant = t.name.find('-') != std::string::npos && t.name != "hard-sv" && t.name != "msm-soft" &&
                          t.name != "raytrace-denoised";
     if (variant || t.name == "raytrace") continue;
-    const Comparison r = renderAndCompare(scene, t.name, settings(64, 16));
+    const Comparison r = renderAndCompare(scene, t.name, settings(48, 8));
     std::printf("%-18s visibility RMSE %.2g, max %.2g\n", t.name.c_str(), r.errors.visibility.rmse, r.errors.visibility.maxAbs);
     // The box's shadow would be errors of 1. Exact and hard techniques equal the ray tracer; the
-    // approximate ones keep their own small errors of an unoccluded floor (measured: the
-    // multi-view maps 0.038 at most; run over the whole table, pcss-mask's blurred mask 0.062).
+    // approximate ones keep their own small errors of an unoccluded floor (measured at 48 px and 8
+    // samples: the multi-view maps 0.025 at most; at 64 px and 16 samples 0.038, and over the
+    // whole table pcss-mask's blurred mask 0.062). 48 px: the suite's second slowest test at 64.
     const bool exact = t.family == TechniqueFamily::ExactPerSample || t.family == TechniqueFamily::Hard;
     EXPECT_LE(r.errors.visibility.maxAbs, exact ? 1e-6 : 0.1) << t.name;
     EXPECT_LE(r.errors.visibility.rmse, exact ? 1e-6 : 0.01) << t.name;

@@ -13,9 +13,10 @@ namespace {
 // Where an area light (centre and samples) lies against triangle t's plane: In, the centre and
 // every sample exactly in it (facing 0: the plane does not occlude them, silhouette.h's
 // convention); WithinRounding, not exactly, but every one within 2^-18 of the magnitude of its
-// coordinates of it (a face the light was meant to lie on, off by the rounding of a transform: a light 1e-7
-// behind it is occluded by it, exactly, where the reference's rays, which stop 1e-5 short of the
-// sample, pass); else Off.
+// coordinates along the plane's normal (a face the light was meant to lie on, off by the
+// rounding of a transform: a light 1e-7 behind it is occluded by it, exactly, where the
+// reference's rays, which stop 1e-5 short of the sample, pass; a light of size 7e18 4 above a
+// floor is not); else Off, decided at the first point that is neither.
 enum class AgainstPlane { Off, In, WithinRounding };
 
 AgainstPlane againstPlane(const geo::EdgeTopology& topology, std::uint32_t t, const glm::dvec3& centre,
@@ -24,19 +25,18 @@ AgainstPlane againstPlane(const geo::EdgeTopology& topology, std::uint32_t t, co
   const double len = glm::length(normal);
   if (!(len > 0.0)) return AgainstPlane::Off;
   const glm::dvec3 n = normal / len;
-  int facings = 0;
-  bool within = true;
-  auto visit = [&](const glm::dvec3& x) {
-    facings += geo::triangleFacing(topology, t, x) != 0;
-    // Within rounding: the distance below 2^-18 of the magnitude of what it is computed from
-    // (the coordinates along the plane's normal: a light of size 7e18 4 above a floor is not).
+  bool exact = true;
+  // False: this point is off the plane by more than rounding.
+  auto against = [&](const glm::dvec3& x) {
+    if (geo::triangleFacing(topology, t, x) == 0) return true;
+    exact = false;
     const double magnitude = glm::dot(glm::abs(n), glm::max(glm::abs(x), glm::abs(p0)));
-    within = within && std::abs(glm::dot(n, x - p0)) <= magnitude * 0x1p-18;
+    return std::abs(glm::dot(n, x - p0)) <= magnitude * 0x1p-18;
   };
-  visit(centre);
-  for (const glm::vec3& x : samples) visit(glm::dvec3(x));
-  if (facings == 0) return AgainstPlane::In;
-  return within ? AgainstPlane::WithinRounding : AgainstPlane::Off;
+  if (!against(centre)) return AgainstPlane::Off;
+  for (const glm::vec3& x : samples)
+    if (!against(glm::dvec3(x))) return AgainstPlane::Off;
+  return exact ? AgainstPlane::In : AgainstPlane::WithinRounding;
 }
 
 // Of the triangles the light lies in (`in`), those with an edge on the border of that flat
