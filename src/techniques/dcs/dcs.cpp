@@ -349,22 +349,7 @@ class DepthComplexitySampling final : public Technique {
     });
     stats_.perTriangleMeshes = placed.perTriangleMeshes;
     stats_.coplanarTriangles = placed.coplanarTriangles;
-    // A light lying on a face is exact while no sample's path from the centre meets the face's
-    // border (a light flush with a ceiling); across the border the edge events and the path
-    // crossings coincide and the counts were silently wrong (a box touching a ceiling light from
-    // below: 220 pixels off by 2 of 32 samples). Refused, as is a face the light lies on only
-    // within rounding (a light 1e-7 behind a ceiling is occluded by it, exactly, where the
-    // reference's rays pass: visibility RMSE 0.93, silently).
-    if (placed.coplanarBorderTriangles > 0)
-      throw Error("dcs", fmt::format("light '{}' lies in the plane of {} triangle(s) of '{}' and its samples reach across "
-                                     "their border: counts along a surface across its edge are not resolved (move the "
-                                     "light off the face, or use raytrace)",
-                                     light.name, placed.coplanarBorderTriangles, placed.againstMesh));
-    if (placed.nearCoplanarTriangles > 0)
-      throw Error("dcs", fmt::format("light '{}' lies on {} triangle(s) of '{}' only within rounding (its samples all within "
-                                     "2^-18 of their coordinates of their planes, not in them): put it exactly on the face or "
-                                     "clearly off it",
-                                     light.name, placed.nearCoplanarTriangles, placed.againstMesh));
+    placed.refuseLightOnAFace("dcs", light.name);
     stats_.pathCrossings = placed.crossings.size();
     f.maxPathGain = 0;
     std::vector<GpuPathCrossing> gpuCrossings;

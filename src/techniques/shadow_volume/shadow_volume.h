@@ -69,6 +69,9 @@ class ShadowVolumeCounter {
     std::size_t coplanarBorderTriangles = 0;
     std::size_t nearCoplanarTriangles = 0;
     std::string againstMesh;  // the first mesh with any of them, for the message
+    // Throws Error(technique) for a light across a coplanar face's border or on a face only
+    // within rounding (shadow_volume.cpp); a light lying wholly on a face is exact and passes.
+    void refuseLightOnAFace(const std::string& technique, const std::string& light) const;
   };
   // `samples` (null: the centre only, hard-sv) and the ball of `radius` around `centre` that
   // holds them.
