@@ -69,6 +69,12 @@ struct Lobe {
   glm::dmat3 m{1.0}, minv{1.0};
   double detMinv = 1.0;
 
+  // The frame about axis z (in the xz plane): x = y cross z, y = +y.
+  void setAxis(const glm::dvec3& axis) {
+    z = axis;
+    x = glm::dvec3(axis.z, 0.0, -axis.x);
+    y = glm::dvec3(0.0, 1.0, 0.0);
+  }
   void update() {
     m = glm::dmat3(x, y, z) * glm::dmat3(m11, 0, 0, 0, m22, 0, m13, 0, 1);
     minv = glm::inverse(m);
@@ -213,8 +219,7 @@ double fitCell(Lobe& g, const Cell& c, bool isotropic, const LtcFitOptions& o) {
     const glm::dvec3 z0 = g.z;
     auto turn = [&](double angle) {
       const double ca = std::cos(angle), sa = std::sin(angle);
-      g.z = glm::dvec3(z0.x * ca + z0.z * sa, 0.0, z0.z * ca - z0.x * sa);
-      g.x = glm::dvec3(g.z.z, 0.0, -g.z.x);
+      g.setAxis(glm::dvec3(z0.x * ca + z0.z * sa, 0.0, z0.z * ca - z0.x * sa));
     };
     auto f = [&](const std::array<double, 4>& p) {
       turn(p[3]);
@@ -309,9 +314,7 @@ LtcTable fitLtcGgx(const LtcFitOptions& o, const std::vector<int>& columns, cons
       double bestError = 0.0;
       for (int k = 0; k < 2; ++k) {
         Lobe g = k == 0 ? previous : starts[std::size_t(a)];
-        g.z = mo.mean;
-        g.x = glm::dvec3(mo.mean.z, 0.0, -mo.mean.x);
-        g.y = glm::dvec3(0.0, 1.0, 0.0);
+        g.setAxis(mo.mean);
         g.amplitude = mo.norm;
         g.update();
         const double e = fitCell(g, c, false, o);
