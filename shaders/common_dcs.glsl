@@ -19,7 +19,6 @@
 // 3D (segment p -> y through e) instead of projecting e onto a light plane, so sphere lights
 // need nothing special and no edge is clipped against the light border.
 #include "dcs_bindings.h"
-#include "common_volume.glsl"
 
 struct DcsEdge {
   vec4 v0;     // xyz
@@ -155,7 +154,7 @@ struct DcsCoverage {
   float k;
 };
 
-// ne and dc are n_e and n_e . (c - p) from edgePlaneDistance: K = -n_e and k = -dc (equal
+// ne and dc are n_e and n_e . (c - p) from penumbraEdgePlaneDistance (shared.h): K = -n_e and k = -dc (equal
 // mathematically, det(a - p, b - a, c - a) = det(a - p, b - a, c - p)); taking them from there
 // makes the flip below the same decision as the update's sign and the shadow-volume count.
 DcsCoverage dcsCoverageSetup(vec3 p, vec3 a, vec3 b, vec3 c, vec3 ne, float dc) {

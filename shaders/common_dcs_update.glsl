@@ -15,9 +15,9 @@ int dcsEdgeUpdate(ivec2 px, vec3 p, int edgeId, uint first, uint count, out uint
   DcsEdge e = dcsEdges[edgeId];
   vec3 a = e.v0.xyz, b = e.v1.xyz;
   // n_e and the light centre's side of plane(p, e), bit for bit as the shadow-volume count
-  // decides the point's side of the volume side through e (common_volume.glsl).
+  // decides the point's side of the volume side through e (shared.h).
   vec3 ne;
-  float dc = edgePlaneDistance(a, b, lightPosition, p, ne);
+  float dc = penumbraEdgePlaneDistance(a, b, lightPosition, p, ne);
   float len = length(ne);
   if (len == 0.0) return 0;
   if (abs(dc) > lightRadius * len) return 0;  // the whole light on one side of plane(p, e)

@@ -75,3 +75,6 @@ penumbra_add_test(test_dcs_edge_lut ${CMAKE_CURRENT_SOURCE_DIR}/dcs_edge_lut_tes
 # are one-line errors.
 penumbra_add_gl_test(test_render_resources ${CMAKE_CURRENT_SOURCE_DIR}/render_resources_test.cpp
   SANITIZE RenderResources.LimitsAreErrorsNotGlErrors)
+
+# The shadow-volume count's exact face decisions and covers (shared.h, volume_cover.h). No GL.
+penumbra_add_test(test_shadow_volume_count ${CMAKE_CURRENT_SOURCE_DIR}/shadow_volume_count_test.cpp LIBS penumbra_techniques)

@@ -85,6 +85,7 @@ const Limits& limits() {
     glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &l.maxFramebufferHeight);
     glGetIntegerv(GL_MAX_FRAMEBUFFER_LAYERS, &l.maxFramebufferLayers);
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &l.maxStorageBlockSize);
+    glGetIntegerv(GL_SUBPIXEL_BITS, &l.subpixelBits);
     const GLubyte* r = glGetString(GL_RENDERER);
     const std::string renderer = r ? reinterpret_cast<const char*>(r) : "";
     if (renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos)
@@ -130,6 +131,16 @@ void Buffer::bindBase(GLenum target, GLuint index) const {
                                           "GL_MAX_SHADER_STORAGE_BLOCK_SIZE ({:.0f} MiB)",
                                           mib(double(size_)), mib(double(limits().maxStorageBlockSize))));
   glBindBufferBase(target, index, id());
+}
+
+void Buffer::bindRange(GLenum target, GLuint index, std::size_t offset, std::size_t bytes) const {
+  PENUMBRA_CHECK(offset + bytes <= size_, "buffer range out of range");
+  if (target == GL_SHADER_STORAGE_BUFFER && limits().maxStorageBlockSize > 0 &&
+      GLint64(bytes) > limits().maxStorageBlockSize)
+    throw Error("GPU memory", fmt::format("a storage block of {:.0f} MiB exceeds this GL's "
+                                          "GL_MAX_SHADER_STORAGE_BLOCK_SIZE ({:.0f} MiB)",
+                                          mib(double(bytes)), mib(double(limits().maxStorageBlockSize))));
+  glBindBufferRange(target, index, id(), GLintptr(offset), GLsizeiptr(bytes));
 }
 
 void Buffer::write(const void* data, std::size_t bytes, std::size_t offset) const {

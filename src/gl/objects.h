@@ -66,6 +66,7 @@ struct Limits {
   GLint maxViewport[2] = {0, 0};
   GLint maxFramebufferWidth = 0, maxFramebufferHeight = 0, maxFramebufferLayers = 0;
   GLint64 maxStorageBlockSize = 0;
+  GLint subpixelBits = 0;  // GL_SUBPIXEL_BITS: window coordinates snap to 2^-bits pixel (llvmpipe 8)
   // Largest single allocation attempted: on a software renderer (llvmpipe) "GPU memory" is
   // system memory, which Linux overcommits, so an allocation beyond physical memory is refused
   // up front rather than risking the OOM killer when it is touched; 0: no bound (a GPU).
@@ -82,6 +83,8 @@ class Buffer : public Object<Kind::Buffer> {
   explicit Buffer(const std::vector<T>& v) : Buffer(v.size() * sizeof(T), v.empty() ? nullptr : v.data()) {}
   std::size_t size() const { return size_; }
   void bindBase(GLenum target, GLuint index) const;
+  // `bytes` from `offset` (a multiple of the target's offset alignment) to an indexed binding.
+  void bindRange(GLenum target, GLuint index, std::size_t offset, std::size_t bytes) const;
   void write(const void* data, std::size_t bytes, std::size_t offset = 0) const;
   void read(void* data, std::size_t bytes, std::size_t offset = 0) const;
   void clear() const;  // every byte 0 (size a multiple of 4)

@@ -35,7 +35,10 @@ class HardShadowVolumes final : public Technique {
   std::size_t memoryBytes() const override { return volumes_.counter().bytes(); }
 
   std::vector<std::pair<std::string, double>> statistics() const override {
-    return {{"closedMeshesPerTriangle", double(perTriangleMeshes_)}};
+    return {{"closedMeshesPerTriangle", double(perTriangleMeshes_)},
+            {"volumeSides", double(volumes_.sideEdges())},
+            {"volumeCaps", double(volumes_.caps())},
+            {"volumeCoverTriangles", double(volumes_.coverTriangles())}};
   }
 
  private:

@@ -1,13 +1,17 @@
 #include "techniques/shadow_volume/shadow_volume.h"
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
+#include "techniques/shadow_volume/volume_cover.h"
 
 namespace penumbra {
 namespace {
@@ -69,14 +73,6 @@ std::size_t acrossBorder(const geo::EdgeTopology& topology, const std::vector<st
   return count;
 }
 
-void drawPoints(const gl::Program& prog, const gl::Buffer& buf, std::size_t count, GLenum mode) {
-  if (count == 0) return;
-  gl::VertexArray vao = gl::VertexArray::create();
-  vao.vertexBuffer(buf, sizeof(glm::vec4)).attribute(0, 4, 0);
-  vao.bind();
-  prog.use();
-  glDrawArrays(mode, 0, GLsizei(count));
-}
 
 }  // namespace
 
@@ -97,8 +93,7 @@ void ShadowVolumeCounter::prepare(const Scene& scene, GpuScene& gpu, const std::
     v.rule = v.units < opaqueUnits ? geo::VolumeRule::PerTriangle : geo::volumeRuleFor(v.topology);
     meshes_.push_back(std::move(v));
   }
-  sidesProgram_ = gl::Program({"hardsv_volume.vert", "hardsv_volume.geom", "hardsv_volume.frag"}, {"SIDES"});
-  capsProgram_ = gl::Program({"hardsv_volume.vert", "hardsv_volume.geom", "hardsv_volume.frag"}, {"CAPS"});
+  program_ = gl::Program({"hardsv_volume.vert", "hardsv_volume.frag"});
   counter_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
   fbo_ = gl::Framebuffer({&counter_}, &gpu.depth());
 }
@@ -191,10 +186,42 @@ bool ShadowVolumeCounter::onMeshBorder(const glm::dvec3& x) const {
   return false;
 }
 
+namespace {
+// A face's corners for its cover (world points, w = 0 at infinity), from its storage-block
+// record (shaders/hardsv_volume.frag): a side's quad b -> a -> a_inf -> b_inf with (a, b) =
+// (v0, v1) turned for a negative weight (shared.h penumbraSideCount), a near cap's triangle, a
+// far cap's triangle at infinity reversed.
+int faceCorners(const glm::vec4* f, glm::dvec4 corners[4]) {
+  const glm::dvec3 a(f[0]), b(f[1]), c(f[2]);
+  switch (int(f[1].w)) {
+    case PENUMBRA_VOLUME_SIDE: {
+      const bool turned = f[0].w < 0.0f;
+      const glm::dvec3 u = turned ? b : a, v = turned ? a : b;
+      corners[0] = glm::dvec4(v, 1.0), corners[1] = glm::dvec4(u, 1.0);
+      corners[2] = glm::dvec4(u, 0.0), corners[3] = glm::dvec4(v, 0.0);
+      return 4;
+    }
+    case PENUMBRA_VOLUME_NEAR_CAP:
+      corners[0] = glm::dvec4(a, 1.0), corners[1] = glm::dvec4(b, 1.0), corners[2] = glm::dvec4(c, 1.0);
+      return 3;
+    default:
+      corners[0] = glm::dvec4(a, 0.0), corners[1] = glm::dvec4(c, 0.0), corners[2] = glm::dvec4(b, 0.0);
+      return 3;
+  }
+}
+
+// Grows `buffer` (recreated, contents lost) to hold at least `bytes`.
+void reserve(gl::Buffer& buffer, std::size_t bytes) {
+  if (buffer.size() < bytes || buffer.id() == 0) buffer = gl::Buffer(std::max<std::size_t>(bytes + bytes / 2, 1024), nullptr);
+}
+}  // namespace
+
 void ShadowVolumeCounter::count(LightPass& pass, const std::vector<geo::VolumeRule>& rules) {
   PENUMBRA_CHECK(rules.size() == meshes_.size(), "ShadowVolumeCounter: one volume rule per mesh");
-  glm::dvec3 light(pass.light.position);
-  std::vector<glm::vec4> sideVerts, capVerts;
+  const glm::dvec3 light(pass.light.position);
+  // The faces, three vec4 each (shaders/hardsv_volume.frag: (a, weight), (b, kind), (c, 0)).
+  faces_.clear();
+  sideEdges_ = caps_ = 0;
   pass.timer.time("silhouettes", [&] {
     for (std::size_t mi = 0; mi < meshes_.size(); ++mi) {
       const MeshVolumes& m = meshes_[mi];
@@ -203,50 +230,108 @@ void ShadowVolumeCounter::count(LightPass& pass, const std::vector<geo::VolumeRu
       const auto& P = m.topology.weldedPositions;
       for (auto& s : sil.sides) {
         const auto& e = m.topology.edges[s.edge];
-        // The edge in its own order, m_e signed (the shader orients the quad): the plane test
-        // of the fragment shader must see the same (v0, v1) as dcs's edge buffer.
-        float weight = float(s.multiplicity * m.units);
-        sideVerts.emplace_back(P[e.v0], weight);
-        sideVerts.emplace_back(P[e.v1], weight);
+        // The edge in its own order, m_e signed: the plane decision of the count must see the
+        // same (v0, v1) as dcs's edge buffer.
+        faces_.insert(faces_.end(), {glm::vec4(P[e.v0], float(s.multiplicity * m.units)),
+                                     glm::vec4(P[e.v1], float(PENUMBRA_VOLUME_SIDE)), glm::vec4(0.0f)});
+        ++sideEdges_;
       }
       for (std::size_t t = 0; t < sil.capSign.size(); ++t) {
         if (sil.capSign[t] == 0) continue;
         const auto& tri = m.topology.weldedTriangles[t];
         // c_t = -1 (back-facing triangle of an open mesh): reverse it so the cap faces the light.
-        glm::uvec3 o = sil.capSign[t] > 0 ? tri : glm::uvec3(tri.x, tri.z, tri.y);
-        capVerts.emplace_back(P[o.x], float(m.units));
-        capVerts.emplace_back(P[o.y], float(m.units));
-        capVerts.emplace_back(P[o.z], float(m.units));
+        const glm::uvec3 o = sil.capSign[t] > 0 ? tri : glm::uvec3(tri.x, tri.z, tri.y);
+        for (int kind : {PENUMBRA_VOLUME_NEAR_CAP, PENUMBRA_VOLUME_FAR_CAP})
+          faces_.insert(faces_.end(), {glm::vec4(P[o.x], float(m.units)), glm::vec4(P[o.y], float(kind)),
+                                       glm::vec4(P[o.z], 0.0f)});
+        ++caps_;
       }
     }
   });
-  sideEdges_ = sideVerts.size() / 2;
-  caps_ = capVerts.size() / 3;
+
+  // Each face's cover (volume_cover.h) as a fan of triangles, in blocks of faces on every core
+  // (deterministic: each block's output lands in its place). A block is one draw, its faces a
+  // range of the storage block: never past the GL's block size, however large the scene.
+  const std::size_t faceCount = faces_.size() / 3;
+  const std::size_t blocks = (faceCount + kCoverBlock - 1) / kCoverBlock;
+  if (blocks_.size() < blocks) blocks_.resize(blocks);
+  CoverView view;
+  view.clipFromWorld = glm::dmat4(pass.gpu.clipFromWorld());
+  view.viewport = glm::dvec2(pass.gpu.width(), pass.gpu.height());
+  view.clipNear = 0.5 * double(pass.scene.camera.zNear);
+  view.light = light;
+  view.margin = coverMargin(gl::limits().subpixelBits);
+  view.focalPixels = 0.5 * view.viewport.x * glm::length(glm::dvec3(view.clipFromWorld[0][0], view.clipFromWorld[1][0],
+                                                                      view.clipFromWorld[2][0]));
+  pass.timer.time("volume covers", [&] {
+    parallelRows(int(blocks), 0, [&](int block, std::uint64_t&) {
+      CoverBlock& b = blocks_[std::size_t(block)];
+      b.points.clear();
+      b.faces.clear();
+      b.indices.clear();
+      const std::size_t first = std::size_t(block) * kCoverBlock, end = std::min(faceCount, first + kCoverBlock);
+      glm::dvec4 corners[4];
+      for (std::size_t f = first; f < end; ++f) {
+        const std::uint32_t base = std::uint32_t(b.points.size());
+        const std::size_t n = appendCover(view, corners, faceCorners(&faces_[3 * f], corners), b.points);
+        for (std::uint32_t i = 2; i < n; ++i) b.indices.insert(b.indices.end(), {base, base + i - 1, base + i});
+        b.faces.insert(b.faces.end(), n, std::uint32_t(f - first));
+      }
+    });
+  });
 
   pass.timer.time("shadow volume", [&] {
-    gl::Buffer sideBuf(sideVerts), capBuf(capVerts);
+    std::size_t points = 0, indices = 0;
+    for (std::size_t k = 0; k < blocks; ++k) points += blocks_[k].points.size(), indices += blocks_[k].indices.size();
+    reserve(faceBuffer_, faces_.size() * sizeof(glm::vec4));
+    reserve(pointBuffer_, points * sizeof(glm::vec2));
+    reserve(pointFaceBuffer_, points * sizeof(std::uint32_t));
+    reserve(indexBuffer_, indices * sizeof(std::uint32_t));
+    if (!faces_.empty()) faceBuffer_.write(faces_.data(), faces_.size() * sizeof(glm::vec4));
+    std::size_t p = 0, i = 0;
+    for (std::size_t k = 0; k < blocks; ++k) {
+      const CoverBlock& b = blocks_[k];
+      if (b.points.empty()) continue;
+      pointBuffer_.write(b.points.data(), b.points.size() * sizeof(glm::vec2), p * sizeof(glm::vec2));
+      pointFaceBuffer_.write(b.faces.data(), b.faces.size() * sizeof(std::uint32_t), p * sizeof(std::uint32_t));
+      indexBuffer_.write(b.indices.data(), b.indices.size() * sizeof(std::uint32_t), i * sizeof(std::uint32_t));
+      p += b.points.size(), i += b.indices.size();
+    }
     fbo_.bind();
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
-    // No depth test: the fragment shader decides "behind the visible point" by a plane test
-    // (hardsv_volume.frag). Depth clamp keeps the parts of the volume in front of the near
-    // plane (camera inside a volume).
+    // No depth test: the fragment shader decides exactly which faces the view ray meets beyond
+    // the visible point (hardsv_volume.frag).
     glDisable(GL_DEPTH_TEST);
-    glEnable(GL_DEPTH_CLAMP);
     glDisable(GL_CULL_FACE);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_ONE, GL_ONE);
-    for (auto* prog : {&sidesProgram_, &capsProgram_}) {
-      prog->use();
-      prog->set("clipFromWorld", pass.gpu.clipFromWorld());
-      prog->set("lightPosition", pass.light.position);
-      prog->set("eyePosition", pass.gpu.cameraPosition());
+    program_.use();
+    program_.set("lightPosition", pass.light.position);
+    program_.set("eyePosition", pass.gpu.cameraPosition());
+    program_.set("viewport", glm::vec2(pass.gpu.width(), pass.gpu.height()));
+    gl::VertexArray vao = gl::VertexArray::create();
+    vao.vertexBuffer(pointBuffer_, sizeof(glm::vec2), 0).attribute(0, 2, 0, 0);
+    vao.vertexBuffer(pointFaceBuffer_, sizeof(std::uint32_t), 1).attributeInt(1, 1, 0, 1);
+    vao.elementBuffer(indexBuffer_);
+    vao.bind();
+    p = i = 0;
+    for (std::size_t k = 0; k < blocks; ++k) {
+      const CoverBlock& b = blocks_[k];
+      if (b.indices.empty()) {
+        p += b.points.size();
+        continue;
+      }
+      const std::size_t first = k * kCoverBlock, n = std::min(faceCount - first, kCoverBlock);
+      faceBuffer_.bindRange(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VOLUME_FACES, 3 * first * sizeof(glm::vec4),
+                            3 * n * sizeof(glm::vec4));
+      glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(b.indices.size()), GL_UNSIGNED_INT,
+                               reinterpret_cast<const void*>(i * sizeof(std::uint32_t)), GLint(p));
+      p += b.points.size(), i += b.indices.size();
     }
-    drawPoints(sidesProgram_, sideBuf, sideVerts.size(), GL_LINES);
-    drawPoints(capsProgram_, capBuf, capVerts.size(), GL_TRIANGLES);
     glDisable(GL_BLEND);
-    glDisable(GL_DEPTH_CLAMP);
+    triangles_ = indices / 3;
   });
 }
 

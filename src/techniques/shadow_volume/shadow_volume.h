@@ -6,13 +6,15 @@
 // stencil wrap-around). Volumes come from geometry/silhouette.h: per mesh and light, the side
 // edges with multiplicity m_e and the cap sign of each triangle (closed meshes: classic
 // front-face caps; open, non-manifold or inconsistently wound meshes: one volume per triangle,
-// so boundary edges close the volume and the count does not depend on winding). The geometry
-// shader extrudes them to infinity. A volume fragment counts if the view ray meets the face
-// behind the evaluation point (shared.h penumbraShadowOrigin: the visible point moved towards
-// the camera, off its surface), decided by a plane test in the fragment shader rather than the
-// depth buffer (shaders/hardsv_volume.frag): the visible surface's own near cap counts, which
-// gives the winding number on the camera's side of the surface (the lit side whenever the
-// horizon rule passes), and dcs's wedges decide side planes with the same test.
+// so boundary edges close the volume and the count does not depend on winding). A volume face
+// counts where the view ray meets it behind the evaluation point (shared.h penumbraShadowOrigin:
+// the visible point moved towards the camera, off its surface); both halves are decided exactly
+// in the fragment shader (shared.h, "Which faces of the shadow volumes the view ray meets";
+// shaders/hardsv_volume.frag), not by the rasteriser or the depth buffer: the visible surface's
+// own near cap counts, which gives the winding number on the camera's side of the surface (the
+// lit side whenever the horizon rule passes), the faces sharing an edge or a vertex line decide
+// it as one (hard case 34), and dcs's wedges decide side planes with the same test. The
+// rasteriser draws each face's cover (volume_cover.h), built here on the CPU each frame.
 #pragma once
 
 #include <string>
@@ -91,13 +93,24 @@ class ShadowVolumeCounter {
   const std::vector<MeshVolumes>& meshes() const { return meshes_; }
   std::size_t sideEdges() const { return sideEdges_; }
   std::size_t caps() const { return caps_; }
+  std::size_t coverTriangles() const { return triangles_; }  // drawn by the last count()
 
  private:
   std::vector<MeshVolumes> meshes_;
-  gl::Program sidesProgram_, capsProgram_;
+  gl::Program program_;
+  // The count's faces and their covers, kept from frame to frame (no reallocation).
+  static constexpr std::size_t kCoverBlock = 4096;  // faces a draw (a storage block of 192 KiB)
+  struct CoverBlock {
+    std::vector<glm::vec2> points;         // window coordinates (volume_cover.h)
+    std::vector<std::uint32_t> faces;      // per point, its face in the block
+    std::vector<std::uint32_t> indices;    // triangles over the block's points
+  };
+  std::vector<glm::vec4> faces_;
+  std::vector<CoverBlock> blocks_;
+  gl::Buffer faceBuffer_, pointBuffer_, pointFaceBuffer_, indexBuffer_;
   gl::Texture counter_;
   gl::Framebuffer fbo_;
-  std::size_t sideEdges_ = 0, caps_ = 0;
+  std::size_t sideEdges_ = 0, caps_ = 0, triangles_ = 0;
 };
 
 }  // namespace penumbra
