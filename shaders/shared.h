@@ -212,6 +212,8 @@ PENUMBRA_FN bool penumbraLexLess(vec3 a, vec3 b) {
 
 // Edge a -> b between finite points: -det(a - o, b - o, d), written with the edge vector
 // (-det(a - o, b - a, d)) so that its rounding is that of the point's distance, not its square.
+// With the light centre c in place of o, the edge a_inf -> b_inf at infinity between the
+// directions a - c and b - c: -det(a - c, b - c, d) = -det(a - c, b - a, d).
 PENUMBRA_FN int penumbraViewEdgeSide(vec3 a, vec3 b, vec3 o, vec3 d) {
   bool swapped = penumbraLexLess(b, a);
   vec3 u = swapped ? b : a;
@@ -228,16 +230,6 @@ PENUMBRA_FN int penumbraViewVertexLineSide(vec3 v, vec3 c, vec3 n) {
   return s >= 0.0f ? 1 : -1;
 }
 
-// Edge a_inf -> b_inf at infinity (directions a - c, b - c): -det(a - c, b - c, d), written
-// -det(a - c, b - a, d).
-PENUMBRA_FN int penumbraViewFarEdgeSide(vec3 a, vec3 b, vec3 c, vec3 d) {
-  bool swapped = penumbraLexLess(b, a);
-  vec3 u = swapped ? b : a;
-  vec3 v = swapped ? a : b;
-  int s = -penumbraDet3(u - c, v - u, d) >= 0.0f ? 1 : -1;
-  return swapped ? -s : s;
-}
-
 // What a side of edge (v0, v1) (in the edge's own order; weight w = m_e times the mesh's units,
 // its sign turning the quad to face out of the volume) adds to the count at o: the quad
 // b -> a -> a_inf -> b_inf with (a, b) = (v0, v1), swapped for w < 0. It lies beyond o where o
@@ -248,10 +240,10 @@ PENUMBRA_FN float penumbraSideCount(vec3 v0, vec3 v1, float w, vec3 c, vec3 o, v
   vec3 a = w < 0.0f ? v1 : v0;
   vec3 b = w < 0.0f ? v0 : v1;
   int s = penumbraViewEdgeSide(b, a, o, d);
-  if (penumbraViewVertexLineSide(a, c, n) != s || penumbraViewFarEdgeSide(a, b, c, d) != s ||
+  if (penumbraViewVertexLineSide(a, c, n) != s || penumbraViewEdgeSide(a, b, c, d) != s ||
       -penumbraViewVertexLineSide(b, c, n) != s)
     return 0.0f;
-  if (penumbraSideOfEdgePlane(v0, v1, c, o) != -penumbraViewFarEdgeSide(v0, v1, c, d)) return 0.0f;
+  if (penumbraSideOfEdgePlane(v0, v1, c, o) != -penumbraViewEdgeSide(v0, v1, c, d)) return 0.0f;
   return s > 0 ? -abs(w) : abs(w);
 }
 
@@ -275,8 +267,8 @@ PENUMBRA_FN float penumbraNearCapCount(vec3 x, vec3 y, vec3 z, float w, vec3 o, 
 // in the cone of the triangle's directions where the common sign is that of det(x - c, y - c,
 // z - c).
 PENUMBRA_FN float penumbraFarCapCount(vec3 x, vec3 y, vec3 z, float w, vec3 c, vec3 d) {
-  int s = penumbraViewFarEdgeSide(x, z, c, d);
-  if (penumbraViewFarEdgeSide(z, y, c, d) != s || penumbraViewFarEdgeSide(y, x, c, d) != s) return 0.0f;
+  int s = penumbraViewEdgeSide(x, z, c, d);
+  if (penumbraViewEdgeSide(z, y, c, d) != s || penumbraViewEdgeSide(y, x, c, d) != s) return 0.0f;
   float orientation = penumbraDet3(x - c, y - c, z - c);
   if (orientation == 0.0f || (orientation > 0.0f ? 1 : -1) != s) return 0.0f;
   return s > 0 ? -w : w;

@@ -116,6 +116,7 @@ TechniqueErrors measureErrors(const FrameResult& frame, const FrameResult& ref) 
   }
   if (pairs > 0) e.sampleAgreement = double(agree) / double(pairs);
   e.samplePairs = pairs;
+  e.sampleMismatches = pairs - agree;
   return e;
 }
 

@@ -21,6 +21,7 @@ struct TechniqueErrors {
   // Per-(pixel, sample) agreement outside the band (both results per-sample), else -1.
   double sampleAgreement = -1.0;
   std::int64_t samplePairs = 0;
+  std::int64_t sampleMismatches = 0;  // pairs that differ (outside the band)
   // Pixels whose visibility decision differs (|dV| > 0.5 / N) outside the band.
   std::int64_t misclassifiedPixels = 0;
   // Pixels the technique left unshadowed by design (LightResult::unshadowed: shadow-map

@@ -63,7 +63,10 @@ nlohmann::json errorsJson(const TechniqueErrors& e) {
                    {"misclassifiedPixelsOutsideBand", e.misclassifiedPixels},
                    {"unshadowedPixels", e.unshadowedPixels},
                    {"visibilityExceptUnshadowed", stats(e.visibilityExceptUnshadowed)}};
-  if (e.sampleAgreement >= 0.0) j["sampleAgreementOutsideBand"] = e.sampleAgreement;
+  if (e.sampleAgreement >= 0.0) {
+    j["sampleAgreementOutsideBand"] = e.sampleAgreement;
+    j["sampleMismatchesOutsideBand"] = e.sampleMismatches;
+  }
   return j;
 }
 
