@@ -174,8 +174,8 @@ TEST(VolumeCount, AViewRayNearAVertexLineCountsEveryVolumeOnce) {
   // On the line itself, within rounding of both side planes, the two sides' decisions are
   // rounding: measured, not gated.
   RecordProperty("on_the_line_counted_otherwise", std::to_string(offOnLine) + " of " + std::to_string(onLine));
-  std::printf("points on a vertex line (within rounding): %d of %d counted otherwise than the double crossings\n",
-              offOnLine, onLine);
+  std::printf("%d points near vertex lines, all counted as the double crossings; on a line (within rounding): %d of %d "
+              "counted otherwise\n", checked, offOnLine, onLine);
 }
 
 // Away from any degeneracy the count is the number of volumes: closed objects or surfaces

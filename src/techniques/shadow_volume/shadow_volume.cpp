@@ -1,7 +1,6 @@
 #include "techniques/shadow_volume/shadow_volume.h"
 
 #include <algorithm>
-#include <array>
 #include <cstddef>
 #include <cmath>
 
