@@ -41,6 +41,7 @@ penumbra_add_gl_test(test_render
     Pipeline.EglAndOSMesaGiveTheSameImage
   SLOW
     DcsRasterPath.EndPlanesCutTheFillNotTheResult
+    HardCase34.ViewRaysThroughVertexLinesCountEveryVolume
     MultiView.VwssSplitsPointsThatExceedOneStorageBlock)
 
 # The CLI: exit codes and one-line errors for bad input (tests/cli_test.sh), in two parts: the

@@ -762,10 +762,11 @@ TEST(HardCase33, ALightOnAFaceOnlyWithinRoundingIsRefused) {
 // the faces' coverage left to the rasteriser, pixel (102, 78) counted 11 volumes where there are
 // 13 (a side nearly edge-on to the camera given the pixel across a vertex line): dcs refused at
 // 8 and 32 samples and lit one sample silently at 16. Every face's crossing is decided exactly
-// now (shared.h); every (pixel, sample) pair outside the edge band equals the ray tracer's.
+// now (shared.h); every (pixel, sample) pair outside the edge band equals the ray tracer's (at 16
+// samples the engine is a DcsVsRaytrace case, with the same gate).
 TEST(HardCase34, ViewRaysThroughVertexLinesCountEveryVolume) {
   const Scene scene = loadScene(scenePath("scenes/engine.json"));
-  for (int samples : {8, 16, 32}) {
+  for (int samples : {8, 32}) {
     const Comparison r = renderAndCompare(scene, "dcs", settings(128, samples));
     const auto& e = r.errors;
     ASSERT_GT(e.samplePairs, 0);
