@@ -17,7 +17,7 @@ set(PENUMBRA_LAYERS
   "penumbra_shading:penumbra_core,penumbra_sampling"
   "penumbra_shaders:"
   "penumbra_gl:penumbra_core,penumbra_shaders"
-  "penumbra_pipeline:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_shading,penumbra_gl"
+  "penumbra_pipeline:penumbra_core,penumbra_geometry,penumbra_scene,penumbra_sampling,penumbra_shading,penumbra_gl"
   "penumbra_reference:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_shading"
   "penumbra_techniques:penumbra_core,penumbra_geometry,penumbra_scene,penumbra_sampling,penumbra_gl,penumbra_pipeline,penumbra_reference"
   "penumbra_compare:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_gl,penumbra_pipeline"

@@ -7,6 +7,13 @@
 #include <thread>
 
 #include "core/timer.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+
+#include <sstream>
+
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 
 namespace penumbra {
 namespace {
@@ -81,6 +88,32 @@ TEST(StageTimer, AStageThatThrowsRecordsNothingAndStopsTheCounter) {
   t.time("good", [] {});
   ASSERT_EQ(t.stages().size(), 1u);
   EXPECT_EQ(t.stages()[0].stage, "good");
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// A long pass says how far it is: nothing before `after`, then one line per interval (the
+// reports counted across the workers, the line read from the log), never one per row.
+TEST(PassProgress, ReportsALongPassOncePerIntervalFromAnyThread) {
+  std::ostringstream log;
+  auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(log);
+  spdlog::default_logger()->sinks().push_back(sink);
+  PassProgress quiet("quiet pass", 100, "rows", 60.0, 1.0);
+  parallelRows(100, 2, [](int, std::uint64_t&) {}, &quiet);
+  EXPECT_EQ(quiet.reports(), 0);
+  PassProgress slow("slow pass", 40, "rows", 0.0, 0.02);
+  parallelRows(40, 2, [](int, std::uint64_t&) { std::this_thread::sleep_for(std::chrono::milliseconds(5)); }, &slow);
+  spdlog::default_logger()->sinks().pop_back();
+  // 40 rows of 5 ms on 2 threads: ~100 ms, a report due every 20 ms.
+  EXPECT_GE(slow.reports(), 2);
+  EXPECT_LE(slow.reports(), 12);
+  EXPECT_EQ(log.str().find("quiet pass"), std::string::npos);
+  EXPECT_NE(log.str().find("slow pass: "), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find(" of 40 rows) after "), std::string::npos) << log.str();
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 
 #include "core/log.h"
 
@@ -35,6 +36,26 @@ void Progress::finish() {
   std::fprintf(stderr, "\r\x1b[K");
   std::fflush(stderr);
   open_ = false;
+}
+
+PassProgress::PassProgress(std::string what, std::int64_t total, std::string unit, double after, double every)
+    : what_(std::move(what)),
+      unit_(std::move(unit)),
+      total_(std::max<std::int64_t>(total, 1)),
+      start_(Clock::now()),
+      everyNs_(std::int64_t(every * 1e9)),
+      nextNs_(std::int64_t(after * 1e9)) {}
+
+void PassProgress::advance(std::int64_t units) {
+  const std::int64_t done = done_ += units;
+  const std::int64_t now = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start_).count();
+  std::int64_t due = nextNs_.load();
+  // One thread reports per interval: the one that moves the next report's time on.
+  if (now < due || !nextNs_.compare_exchange_strong(due, now + everyNs_)) return;
+  ++reports_;
+  const double seconds = double(now) * 1e-9, part = double(std::min(done, total_)) / double(total_);
+  PLOG_INFO("{}: {:.0f}% ({} of {} {}) after {:.0f} s, about {:.0f} s left", what_, 100.0 * part, std::min(done, total_),
+            total_, unit_, seconds, part > 0.0 ? seconds * (1.0 - part) / part : 0.0);
 }
 
 }  // namespace penumbra

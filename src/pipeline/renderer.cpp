@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/memory.h"
+#include "pipeline/enclosure.h"
 #include "sampling/shared.hpp"
 #include "shading/light_integral.h"
 #include "shading/ltc.h"
@@ -425,6 +426,7 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   glClearNamedFramebufferfv(colorFbo_.id(), GL_COLOR, 0, background);
 
   Image cpuRadiance;  // the lights a technique shaded itself (LightPass::cpuShading)
+  std::size_t culledLights = 0;
   for (std::size_t li = 0; li < scene_.lights.size(); ++li) {
     const Light& light = scene_.lights[li];
     LightSampleSet samples = makeLightSamples(scene_, light, settings_.sampling, settings_.time);
@@ -453,8 +455,26 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     LightPass pass{scene_, light, int(li), samples, *gpu_, timer, cpuGBuffer, visibility_,
                    wantSamples ? &perSample_ : nullptr, &lr.perSample, &lr.visibility, &own};
     gpu_->bindGBuffer();
-    technique.renderVisibility(pass);
-    lr.unshadowed = timer.harness("unshadowed readback", [&] { return technique.unshadowedPixels(); });
+    const LightEnclosure* enclosure = nullptr;
+    if (settings_.cullSeparatedLights && technique.cullsSeparatedLights()) {
+      timer.time("light culling", [&] {
+        if (!enclosures_)
+          enclosures_ = std::make_unique<Enclosures>(
+              scene_, nearPlaneReach(scene_.camera, double(settings_.width) / double(settings_.height)));
+        enclosure = &enclosures_->classify(int(li), light, samples);
+      });
+      if (enclosure->separatedBy.empty() && !enclosure->straddled.empty() && warned_.insert({technique.serial(), li}).second)
+        PLOG_WARN("{}: light '{}' has {} of {} samples on the other side of closed mesh '{}' from its centre: the "
+                  "technique sees the occluders from the centre, on one side of that surface only (light leaks "
+                  "through it; compare measures how much)",
+                  name, light.name, enclosure->samplesInOtherCells, samples.positions.size(), enclosure->straddled);
+    }
+    if (enclosure && !enclosure->separatedBy.empty()) {
+      ++culledLights;  // visibility and per-sample results stay cleared: 0
+    } else {
+      technique.renderVisibility(pass);
+      lr.unshadowed = timer.harness("unshadowed readback", [&] { return technique.unshadowedPixels(); });
+    }
     gl::Context::checkErrors("visibility");
 
     // Interleaved sampling (DCS paper 5.2, Algorithm 2): the gather filter over the K x K sets.
@@ -589,6 +609,8 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   // Comparisons mask background pixels with it (RenderSettings::gbufferResults).
   if (settings_.gbufferResults) cpuGBuffer();
   result.statistics = technique.statistics();
+  if (settings_.cullSeparatedLights && technique.cullsSeparatedLights())
+    result.statistics.emplace_back("lights culled (a closed mesh between them and the camera)", double(culledLights));
   result.memoryBytes = gpu_->memoryBytes() + color_.bytes() + visibility_.bytes() +
                        (filtered_ ? filtered_.bytes() : 0) + (lightColor_ ? lightColor_.bytes() : 0) +
                        (perSample_ ? perSample_.bytes() : 0) + (ltc_ ? ltc_.bytes() : 0) + technique.memoryBytes();

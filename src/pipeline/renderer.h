@@ -20,6 +20,7 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <memory>
 #include <string>
 #include <utility>
@@ -37,6 +38,8 @@
 #include "scene/scene.h"
 
 namespace penumbra {
+
+class Enclosures;
 
 // RatioExact: Ratio with the unshadowed term integrated on the CPU (shading/light_integral.h:
 // MIS of light and BRDF samples, transmittance 1, to a 1e-3 relative standard error) in place
@@ -69,6 +72,10 @@ struct RenderSettings {
   // Per stage, the GL's pipeline statistics (StageTime::counts) where the GL has them
   // (gl::PipelineStatistics::supported()).
   bool pipelineStatistics = true;
+  // Lights a closed opaque mesh separates from everything the camera sees are culled for the
+  // techniques that ask for it (Technique::cullsSeparatedLights, pipeline/enclosure.h). Off:
+  // those techniques' own answer (tests of what they do inside closed meshes).
+  bool cullSeparatedLights = true;
 };
 
 struct LightResult {
@@ -187,6 +194,8 @@ class Renderer {
   gl::Program shade_, filter_;  // shade_: pipeline_shade.frag for settings.shading
   gl::VertexArray emptyVao_;
   std::uint64_t prepared_ = 0;  // Technique::serial() of the technique prepared last
+  std::unique_ptr<Enclosures> enclosures_;  // made when a technique culls lights (pipeline/enclosure.h)
+  std::set<std::pair<std::uint64_t, std::size_t>> warned_;  // (technique, light) named as straddling
   std::unique_ptr<gl::PipelineStatistics> statistics_;  // null where the GL has none
 };
 

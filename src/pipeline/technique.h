@@ -74,6 +74,10 @@ class Technique {
   virtual void renderVisibility(LightPass& pass) = 0;
   // True when the technique gives per-light-sample visibility (enables eq. 6 shading).
   virtual bool providesPerSample() const { return false; }
+  // Lights that a closed opaque mesh separates from everything the camera sees are culled for
+  // it, their visibility 0 (pipeline/enclosure.h): the techniques that see the occluders only
+  // from the light centre.
+  virtual bool cullsSeparatedLights() const { return false; }
   // True when the technique shades every light itself (LightPass::cpuShading; the converged
   // reference): the pipeline's shading mode does not apply to it.
   virtual bool shadesLights() const { return false; }

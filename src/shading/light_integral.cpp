@@ -256,6 +256,7 @@ Image unshadowedIntegral(const CpuGBuffer& g, const Scene& scene, const Light& l
     std::fill(tr, tr + count, 1.0f);
   };
   Image out(g.width, g.height, 3, 0.0f);
+  PassProgress progress("exact unshadowed term", g.height);
   parallelRows(g.height, 0, [&](int y, std::uint64_t&) {
     for (int x = 0; x < g.width; ++x) {
       const std::size_t i = std::size_t(y) * g.width + x;
@@ -270,7 +271,7 @@ Image unshadowedIntegral(const CpuGBuffer& g, const Scene& scene, const Light& l
       const glm::dvec3 r = integrator.estimate(sp, seed, unoccluded).radiance;
       for (int c = 0; c < 3; ++c) out.at(x, y, c) = float(r[c]);
     }
-  });
+  }, &progress);
   return out;
 }
 

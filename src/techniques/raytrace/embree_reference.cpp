@@ -285,6 +285,7 @@ VisibilityResult EmbreeReference::sameSamples(const CpuGBuffer& gbuf, const Ligh
   out.visibility = Image(gbuf.width, gbuf.height, 3, 0.0f);
   out.perSample.assign(std::size_t(gbuf.width) * gbuf.height * n, 0.0f);
   const Impl& m = *impl_;
+  PassProgress progress("ray tracer (same samples)", gbuf.height);
   m.rays += parallelRows(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
     Scratch scratch;
     std::vector<int> sampleOf;
@@ -299,7 +300,7 @@ VisibilityResult EmbreeReference::sameSamples(const CpuGBuffer& gbuf, const Ligh
                                        rayCount);
       for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
     }
-  });
+  }, &progress);
   return out;
 }
 
@@ -319,6 +320,7 @@ VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light&
   std::vector<int> samples(n, 0);
   std::vector<std::uint8_t> capped(n, 0);
   const Impl& m = *impl_;
+  PassProgress progress("converged reference", gbuf.height);
   m.rays += parallelRows(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
     Scratch scratch;
     const shading::SegmentTracer trace = [&](const glm::vec3& o, const glm::vec3* targets, int count, float* tr) {
@@ -351,7 +353,7 @@ VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light&
         if (shaded) out.radiance.at(x, y, c) = float(e.radiance[c]), out.radianceVariance.at(x, y, c) = float(e.radianceVariance[c]);
       }
     }
-  });
+  }, &progress);
   std::int64_t surface = 0, total = 0;
   out.samples = std::numeric_limits<int>::max();
   for (std::size_t i = 0; i < n; ++i) {
@@ -374,6 +376,7 @@ SparseResult EmbreeReference::sparseSamples(const CpuGBuffer& gbuf, const LightS
   out.ratio = Image(gbuf.width, gbuf.height, 3, 1.0f);
   out.blocker.assign(std::size_t(gbuf.width) * gbuf.height, 0.0f);
   const Impl& m = *impl_;
+  PassProgress progress("sparse rays (raytrace-denoised)", gbuf.height);
   m.rays += parallelRows(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
     Scratch scratch;
     std::vector<float> tr;
@@ -428,7 +431,7 @@ SparseResult EmbreeReference::sparseSamples(const CpuGBuffer& gbuf, const LightS
       for (int c = 0; c < 3; ++c) out.ratio.at(x, y, c) = all[c] > 0.0 ? float(lit[c] / all[c]) : 1.0f;
       out.blocker[i] = blocked > 0 ? float(distance / blocked) : 0.0f;
     }
-  });
+  }, &progress);
   return out;
 }
 

@@ -14,6 +14,7 @@ class FragmentReprojection final : public shadow_map::MultiViewTechnique {
  public:
   FragmentReprojection(const shadow_map::MapOptions& m, int pcf, double scale, const shadow_map::SplatOptions& s)
       : MultiViewTechnique(s.synchronized ? "reproject" : "reproject-unsync", m, pcf), scale_(scale), splat_(s) {}
+  bool cullsSeparatedLights() const override { return true; }  // every map reprojected from the centre's
 
  protected:
   void renderMaps(LightPass& pass, const shadow_map::MapFrame& frame) override {

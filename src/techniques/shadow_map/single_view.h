@@ -35,6 +35,7 @@ class SingleViewTechnique : public Technique {
   std::size_t memoryBytes() const override { return depth_.bytes() + extraBytes(); }
   std::vector<std::pair<std::string, double>> statistics() const override;
   std::vector<std::uint8_t> unshadowedPixels() const override { return fit_.outsideMask(); }
+  bool cullsSeparatedLights() const override { return true; }  // one map from the centre
 
  protected:
   virtual void renderShadow(LightPass& pass) = 0;

@@ -40,6 +40,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
  public:
   ViewWarpedSoftShadows(const shadow_map::MapOptions& m, int pcf, const VwssOptions& o)
       : MultiViewTechnique(modeName(o.mode), m, pcf), o_(o) {}
+  bool cullsSeparatedLights() const override { return true; }  // every map rebuilt from the centre's view
 
   void prepare(const Scene& scene, GpuScene& gpu) override {
     MultiViewTechnique::prepare(scene, gpu);
