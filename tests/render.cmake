@@ -28,6 +28,7 @@ penumbra_add_gl_test(test_render
     Pcss.ParallelPlanesCaseMatchesTheReference
     Vssm.ParallelPlanesCaseAndFusionFailure
     Msm.HardShadowsFromTheLightCentre
+    Enclosure.SeparatesOnlyWhatEveryPathCrosses
     MsmSoft.ParallelPlanesCase
     Evsm.ParallelPlanesAndBleedingAgainstVssm
     RaytraceDenoised.StillSceneConvergesToTheSameSamples
