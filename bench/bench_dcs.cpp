@@ -14,6 +14,7 @@
 #include "bench_common.h"
 #include "studies.h"
 #include "core/error.h"
+#include "core/files.h"
 #include "core/log.h"
 #include "core/metrics.h"
 #include "gl/context.h"
@@ -158,7 +159,7 @@ int dcsStudies(const DcsStudyOptions& o, std::FILE* out) {
       }
       results["memory"][std::to_string(n)]["measuredTotalMiB"] = mib(double(f.memoryBytes));
     }
-    if (!jsonOut.empty()) std::ofstream(jsonOut) << results.dump(2) << "\n";
+    if (!jsonOut.empty()) writeTextFile(jsonOut, results.dump(2) + "\n");
   } catch (const Error& e) {
     std::fprintf(stderr, "penumbra_bench_dcs: %s\n", e.what());
     return int(e.exitCode());

@@ -18,6 +18,7 @@
 #include "bench_common.h"
 #include "studies.h"
 #include "core/error.h"
+#include "core/files.h"
 #include "core/log.h"
 #include "core/metrics.h"
 #include "gl/context.h"
@@ -124,7 +125,7 @@ int shadingStudy(const ShadingStudyOptions& o, std::FILE* out) {
     }
     if (!o.outDir.empty()) {
       std::filesystem::create_directories(o.outDir);
-      std::ofstream((std::filesystem::path(o.outDir) / "shading.json").string()) << results.dump(2) << "\n";
+      writeTextFile((std::filesystem::path(o.outDir) / "shading.json").string(), results.dump(2) + "\n");
     }
     return failures > 0 ? 1 : 0;
   } catch (const Error& e) {

@@ -20,6 +20,7 @@
 
 #include "bench_common.h"
 #include "core/error.h"
+#include "core/files.h"
 #include "core/log.h"
 #include "gl/context.h"
 #include "compare/compare.h"
@@ -74,7 +75,7 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
       // in each report), not the shaded image's 1e-3 target (up to 65536, hours over ten scenes).
       c.params = {"reference-samples=1024", "reference-max-samples=1024"};
       c.timingFrames = frames, c.warmup = warmup;
-      c.outDir = (fs::path(outDir) / scene.name).string();
+      c.outDir = (fs::path(outDir) / fileNameComponent(scene.name, "scene")).string();
       c.writeImages = images, c.writeExr = false;
       c.progress = 0;
       fs::create_directories(c.outDir);
@@ -173,9 +174,9 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
     std::string summary;
     for (const std::string& line : whichTechniqueWhen(headline)) summary += "- " + line + "\n";
     std::fprintf(out, "\nWhich technique when (geometric means over the scenes):\n%s", summary.c_str());
-    std::ofstream(fs::path(outDir) / "summary.md") << summary;
-    std::ofstream(fs::path(outDir) / "headline.md") << md;
-    std::ofstream(fs::path(outDir) / "headline.svg") << speedErrorSvg(headline);
+    writeTextFile((fs::path(outDir) / "summary.md").string(), summary);
+    writeTextFile((fs::path(outDir) / "headline.md").string(), md);
+    writeTextFile((fs::path(outDir) / "headline.svg").string(), speedErrorSvg(headline));
     if (failures > 0) std::fprintf(out, "\n%d technique runs failed (named above and in their scenes' reports)\n", failures);
     return failures > 0 ? 1 : 0;
   } catch (const Error& e) {

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/log.h"
 #include "gl/context.h"
 #include "pipeline/renderer.h"
@@ -100,7 +101,7 @@ int techniqueTimings(const TimingOptions& o, std::FILE* out) {
       }
       std::fprintf(out, "  (> 1: faster than raytrace)\n");
     }
-    if (!jsonOut.empty()) std::ofstream(jsonOut) << results.dump(2) << "\n";
+    if (!jsonOut.empty()) writeTextFile(jsonOut, results.dump(2) + "\n");
   } catch (const Error& e) {
     std::fprintf(stderr, "penumbra_bench: %s\n", e.what());
     return int(e.exitCode());

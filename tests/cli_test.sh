@@ -141,6 +141,28 @@ render() {
   # Hard case 30: nearly transparent occluders (opacity 3e-9 overflowed dcs's units to -2^31:
   # RMSE 0.98, exit 0); now dcs equals the reference.
   expect 0 "" -- "$P" compare "$SRC/scenes/hard/30-tiny-opacity.json" -W 64 -H 64 --samples 8 --techniques dcs --timing-frames 1 --warmup 0 --max-error 0.001 -o "$T/cmp30"
+  # A scene never chooses where files go: its name, from the file or --set, is one harmless
+  # component of compare's default folder out/<name> (a name "../../x" wrote outside out/).
+  mkdir -p "$T/cwd/a" && sed 's|"name": "01-cube-on-plane"|"name": "../../escape"|' "$SRC/scenes/hard/01-cube-on-plane.json" > "$T/cwd/a/named.json"
+  (cd "$T/cwd/a" && "$P" compare named.json -W 16 -H 16 --samples 1 --techniques none --timing-frames 1 --warmup 0 \
+      >/dev/null 2>"$T/err") || { echo "FAIL: compare of a scene named ../../escape"; cat "$T/err"; fail=1; }
+  test -s "$T/cwd/a/out/_._.._escape/report.json" || { echo "FAIL: no report in out/_._.._escape"; ls -R "$T/cwd"; fail=1; }
+  test ! -e "$T/escape" && test ! -e "$T/cwd/escape" || { echo "FAIL: a scene name wrote outside out/"; fail=1; }
+  (cd "$T/cwd/a" && "$P" compare named.json --set name=/tmp/abs -W 16 -H 16 --samples 1 --techniques none \
+      --timing-frames 1 --warmup 0 >/dev/null 2>"$T/err") || { echo "FAIL: compare --set name=/tmp/abs"; fail=1; }
+  test -s "$T/cwd/a/out/_tmp_abs/report.json" || { echo "FAIL: no report in out/_tmp_abs"; fail=1; }
+  # One run at a time in a folder (two runs into one folder mixed their images into one report):
+  # a second is refused while the first holds the folder.
+  mkdir -p "$T/held"
+  flock "$T/held/.penumbra-lock" sleep 4 & holder=$!
+  sleep 1
+  expect 1 "another penumbra run is writing into this folder" -- "$P" compare -W 16 -H 16 --techniques none -o "$T/held"
+  wait "$holder"
+  # The previous run's report never presents itself beside this run's images: removed at the
+  # start, rewritten after every row (marked incomplete until the last).
+  printf 'old report' > "$T/cmp/table.txt"
+  expect 0 "" -- "$P" compare -W 16 -H 16 --samples 1 --techniques none --timing-frames 1 --warmup 0 -o "$T/cmp"
+  if grep -q "old report\|INCOMPLETE" "$T/cmp/table.txt"; then echo "FAIL: a stale or incomplete table after the run"; fail=1; fi
   # GL limits and out-of-memory: one-line errors, never a crash or a GL error.
   noglerr() { if grep -q 'GL error\|GL: ' "$T/err"; then echo "FAIL: GL error logged"; cat "$T/err"; fail=1; fi; }
   expect 2 "map: 100000 is outside" -- "$P" render -t mvr -W 32 -H 32 --param map=100000 -o "$T/p.png"; noglerr

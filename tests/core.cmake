@@ -7,4 +7,5 @@ penumbra_add_test(test_core
   ${CMAKE_CURRENT_SOURCE_DIR}/core_flip_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/core_timer_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/core_error_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/core_files_test.cpp
   LIBS penumbra_core OpenEXR::OpenEXR PNG::PNG)

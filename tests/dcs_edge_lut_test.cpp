@@ -169,9 +169,20 @@ TEST(DcsEdgeLut, ForeignCorruptAndTruncatedTablesAreRefused) {
   flipped[flipped.size() / 2] ^= 0x20;
   writeBytes(flipped);
   expectError([&] { readEdgeLut(bad); }, bad, "checksum mismatch");
-  writeBytes("penumbra-edge-lut 1\nsamples 16\nsamples 16\nend\n");
+  // A header edited in range (the extent scales every foot: dcs-lut's visibility off by up to
+  // 0.5) fails the checksum, which covers the header since format 2.
+  std::string edited = bytes;
+  const std::size_t at = edited.find("\nextent ") + 8;
+  edited[at] = edited[at] == '9' ? '8' : char(edited[at] + 1);
+  writeBytes(edited);
+  expectError([&] { readEdgeLut(bad); }, bad, "checksum mismatch");
+  std::string v1 = bytes;
+  v1.replace(0, v1.find('\n'), "penumbra-edge-lut 1");
+  writeBytes(v1);
+  expectError([&] { readEdgeLut(bad); }, bad, "format 1, whose checksum leaves its header out: regenerate it");
+  writeBytes("penumbra-edge-lut 2\nsamples 16\nsamples 16\nend\n");
   expectError([&] { readEdgeLut(bad); }, bad, "given twice");
-  writeBytes("penumbra-edge-lut 1\nsamples 100000\nend\n");
+  writeBytes("penumbra-edge-lut 2\nsamples 100000\nend\n");
   expectError([&] { readEdgeLut(bad); }, bad, "incomplete header");
   writeBytes("P6\n");
   expectError([&] { readEdgeLut(bad); }, bad, "not an edge LUT");

@@ -122,6 +122,25 @@ TEST_F(CompareFailure, AFailedTechniqueIsItsRowAndTheOthersGoOn) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "vssm.png"));
 }
 
+// The report is rewritten after every row, marked incomplete until the run ends: an interrupted
+// run leaves a report that says so (it left the previous run's complete-looking report).
+TEST(Compare, TheReportIsMarkedIncompleteUntilTheLastRow) {
+  Scene scene = loadScene(scenePath("scenes/hard/01-cube-on-plane.json"));
+  CompareOptions o = compareOptions({"none", "hard-sv"});
+  o.timingFrames = 1, o.warmup = 0, o.progress = 0;
+  std::vector<std::string> marks, tables;
+  o.onRow = [&](const CompareResult& partial) {
+    marks.push_back(partial.info.value("incomplete", std::string()));
+    tables.push_back(reportTable(partial));
+    EXPECT_NE(reportHtml(partial).find("<strong>Incomplete</strong>: " + marks.back()), std::string::npos);
+  };
+  const CompareResult r = compareTechniques(context(), scene, settings(32, 4), o);
+  ASSERT_EQ(marks, (std::vector<std::string>{"1 of 3 rows", "2 of 3 rows", "3 of 3 rows"}));
+  EXPECT_EQ(tables[0].rfind("INCOMPLETE: 1 of 3 rows", 0), 0u) << tables[0];
+  EXPECT_FALSE(r.info.contains("incomplete"));
+  EXPECT_EQ(reportTable(r).find("INCOMPLETE"), std::string::npos);
+}
+
 // A failed reference leaves nothing to measure against: the comparison ends, naming it.
 TEST(Compare, AFailedReferenceEndsTheRun) {
   Scene scene = loadScene(scenePath("scenes/hard/01-cube-on-plane.json"));

@@ -718,3 +718,74 @@ TEST(SceneBadInputs, ObjMaterialProblemsAreWarnedAndTheObjectMaterialWins) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Hostile inputs: nesting and size. A value nested 70,000 deep (in a scene file or a --set
+// value) crashed the messages that quoted it (a recursive dump), glTF `extras` 20,000 deep
+// crashed tinygltf's conversion, and a 1 MB bad string came back as a 1 MB "line".
+
+std::string nested(std::size_t depth) { return std::string(depth, '[') + "1" + std::string(depth, ']'); }
+
+TEST(SceneHostile, DeepNestingIsRefusedBeforeAnythingRecurses) {
+  test::TempDir dir;
+  const std::string scene = dir.file("deep.json", "{\"name\": \"deep\", \"background\": " + nested(70000) + "}");
+  try {
+    loadScene(scene);
+    ADD_FAILURE() << "no error for a value nested 70,000 deep";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(scene), std::string::npos) << what;
+    EXPECT_NE(what.find("nested deeper than 128 arrays and objects"), std::string::npos) << what;
+    EXPECT_LT(what.size(), 600u) << "one short line";
+  }
+  // 128 levels are read (and then refused for what they are, quoting at most 80 characters).
+  const std::string ok = dir.file("ok.json", "{\"background\": " + nested(127) + "}");
+  try {
+    loadScene(ok);
+    ADD_FAILURE() << "a nested background is not a colour";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("nested deeper"), std::string::npos) << e.what();
+    EXPECT_LT(std::string(e.what()).size(), 400u) << e.what();
+  }
+  const std::string plain = dir.file("plain.json", "{}");
+  expectError([&] { loadScene(plain, {"camera.fov=" + nested(70000)}); }, "--set",
+              "the value is nested deeper than 128 arrays and objects");
+
+  Json doc = cubeDocument();
+  std::string extras = "1";
+  for (int i = 0; i < 20000; ++i) extras = "{\"a\":" + extras + "}";
+  std::string text = doc.dump();
+  text.insert(text.rfind('}'), ",\"extras\":" + extras);
+  const std::string gltf = dir.file("deep.gltf", text);
+  expectError([&] { loadScene(gltf); }, gltf, "extras.a.a.a");
+}
+
+TEST(SceneHostile, BadValuesAreQuotedShort) {
+  test::TempDir dir;
+  const std::string big(1 << 20, 'x');
+  const std::string scene = dir.file("long.json", "{\"resolution\": \"" + big + "\"}");
+  try {
+    loadScene(scene);
+    ADD_FAILURE() << "a string is not a resolution";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("(1048578 characters)"), std::string::npos) << what.substr(0, 300);
+    EXPECT_LT(what.size(), 400u);
+  }
+  // A message built from anything stays one line of at most kMaxErrorMessage characters.
+  const Error e("where", std::string(100000, 'y') + "\n");
+  EXPECT_LE(std::string(e.what()).size(), kMaxErrorMessage + 40);
+  EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  // Abbreviated at a whole UTF-8 sequence ("é" is two bytes).
+  std::string accents;
+  for (int i = 0; i < 100; ++i) accents += "\xc3\xa9";
+  const std::string shown = abbreviate(accents, 81);
+  EXPECT_EQ(shown.substr(0, 80), accents.substr(0, 80));
+  EXPECT_EQ(shown.substr(80, 3), "...");
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <thread>
 
 #include <fmt/format.h>
@@ -17,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/image_io.h"
 #include "core/log.h"
 #include "core/metrics.h"
@@ -285,8 +288,11 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
 
   Scene scene = loadSceneFor(o);
   scene.makeCameraRelative();  // in place: each Renderer would otherwise translate a copy
-  options.outDir = c.outDir.empty() ? (fs::path("out") / scene.name).string() : c.outDir;
+  options.outDir = c.outDir.empty() ? (fs::path("out") / fileNameComponent(scene.name, "scene")).string() : c.outDir;
   checkWritableFolder(options.outDir, options.outDir, /*create=*/true);
+  const FolderLock lock(options.outDir);
+  removeReport(options.outDir);  // no report of an earlier run beside this run's images
+  options.onRow = [&](const CompareResult& partial) { writeReport(partial, options.outDir); };
   RenderSettings settings = settingsFor(o, scene);
   auto context = gl::Context::create(parseBackend(o.backend));
   PLOG_INFO("renderer: {} ({})", context->renderer(), context->version());
@@ -383,12 +389,13 @@ int bench(const BenchOptions& b) {
   }
   const std::string dir = b.outDir.empty() ? (fs::path("bench/results") / machineName(renderer)).string() : b.outDir;
   checkWritableFolder(dir, dir, /*create=*/true);
+  const FolderLock lock(dir);
   const std::string machine = fmt::format(
       "date      {}\ncpu       {}\ncores     {}\nmemory    {}\nos        {}\nrenderer  {}\ngl        {}\nbackend   {}\nsuite     {}\n",
       utcNow(), firstLine("/proc/cpuinfo", "model name"), std::thread::hardware_concurrency(),
       firstLine("/proc/meminfo", "MemTotal"), firstLine("/etc/os-release", "PRETTY_NAME"), renderer, version, b.backend,
       b.quick ? "quick" : "full");
-  std::ofstream(fs::path(dir) / "machine.txt") << machine;
+  writeTextFile((fs::path(dir) / "machine.txt").string(), machine);
   PLOG_INFO("bench: {} studies into {} ({})", run.size(), dir, renderer);
 
   int failed = 0;
@@ -404,7 +411,7 @@ int bench(const BenchOptions& b) {
     int rc = study->run({backend, b.quick, dir}, out);
     double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(out, "\n(study took %.0f s, exit %d)\n", s, rc);
-    std::fclose(out);
+    if (std::fclose(out) != 0) throw Error(file.string(), std::string("cannot write: ") + std::strerror(errno));
     setLogLevel("info");  // studies quieten the log for their own runs
     if (rc != 0) {
       ++failed;
@@ -423,6 +430,7 @@ namespace {
 int ltcLut(const CommonOptions& o, const LutOptions& l) {
   if (l.ltcSize < 2 || l.ltcSize > 256) throw Error("--ltc-size", "must be in 2..256", ExitCode::Usage);
   checkWritableFolder(l.outDir, "--output", /*create=*/true);
+  const FolderLock lock(l.outDir);
   shading::LtcFitOptions fit;
   fit.size = l.ltcSize;
   Progress progress(fit.size);
@@ -433,11 +441,7 @@ int ltcLut(const CommonOptions& o, const LutOptions& l) {
   const std::string path = (fs::path(l.outDir) / "ltc_ggx.lut").string();
   const std::string report = (fs::path(l.outDir) / "ltc_ggx_error.csv").string();
   shading::writeLtcTable(path, table);
-  {
-    std::ofstream out(report, std::ios::trunc);
-    out << shading::ltcErrorCsv(table);
-    if (!(out.flush())) throw Error(report, "cannot write");
-  }
+  writeTextFile(report, shading::ltcErrorCsv(table));
   double worst = 0.0, mean = 0.0;
   for (const glm::vec4& t : table.terms) {
     worst = std::max(worst, double(t.z));
@@ -468,8 +472,20 @@ int lut(const CommonOptions& o, const LutOptions& l) {
   }
   RenderSettings s = settingsFor(o, scene);
   checkWritableFolder(l.outDir, "--output", /*create=*/true);  // after the checks: no folder for a refused run
+  const FolderLock lock(l.outDir);
   json written = json::array();
   std::vector<std::string> done;
+  // A light's own files, named from the scene's and the light's names (file-name components:
+  // core/files.h); two lights whose names come out the same are refused, not overwritten.
+  std::map<std::string, std::string> lightFiles;  // path -> light
+  const auto lightFile = [&](const Light& light, const std::string& kind) {
+    const std::string path = (fs::path(l.outDir) / (fileNameComponent(scene.name, "scene") + "_" +
+                                                    fileNameComponent(light.name, "light") + "_" + kind + ".exr")).string();
+    if (const auto [it, fresh] = lightFiles.emplace(path, light.name); !fresh)
+      throw Error("lut", fmt::format("lights '{}' and '{}' would write the same file '{}': give them names that differ "
+                                     "in letters or digits", abbreviate(it->second), abbreviate(light.name), path));
+    return path;
+  };
   for (const Light& light : scene.lights) {
     LightSampleSet samples = makeLightSamples(scene, light, s.sampling, s.time);
     if (dcs::edgeLutSupports(light)) {
@@ -489,7 +505,7 @@ int lut(const CommonOptions& o, const LutOptions& l) {
       Image lum(samples.count, samples.setCount, 3, 0.0f);
       for (std::size_t i = 0; i < samples.luminance.size(); ++i)
         for (int c = 0; c < 3; ++c) lum.data[i * 3 + std::size_t(c)] = samples.luminance[i][c];
-      std::string path = (fs::path(l.outDir) / (scene.name + "_" + light.name + "_luminance.exr")).string();
+      std::string path = lightFile(light, "luminance");
       writeExr(path, {{"", &lum}});
       written.push_back({{"light", light.name}, {"kind", "luminance"}, {"path", path}});
     }
@@ -503,7 +519,7 @@ int lut(const CommonOptions& o, const LutOptions& l) {
         std::memcpy(levels[k].data.data(), &chain.texels[k * n].x, n * sizeof(glm::vec4));
       std::vector<ExrLayer> layers;
       for (std::size_t k = 0; k < levels.size(); ++k) layers.push_back({"level" + std::to_string(k), &levels[k]});
-      std::string path = (fs::path(l.outDir) / (scene.name + "_" + light.name + "_prefiltered.exr")).string();
+      std::string path = lightFile(light, "prefiltered");
       writeExr(path, layers);
       written.push_back({{"light", light.name}, {"kind", "prefiltered"}, {"path", path}});
     }

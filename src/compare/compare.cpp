@@ -92,6 +92,8 @@ class Comparison {
     int steps = 0;
     for (auto& j : jobs_) steps += int(j.size()) + 1 + (converged_ ? 1 : 0);
     Progress progress(steps, o_.progress);
+    rows_ = 0;
+    for (auto& j : jobs_) rows_ += j.size() + 1;  // each preset's reference and techniques
     for (std::size_t p = 0; p < result_.presets.size(); ++p) runPreset(p, progress);
     progress.finish();
     result_.info = info();
@@ -260,6 +262,7 @@ class Comparison {
     if (refs.converged) flip = measureFlip(refs.frame, refs, run);
     writeImages(o_.reference.name, refs.frame, refs.converged, refs.converged ? &flip : nullptr, run);
     result_.runs.push_back(std::move(run));
+    rowDone();
     return refs;
   }
 
@@ -287,6 +290,7 @@ class Comparison {
       failed.failure = e.what();
       PLOG_ERROR("{}{} failed: {}", run.technique, at(), failed.failure);
       result_.runs.push_back(std::move(failed));
+      rowDone();
       return;
     }
     run.errors = measureErrors(f, refs.frame);
@@ -298,6 +302,16 @@ class Comparison {
     const Image flip = measureFlip(f, refs, run);
     writeImages(run.technique, f, refs.converged ? refs.converged : &refs.frame, &flip, run);
     result_.runs.push_back(std::move(run));
+    rowDone();
+  }
+
+  // CompareOptions::onRow: the result so far, marked incomplete.
+  void rowDone() {
+    if (!o_.onRow) return;
+    CompareResult partial = result_;
+    partial.info = info();
+    partial.info["incomplete"] = fmt::format("{} of {} rows", partial.runs.size(), rows_);
+    o_.onRow(partial);
   }
 
   void runPreset(std::size_t p, Progress& progress) {
@@ -362,6 +376,7 @@ class Comparison {
   std::map<std::string, FrameResult> convergedRefs_;  // by "WxH" (independent of the sample count)
   // The preset being rendered: its index, its settings and (a still) its renderer.
   std::size_t presetIndex_ = 0;
+  std::size_t rows_ = 0;  // the run's rows: each preset's reference and techniques
   RenderSettings preset_;
   std::unique_ptr<Renderer> still_;
 };

@@ -7,6 +7,7 @@
 // compare/report.h writes the result as JSON, CSV, a table, an SVG plot and an HTML page.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -24,6 +25,8 @@
 #include "pipeline/timing.h"
 
 namespace penumbra {
+
+struct CompareResult;
 
 struct CompareOptions {
   // What is compared, and the references it is compared with (techniques/registry.h hands them
@@ -45,6 +48,10 @@ struct CompareOptions {
   bool writeImages = true;  // PNG images, heat maps and insets
   bool writeExr = true;     // float images with the visibility layers
   int progress = -1;   // Progress's `interactive`: -1 from isatty
+  // Called after every row (reference, technique, failure) with the result so far, its info's
+  // "incomplete" saying how many rows of how many: the report rewritten as the run goes, so an
+  // interrupted run leaves a report that says it is incomplete.
+  std::function<void(const CompareResult&)> onRow;
   // FLIP's observer (core/flip.h): pixels per degree of visual angle, the papers' default.
   double pixelsPerDegree = kFlipDefaultPixelsPerDegree;
 };

@@ -1,5 +1,7 @@
 #include "compare/presets.h"
 
+#include "core/files.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -20,8 +22,7 @@ std::string ComparePreset::fileSuffix() const {
   if (values.empty()) return "";
   std::string s = "_";
   for (auto& [k, v] : values) {
-    s += "_" + k + "-";
-    for (char c : v) s += std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ? c : '_';
+    s += "_" + k + "-" + fileNameComponent(v, "_");
   }
   return s;
 }

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/files.h"
 
 namespace penumbra {
 
@@ -117,6 +118,8 @@ std::string reportTable(const CompareResult& r) {
   const bool conv = r.hasConverged(), temporal = r.hasTemporal(), flip = r.hasFlip();
   const bool counted = std::any_of(r.runs.begin(), r.runs.end(), [](const CompareRun& x) { return !x.counts.empty(); });
   std::string t;
+  if (r.info.contains("incomplete"))
+    t += "INCOMPLETE: " + r.info["incomplete"].get<std::string>() + " (the run is going on, or was interrupted)\n";
   // Totals are the technique's time; the harness's readbacks and uploads are the "harness" column.
   if (!counted && r.info.contains("pipelineStatistics"))
     t += "pipeline statistics: " + r.info["pipelineStatistics"].get<std::string>() + "\n";
@@ -223,6 +226,9 @@ std::string reportHtml(const CompareResult& r) {
   const bool conv = r.hasConverged(), temporal = r.hasTemporal(), flip = r.hasFlip();
   std::string h;
   h += "<h1>penumbra compare: " + escapeMarkup(info.value("sceneName", std::string())) + "</h1>\n";
+  if (info.contains("incomplete"))
+    h += "<p class=\"incomplete\"><strong>Incomplete</strong>: " + escapeMarkup(info["incomplete"].get<std::string>()) +
+         " (the run is going on, or was interrupted)</p>\n";
   h += fmt::format("<p class=\"meta\">scene <code>{}</code> ({} triangles, {} lights) &middot; {}x{} &middot; {} samples, {} / {} "
                    "(seed {}) &middot; shading {} &middot; renderer {} ({}) &middot; timing: median of {} frames after {} "
                    "warm-up (glFinish + steady clock) &middot; {}</p>\n",
@@ -397,19 +403,23 @@ std::string reportHtml(const CompareResult& r) {
   return out + h + page.substr(body + 6);
 }
 
+namespace {
+const char* const kReportFiles[] = {"report.json", "report.csv", "table.txt", "plot.svg", "index.html"};
+}  // namespace
+
 void writeReport(const CompareResult& r, const std::string& dir) {
   namespace fs = std::filesystem;
-  auto write = [&](const std::string& name, const std::string& text) {
-    fs::path p = fs::path(dir) / name;
-    std::ofstream out(p);
-    out << text;
-    if (!out) throw Error(p.string(), "cannot write");
-  };
-  write("report.json", r.json().dump(2) + "\n");
-  write("report.csv", reportCsv(r));
-  write("table.txt", reportTable(r));
-  write("plot.svg", speedErrorSvg(r));
-  write("index.html", reportHtml(r));
+  const std::string texts[] = {r.json().dump(2) + "\n", reportCsv(r), reportTable(r), speedErrorSvg(r), reportHtml(r)};
+  for (std::size_t i = 0; i < std::size(kReportFiles); ++i) writeTextFile((fs::path(dir) / kReportFiles[i]).string(), texts[i]);
+}
+
+void removeReport(const std::string& dir) {
+  namespace fs = std::filesystem;
+  for (const char* name : kReportFiles) {
+    std::error_code ec;
+    fs::remove(fs::path(dir) / name, ec);
+    if (ec) throw Error((fs::path(dir) / name).string(), "cannot remove the previous run's report: " + ec.message());
+  }
 }
 
 }  // namespace penumbra

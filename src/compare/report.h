@@ -23,7 +23,11 @@ std::string reportTable(const CompareResult& r);
 std::string reportCsv(const CompareResult& r);
 std::string reportHtml(const CompareResult& r);
 
-// Writes report.json, report.csv, table.txt, plot.svg and index.html into `dir`.
+// Writes report.json, report.csv, table.txt, plot.svg and index.html into `dir`, each whole or
+// not at all (core/files.h writeAtomically).
 void writeReport(const CompareResult& r, const std::string& dir);
+// Removes those files (a previous run's report, which must not present itself beside this run's
+// images).
+void removeReport(const std::string& dir);
 
 }  // namespace penumbra

@@ -29,6 +29,14 @@ std::string escapeControls(const std::string& text) {
   return out;
 }
 
+std::string abbreviate(const std::string& value, std::size_t limit) {
+  if (value.size() <= limit) return value;
+  std::size_t cut = limit;
+  // Not inside a UTF-8 sequence: back up over continuation bytes (10xxxxxx) to a lead byte.
+  while (cut > 0 && (static_cast<unsigned char>(value[cut]) & 0xc0) == 0x80) --cut;
+  return value.substr(0, cut) + "... (" + std::to_string(value.size()) + " characters)";
+}
+
 std::string fileProblem(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;

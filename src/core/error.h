@@ -7,6 +7,7 @@
 //   the source location.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -17,14 +18,23 @@ enum class ExitCode : int { Ok = 0, Error = 1, Usage = 2, ThresholdExceeded = 3,
 // `text` with its control characters (below 0x20, and 0x7f) escaped: \n, \r, \t, else \xNN.
 std::string escapeControls(const std::string& text);
 
+// A value a message quotes, at most `limit` characters of it (a bad string may be a megabyte):
+// the value when short enough, else its first characters (whole UTF-8 sequences), "...", and
+// how long it was.
+std::string abbreviate(const std::string& value, std::size_t limit = 80);
+
+// The longest message an Error carries (abbreviated past it): one line a terminal can show.
+inline constexpr std::size_t kMaxErrorMessage = 2000;
+
 class Error : public std::runtime_error {
  public:
   // `where` is the file, parameter or object the problem concerns ("scenes/a.json",
   // "--samples", "light[2]"); `what` says the problem in a few words. The message is one line
   // whatever the two hold (a file name or a JSON key may hold a newline): control characters
-  // are written escaped, as `\n`, `\t` or `\x1b`.
+  // are written escaped, as `\n`, `\t` or `\x1b`; past kMaxErrorMessage characters it is
+  // abbreviated.
   Error(std::string where, const std::string& what, ExitCode code = ExitCode::Error)
-      : std::runtime_error(escapeControls(where.empty() ? what : where + ": " + what)),
+      : std::runtime_error(abbreviate(escapeControls(where.empty() ? what : where + ": " + what), kMaxErrorMessage)),
         where_(std::move(where)), code_(code) {}
   const std::string& where() const { return where_; }
   ExitCode exitCode() const { return code_; }

@@ -18,6 +18,7 @@
 #include <OpenEXR/openexr.h>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/image_io.h"
 #include "core/image_io_detail.h"
 #include "core/log.h"
@@ -290,25 +291,22 @@ void writeExr(const std::string& path, const std::vector<ExrLayer>& layers) {
     }
   }
 
-  errno = 0;
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw Error(path, "cannot write: " + errnoText(errno));
-  try {
-    Imf::StdOFStream stream(out, path.c_str());
-    Imf::OutputFile file(stream, header);
-    file.setFrameBuffer(fb);
-    file.writePixels(h);
-  } catch (const std::exception& e) {
+  writeAtomically(path, [&](const std::string& temporary) {
+    errno = 0;
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error(path, "cannot write: " + errnoText(errno));
+    try {
+      Imf::StdOFStream stream(out, path.c_str());
+      Imf::OutputFile file(stream, header);
+      file.setFrameBuffer(fb);
+      file.writePixels(h);
+    } catch (const std::exception& e) {
+      throw Error(path, "cannot write OpenEXR file: " + oneLine(e.what()));
+    }
+    // ~OutputFile writes the line-offset table and swallows failures; the stream state does not.
     out.close();
-    std::remove(path.c_str());
-    throw Error(path, "cannot write OpenEXR file: " + oneLine(e.what()));
-  }
-  // ~OutputFile writes the line-offset table and swallows failures; the stream state does not.
-  out.close();
-  if (out.fail()) {
-    std::remove(path.c_str());
-    throw Error(path, "cannot write OpenEXR file: write failed");
-  }
+    if (out.fail()) throw Error(path, "cannot write OpenEXR file: write failed");
+  });
 }
 
 Image readExr(const std::string& path, int* sanitized) {

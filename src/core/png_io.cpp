@@ -12,6 +12,7 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/files.h"
 #include "core/image_io.h"
 #include "core/image_io_detail.h"
 #include "core/log.h"
@@ -86,34 +87,35 @@ void writePng(const std::string& path, const Image& linear, float exposure) {
     rows[y] = pixels.data() + std::size_t(y) * linear.width * outChannels;
   }
 
-  errno = 0;
-  std::FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file) throw Error(path, "cannot write: " + errnoText(errno));
-  PngIo io;
-  io.file = file;
-  io.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &io, &pngError, &pngWarning);
-  const bool created = io.png != nullptr;
-  if (created) io.info = png_create_info_struct(io.png);
-  PngWriteArgs args{png_uint_32(linear.width), png_uint_32(linear.height),
-                    outChannels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, rows.data()};
-  const bool ok = io.info && pngGuarded(io, [](PngIo& io, void* arg) {
-    const auto& a = *static_cast<PngWriteArgs*>(arg);
-    png_init_io(io.png, io.file);
-    png_set_IHDR(io.png, io.info, a.width, a.height, 8, a.colorType, PNG_INTERLACE_NONE,
-                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_sRGB(io.png, io.info, PNG_sRGB_INTENT_PERCEPTUAL);
-    png_write_info(io.png, io.info);
-    png_write_image(io.png, a.rows);
-    png_write_end(io.png, nullptr);
-  }, &args);
-  if (io.png) png_destroy_write_struct(&io.png, &io.info);
-  const bool closed = std::fclose(file) == 0;
-  if (!ok || !closed) {
-    std::remove(path.c_str());
-    const std::string why = !created || !ok ? (io.message[0] ? io.message : "out of memory")
-                                            : errnoText(errno);
-    throw Error(path, "cannot write PNG file: " + oneLine(why));
-  }
+  writeAtomically(path, [&](const std::string& temporary) {
+    errno = 0;
+    std::FILE* file = std::fopen(temporary.c_str(), "wb");
+    if (!file) throw Error(path, "cannot write: " + errnoText(errno));
+    PngIo io;
+    io.file = file;
+    io.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &io, &pngError, &pngWarning);
+    const bool created = io.png != nullptr;
+    if (created) io.info = png_create_info_struct(io.png);
+    PngWriteArgs args{png_uint_32(linear.width), png_uint_32(linear.height),
+                      outChannels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, rows.data()};
+    const bool ok = io.info && pngGuarded(io, [](PngIo& io, void* arg) {
+      const auto& a = *static_cast<PngWriteArgs*>(arg);
+      png_init_io(io.png, io.file);
+      png_set_IHDR(io.png, io.info, a.width, a.height, 8, a.colorType, PNG_INTERLACE_NONE,
+                   PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+      png_set_sRGB(io.png, io.info, PNG_sRGB_INTENT_PERCEPTUAL);
+      png_write_info(io.png, io.info);
+      png_write_image(io.png, a.rows);
+      png_write_end(io.png, nullptr);
+    }, &args);
+    if (io.png) png_destroy_write_struct(&io.png, &io.info);
+    const bool closed = std::fclose(file) == 0;
+    if (!ok || !closed) {
+      const std::string why = !created || !ok ? (io.message[0] ? io.message : "out of memory")
+                                              : errnoText(errno);
+      throw Error(path, "cannot write PNG file: " + oneLine(why));
+    }
+  });
 }
 
 Image readPng(const std::string& path, bool srgb) {

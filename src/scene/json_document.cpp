@@ -1,6 +1,7 @@
 // A scene or glTF file's JSON text parsed with repeated keys refused (loaders.h
 // parseJsonDocument): JSON keeps only the last of a repeated key, which would silently drop what
 // a user wrote.
+#include <algorithm>
 #include <set>
 #include <string>
 #include <vector>
@@ -31,6 +32,7 @@ class DuplicateKeyChecker {
   bool binary(Json::binary_t& v) { value(); return dom_.binary(v); }
   bool start_object(std::size_t n) {
     value();
+    checkDepth();
     stack_.push_back({false, -1, {}, {}});
     return dom_.start_object(n);
   }
@@ -48,6 +50,7 @@ class DuplicateKeyChecker {
   bool end_object() { stack_.pop_back(); return dom_.end_object(); }
   bool start_array(std::size_t n) {
     value();
+    checkDepth();
     stack_.push_back({true, -1, {}, {}});
     return dom_.start_array(n);
   }
@@ -66,6 +69,13 @@ class DuplicateKeyChecker {
     std::set<std::string> keys;
     std::string key;  // the current member's key (objects)
   };
+  // Nesting past kMaxJsonDepth is refused here, as the document is read: whatever walks it later
+  // (tinygltf's conversion, a message quoting a value) recurses per level.
+  void checkDepth() const {
+    if (stack_.size() < kMaxJsonDepth) return;
+    throw Error(path_, abbreviate(pathOf(), 200) + ": nested deeper than " + std::to_string(kMaxJsonDepth) +
+                           " arrays and objects");
+  }
   // A value starts: inside an array it is the next element.
   void value() {
     if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
@@ -87,6 +97,27 @@ class DuplicateKeyChecker {
 };
 
 }  // namespace
+
+std::string shownJson(const Json& v) { return abbreviate(v.dump()); }
+
+std::size_t jsonNestingDepth(const std::string& text) {
+  std::size_t depth = 0, deepest = 0;
+  bool inString = false, escaped = false;
+  for (const char c : text) {
+    if (inString) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
 
 Json parseJsonDocument(const std::string& text, const std::string& path, const std::string& root) {
   Json result;

@@ -96,7 +96,15 @@ Json framingCamera(glm::vec3 lo, glm::vec3 hi);
 // keeps the last silently; a repeated key here throws penumbra::Error(path, "<item>: duplicate
 // key '<key>'") naming where it is (`objects[1]`, `lights[0].spin`, `meshes[0]`). Invalid JSON
 // throws Error(path, "invalid JSON: ...").
+// Arrays and objects nested deeper than this are refused (Error(path, "<item>: nested deeper
+// than 128 ...")) as the text is read: the conversions and messages after it recurse per level
+// (a scene value or glTF `extras` 20,000 deep crashed them). Scene files need 4, glTF about 6.
+inline constexpr std::size_t kMaxJsonDepth = 128;
 Json parseJsonDocument(const std::string& text, const std::string& path, const std::string& root = "scene");
+// The deepest nesting of arrays and objects in `text` (brackets outside strings; any text).
+std::size_t jsonNestingDepth(const std::string& text);
+// A JSON value as a message quotes it: compact, at most 80 characters (core/error.h abbreviate).
+std::string shownJson(const Json& v);
 
 void applyOverrides(Json& doc, const std::vector<std::string>& overrides);
 

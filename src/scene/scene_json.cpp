@@ -52,7 +52,7 @@ struct Context {
 // A JSON scalar as the shared key/value reader sees it (core/key_values.h).
 KeyValue keyValueOf(const Json& v) {
   KeyValue k;
-  k.shown = v.dump();
+  k.shown = shownJson(v);
   if (v.is_number_integer()) k.kind = KeyValue::Kind::Integer, k.number = v.get<double>();
   else if (v.is_number()) k.kind = KeyValue::Kind::Number, k.number = v.get<double>();
   else if (v.is_boolean()) k.kind = KeyValue::Kind::Boolean, k.boolean = v.get<bool>();
@@ -129,7 +129,7 @@ class Fields {
   }
   glm::vec3 toVec(const Json& v, const std::string& context, int n) const {
     if (!v.is_array() || int(v.size()) != n) {
-      ctx_.fail(context, "expected " + std::to_string(n) + " numbers, got " + v.dump());
+      ctx_.fail(context, "expected " + std::to_string(n) + " numbers, got " + shownJson(v));
     }
     glm::vec3 out(0.0f);
     for (int i = 0; i < n; ++i) out[i] = toFloat(v[std::size_t(i)], context);
@@ -159,7 +159,7 @@ std::string describe(const std::string& base, int index, const std::string& name
 
 const Json* arrayField(Fields& f, const std::string& key, Context& ctx) {
   const Json* v = f.get(key);
-  if (v && !v->is_array()) ctx.fail(key, "expected an array, got " + v->dump());
+  if (v && !v->is_array()) ctx.fail(key, "expected an array, got " + shownJson(*v));
   return v;
 }
 
@@ -625,11 +625,15 @@ void applyOverrides(Json& doc, const std::vector<std::string>& overrides) {
   for (const std::string& pair : overrides) {
     const std::size_t eq = pair.find('=');
     if (eq == std::string::npos || eq == 0) {
-      throw Error("--set", "'" + pair + "': expected key=value");
+      throw Error("--set", "'" + abbreviate(pair) + "': expected key=value");
     }
     const std::string key = pair.substr(0, eq);
     const std::string text = pair.substr(eq + 1);
-    // Mitsuba -D style: JSON when it parses ("2", "[1,2]", "true", "\"s\""), a string otherwise.
+    // Mitsuba -D style: JSON when it parses ("2", "[1,2]", "true", "\"s\""), a string otherwise;
+    // nesting bounded as in files (a 130 KB "[[[...]]]" crashed the messages quoting it).
+    if (jsonNestingDepth(text) > kMaxJsonDepth)
+      throw Error("--set", "'" + abbreviate(key) + "': the value is nested deeper than " + std::to_string(kMaxJsonDepth) +
+                               " arrays and objects");
     Json value = Json::parse(text, nullptr, /*allow_exceptions=*/false);
     if (value.is_discarded()) value = text;
 
@@ -683,7 +687,7 @@ Scene interpretScene(const Json& doc, const std::string& where, const std::strin
     if (r.x != std::floor(r.x) || r.y != std::floor(r.y) || r.x < 1 || r.y < 1 ||
         r.x > kMaxResolution || r.y > kMaxResolution) {
       ctx.fail("resolution", "expected two integers in [1, " + std::to_string(kMaxResolution) +
-                                 "], got " + v->dump());
+                                 "], got " + shownJson(*v));
     }
     scene.width = int(r.x);
     scene.height = int(r.y);

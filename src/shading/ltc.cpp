@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/fnv.h"
 
 namespace penumbra::shading {
@@ -33,20 +34,19 @@ std::uint64_t payloadChecksum(const LtcTable& t) {
 }  // namespace
 
 void writeLtcTable(const std::string& path, const LtcTable& t) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw Error(path, std::string("cannot write: ") + std::strerror(errno));
-  out << kMagic << "\nsize " << t.fit.size << "\nfit-samples " << t.fit.fitSamples << "\nmoment-samples "
-      << t.fit.momentSamples << "\nerror-samples " << t.fit.errorSamples << "\niterations " << t.fit.iterations
-      << "\nchecksum " << hex64(payloadChecksum(t)) << "\nend\n";
-  // Little-endian float32 (this code runs on little-endian machines only).
-  static_assert(sizeof(glm::vec4) == 16);
-  for (const auto* v : {&t.minv, &t.terms})
-    out.write(reinterpret_cast<const char*>(v->data()), std::streamsize(v->size() * sizeof(glm::vec4)));
-  out.close();
-  if (out.fail()) {
-    std::remove(path.c_str());
-    throw Error(path, "cannot write: write failed");
-  }
+  writeAtomically(path, [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error(path, std::string("cannot write: ") + std::strerror(errno));
+    out << kMagic << "\nsize " << t.fit.size << "\nfit-samples " << t.fit.fitSamples << "\nmoment-samples "
+        << t.fit.momentSamples << "\nerror-samples " << t.fit.errorSamples << "\niterations " << t.fit.iterations
+        << "\nchecksum " << hex64(payloadChecksum(t)) << "\nend\n";
+    // Little-endian float32 (this code runs on little-endian machines only).
+    static_assert(sizeof(glm::vec4) == 16);
+    for (const auto* v : {&t.minv, &t.terms})
+      out.write(reinterpret_cast<const char*>(v->data()), std::streamsize(v->size() * sizeof(glm::vec4)));
+    out.close();
+    if (out.fail()) throw Error(path, "cannot write: write failed");
+  });
 }
 
 LtcTable parseLtcTable(const std::string& bytes, const std::string& name) {

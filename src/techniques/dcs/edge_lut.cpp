@@ -11,13 +11,17 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "core/fnv.h"
 
 namespace penumbra::dcs {
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
-constexpr const char* kMagic = "penumbra-edge-lut 1";
+// Format 2: the checksum covers the header's lines too (format 1's covered the payload only: an
+// edited `extent` passed it and changed dcs-lut's visibility by up to 0.5).
+constexpr const char* kMagic = "penumbra-edge-lut 2";
+constexpr const char* kMagicV1 = "penumbra-edge-lut 1";
 
 // Angle of (x, y) around the origin in [0, 2 pi), from the +x axis.
 double angleOf(double x, double y) {
@@ -37,8 +41,10 @@ glm::dvec3 cubeDirection(int face, double sc, double tc) {
   }
 }
 
-std::uint64_t payloadChecksum(const EdgeLut& l) {
+// The header's lines above `checksum` (each with its newline, as in the file), then the payload.
+std::uint64_t fileChecksum(const std::string& header, const EdgeLut& l) {
   Fnv1a f;
+  f.bytes(header.data(), header.size());
   for (const auto* v : {&l.sector, &l.line, &l.packed}) f.bytes(v->data(), v->size() * sizeof(std::uint32_t));
   return f.h;
 }
@@ -143,28 +149,31 @@ std::string edgeLutFileName(const LightSampleSet& s) {
 }
 
 void writeEdgeLut(const std::string& path, const EdgeLut& l) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw Error(path, std::string("cannot write: ") + std::strerror(errno));
-  out << kMagic << "\n"
-      << "samples " << l.samples << "\nsets " << l.sets << "\nwords " << l.words << "\ncube " << l.size.cube
-      << "\nline " << l.size.line << "\nextent " << fmt::format("{:.9g}", l.extent) << "\npattern " << hex64(l.pattern)
-      << "\nchecksum " << hex64(payloadChecksum(l)) << "\nend\n";
-  // The payload in little-endian order (this code runs on little-endian machines only).
-  static_assert(sizeof(std::uint32_t) == 4);
-  for (const auto* v : {&l.sector, &l.line, &l.packed})
-    out.write(reinterpret_cast<const char*>(v->data()), std::streamsize(v->size() * 4));
-  out.close();
-  if (out.fail()) {
-    std::remove(path.c_str());
-    throw Error(path, "cannot write: write failed");
-  }
+  const std::string header = fmt::format("{}\nsamples {}\nsets {}\nwords {}\ncube {}\nline {}\nextent {:.9g}\npattern {}\n",
+                                         kMagic, l.samples, l.sets, l.words, l.size.cube, l.size.line, l.extent,
+                                         hex64(l.pattern));
+  writeAtomically(path, [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw Error(path, std::string("cannot write: ") + std::strerror(errno));
+    out << header << "checksum " << hex64(fileChecksum(header, l)) << "\nend\n";
+    // The payload in little-endian order (this code runs on little-endian machines only).
+    static_assert(sizeof(std::uint32_t) == 4);
+    for (const auto* v : {&l.sector, &l.line, &l.packed})
+      out.write(reinterpret_cast<const char*>(v->data()), std::streamsize(v->size() * 4));
+    out.close();
+    if (out.fail()) throw Error(path, "cannot write: write failed");
+  });
 }
 
 EdgeLut readEdgeLut(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, std::string("cannot open: ") + std::strerror(errno));
   std::string line;
-  if (!std::getline(in, line) || line != kMagic) throw Error(path, std::string("not an edge LUT (expected '") + kMagic + "')");
+  const bool read = bool(std::getline(in, line));
+  if (read && line == kMagicV1)
+    throw Error(path, "an edge LUT of format 1, whose checksum leaves its header out: regenerate it with `penumbra lut`");
+  if (!read || line != kMagic) throw Error(path, std::string("not an edge LUT (expected '") + kMagic + "')");
+  std::string header = line + "\n";  // the lines the checksum covers
   EdgeLut l;
   std::string patternHex, checksumHex;
   bool ended = false;
@@ -184,9 +193,10 @@ EdgeLut readEdgeLut(const std::string& path) {
     else if (key == "extent") ok = bool(kv >> l.extent);
     else if (key == "pattern") ok = bool(kv >> patternHex);
     else if (key == "checksum") ok = bool(kv >> checksumHex);
-    else throw Error(path, "unknown header line '" + line + "'");
-    if (!ok) throw Error(path, "bad header line '" + line + "'");
+    else throw Error(path, "unknown header line '" + abbreviate(line) + "'");
+    if (!ok) throw Error(path, "bad header line '" + abbreviate(line) + "'");
     if (line.size() > 200) throw Error(path, "header line too long");
+    if (key != "end" && key != "checksum") header += line + "\n";
   }
   if (!ended || seen.size() != 8) throw Error(path, "incomplete header");
   if (l.samples < 1 || l.samples > 128 || l.sets < 1 || l.sets > 4096 || l.words != (l.samples + 31) / 32 ||
@@ -212,7 +222,7 @@ EdgeLut readEdgeLut(const std::string& path) {
   l.packed.resize(S * std::size_t(packedWords(l.samples)));
   for (auto* v : {&l.sector, &l.line, &l.packed}) in.read(reinterpret_cast<char*>(v->data()), std::streamsize(v->size() * 4));
   if (!in) throw Error(path, "truncated payload");
-  if (hex64(payloadChecksum(l)) != checksumHex) throw Error(path, "checksum mismatch (corrupt file)");
+  if (hex64(fileChecksum(header, l)) != checksumHex) throw Error(path, "checksum mismatch (corrupt or edited file)");
   return l;
 }
 

@@ -22,10 +22,12 @@
 //
 // File format (luts/*.lut): a text header of `key value` lines, then the tables as
 // little-endian uint32 words:
-//   penumbra-edge-lut 1
+//   penumbra-edge-lut 2
 //   samples N / sets S / words W (ceil(N / 32)) / cube C / line L / extent R (%.9g)
 //   pattern <16 hex digits>   FNV-1a 64 of N, S and the normalised positions' float bits
-//   checksum <16 hex digits>  FNV-1a 64 of the payload bytes
+//   checksum <16 hex digits>  FNV-1a 64 of the lines above (each with its newline), then the
+//                             payload bytes (format 1 left the header out: an edited extent
+//                             passed; it is refused, to be regenerated)
 //   end
 // payload: sector [S][6][C][C][W] (faces in GL order +X -X +Y -Y +Z -Z, rows by t), line
 // [S][L][L][W] (rows by y), packed positions [S][ceil(N / 2)].
