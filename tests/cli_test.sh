@@ -56,6 +56,11 @@ inputs() {
   expect 1 "folder.obj: is a folder, not a file" -- "$P" info "$T/folder.obj"
   # Bad inputs (hard-cases.md, "Bad inputs: expected behaviour"), all refused before any GL work.
   expect 2 "\-W/\-H" -- "$P" render -W 0 -H 0 -o "$T/x.png"
+  # -1 was read as "the scene's size"; duplicate techniques were merged; 'all' with others was "unknown".
+  expect 2 "\-W/\-H: image size must be positive, got -1 x the scene's" -- "$P" render -W -1 -o "$T/x.png"
+  expect 2 "\-\-techniques: 'dcs' given twice" -- "$P" compare --techniques dcs,hard-sv,dcs -o "$T/twice"
+  expect 2 "\-\-techniques: 'all' is every technique and stands alone" -- "$P" compare --techniques all,dcs -o "$T/twice"
+  test ! -e "$T/twice" || { echo "FAIL: a refused compare made its folder"; fail=1; }
   expect 2 "\-\-samples" -- "$P" render --samples 129 -o "$T/x.png"
   expect 1 "size: an area light needs a positive size" -- "$P" render --set lights.0.size=0 -o "$T/x.png"
   test ! -e "$T/x.png" || { echo "FAIL: an image was written for a bad input"; fail=1; }

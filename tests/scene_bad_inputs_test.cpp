@@ -789,3 +789,60 @@ TEST(SceneHostile, BadValuesAreQuotedShort) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// Accepted silently before: a glTF light of negative intensity or colour (a scene file's was
+// refused), a colour of 4 numbers read as white, two lights of one name (the LUT tool overwrote
+// the first one's tables), box/plane/quad sizes of 0, -0 or 1e-45 and collinear quad corners (the
+// object vanished), a light texture with negative texels (a visibility layer of -5).
+TEST(SceneHostile, WhatWasAcceptedSilentlyIsRefusedOrNamed) {
+  test::TempDir dir;
+  const auto withLight = [&](const std::string& name, const Json& light, int nodes) {
+    Json doc = cubeDocument();
+    doc["extensionsUsed"] = Json::array({"KHR_lights_punctual"});
+    doc["extensions"]["KHR_lights_punctual"]["lights"] = Json::array({light});
+    for (int i = 1; i < nodes; ++i) {
+      doc["nodes"].push_back(Json{{"translation", {0.0, 2.0 * i, 0.0}}});
+      doc["scenes"][0]["nodes"].push_back(i);
+    }
+    for (int i = 0; i < nodes; ++i) doc["nodes"][std::size_t(i)]["extensions"]["KHR_lights_punctual"]["light"] = 0;
+    return dir.file(name, doc.dump());
+  };
+  const std::string negative = withLight("negative.gltf", Json{{"type", "point"}, {"intensity", -1.0}}, 1);
+  expectError([&] { loadScene(negative); }, negative, "a negative intensity or colour");
+  const std::string red = withLight("red.gltf", Json{{"type", "point"}, {"color", {1.0, -0.5, 0.0}}}, 1);
+  expectError([&] { loadScene(red); }, red, "a negative intensity or colour");
+  const std::string four = withLight("four.gltf", Json{{"type", "point"}, {"color", {1.0, 0.5, 0.0, 1.0}}}, 1);
+  expectError([&] { loadScene(four); }, four, "a light's color must be 3 numbers, got [1.0,0.5,0.0,1.0]");
+  // One light definition on two nodes: two lights, named apart by their nodes.
+  const std::string shared = withLight("shared.gltf", Json{{"type", "point"}, {"name", "lamp"}}, 2);
+  std::vector<std::string> lamps;
+  for (const Light& l : loadScene(shared).lights)  // (a bare glTF gets a default light too)
+    if (l.name.rfind("lamp", 0) == 0) lamps.push_back(l.name);
+  ASSERT_EQ(lamps.size(), 2u);
+  EXPECT_EQ(lamps[0], "lamp");
+  EXPECT_EQ(lamps[1].rfind("lamp@", 0), 0u) << lamps[1];
+  const std::string twice = dir.file("twice.json", R"({"objects": [{"shape": "plane"}],
+      "lights": [{"name": "key", "type": "point", "position": [0, 2, 0]}, {"name": "key", "type": "point", "position": [1, 2, 0]}]})");
+  expectError([&] { loadScene(twice); }, twice, "lights[1] 'key': has the name of lights[0] 'key': light names must differ");
+
+  for (const char* size : {"0", "-0", "[1, 0]", "[1, -2]"}) {
+    const std::string path = dir.file("zero.json", std::string(R"({"objects": [{"shape": "plane", "size": )") + size + "}]}");
+    expectError([&] { loadScene(path); }, path, "size: must be positive");
+  }
+  const std::string tiny = dir.file("tiny.json", R"({"objects": [{"shape": "box", "size": 1e-45}]})");
+  expectError([&] { loadScene(tiny); }, tiny, "no triangle of the box has an area in float");
+  const std::string line = dir.file("line.json", R"({"objects": [{"shape": "quad", "corners": [[0,0,0],[1,0,0],[2,0,0],[3,0,0]]}]})");
+  expectError([&] { loadScene(line); }, line, "no triangle of the quad has an area in float");
+
+  Image img(2, 2, 3, 0.5f);
+  img.at(1, 1, 2) = -5.0f;
+  writeExr(dir.file("neg.exr", ""), {{"", &img}});
+  const std::string textured = dir.file("neg.json", sceneWithTexture("neg.exr"));
+  expectError([&] { loadScene(textured); }, textured, "has 1 negative values (a light cannot emit negative radiance)");
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -54,10 +54,11 @@ void checkTime(float time) {
 RenderSettings settingsFor(const CommonOptions& o, const Scene& scene) {
   checkTime(o.time);
   RenderSettings s;
-  if (o.width == 0 || o.height == 0 || o.width < -1 || o.height < -1)
-    throw Error("-W/-H", "image size must be positive", ExitCode::Usage);
-  s.width = o.width > 0 ? o.width : scene.width;
-  s.height = o.height > 0 ? o.height : scene.height;
+  if ((o.width && *o.width < 1) || (o.height && *o.height < 1))
+    throw Error("-W/-H", fmt::format("image size must be positive, got {} x {}", o.width ? std::to_string(*o.width) : "the scene's",
+                                     o.height ? std::to_string(*o.height) : "the scene's"), ExitCode::Usage);
+  s.width = o.width.value_or(scene.width);
+  s.height = o.height.value_or(scene.height);
   if (o.samples < 1 || o.samples > PENUMBRA_MAX_SAMPLES)
     throw Error("--samples", "must be in 1.." + std::to_string(PENUMBRA_MAX_SAMPLES) + ", got " +
                                  std::to_string(o.samples), ExitCode::Usage);
@@ -262,6 +263,13 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
   CompareOptions options;
   options.reference = findTechnique("raytrace");
   options.convergedReference = findTechnique("raytrace-converged");
+  for (std::size_t i = 0; i < c.techniques.size(); ++i) {
+    if (c.techniques[i] == "all" && c.techniques.size() > 1)
+      throw Error("--techniques", "'all' is every technique and stands alone (got it with others)", ExitCode::Usage);
+    if (std::find(c.techniques.begin(), c.techniques.begin() + std::ptrdiff_t(i), c.techniques[i]) !=
+        c.techniques.begin() + std::ptrdiff_t(i))
+      throw Error("--techniques", "'" + abbreviate(c.techniques[i]) + "' given twice", ExitCode::Usage);
+  }
   if (c.techniques.size() == 1 && c.techniques[0] == "all") {
     for (auto& t : techniqueTable())
       if (t.name != options.reference.name) options.techniques.push_back(t);

@@ -14,7 +14,7 @@ struct CommonOptions {
   std::string scene;  // empty: the built-in default scene
   std::vector<std::string> overrides;  // --set key=value
   std::string backend = "egl";
-  int width = -1, height = -1;  // -1: the scene's resolution
+  std::optional<int> width, height;  // absent: the scene's resolution (-W -1 was read as that: now refused)
   int samples = 16;
   std::string strategy = "stratified";
   std::string pattern = "correlated";

@@ -597,6 +597,11 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     if (std::size_t bad = nonFinitePixels(lr.visibility))
       throw Error(name, fmt::format("light '{}': {} of {} visibility pixels are NaN or infinite", light.name, bad,
                                     lr.visibility.pixelCount()));
+    // Eq. 2 is a weighted mean of transmittances: outside [0, 1] (beyond float rounding) is a
+    // fault, never an image (a negative emission texel once gave -5).
+    const auto [lo, hi] = std::minmax_element(lr.visibility.data.begin(), lr.visibility.data.end());
+    if (lo != lr.visibility.data.end() && (*lo < -1e-4f || *hi > 1.0f + 1e-4f))
+      throw Error(name, fmt::format("light '{}': visibility outside [0, 1] (from {} to {})", light.name, *lo, *hi));
     lr.visibilityVariance = std::move(own.visibilityVariance);
     if (std::any_of(lr.perSample.begin(), lr.perSample.end(), [](float v) { return !std::isfinite(v); }))
       throw Error(name, fmt::format("light '{}': per-sample visibility holds NaN or infinite values", light.name));

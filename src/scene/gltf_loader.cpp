@@ -4,6 +4,7 @@
 // and the hierarchy is flattened to the file's space (mirrored instances get reversed winding).
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -469,9 +470,12 @@ std::vector<int> checkHierarchy(const Loader& L) {
   return parent;
 }
 
-void addLight(Loader& L, Light light, const glm::dmat4& world, const std::string& what) {
+void addLight(Loader& L, Light light, const glm::dmat4& world, const std::string& what, const std::string& node) {
   Light placed = transformLight(light, glm::mat4(world));
-  placed.name = what;
+  // A light definition used by several nodes: each placed light is named by its node too (names
+  // must differ: they name a light's files and rows).
+  const bool taken = std::any_of(L.out.lights.begin(), L.out.lights.end(), [&](const Light& l) { return l.name == what; });
+  placed.name = taken ? what + "@" + node : what;
   L.out.lights.push_back(std::move(placed));
 }
 
@@ -494,11 +498,15 @@ void nodeLights(Loader& L, std::size_t index, const glm::dmat4& world, const std
     defs = lights;
     return (*e)["light"].get<int>();
   };
+  // A colour that is not three numbers was read as white; a negative part is refused with the
+  // light's other values (scene_json.cpp, for every light of the scene).
   auto color = [&](const Json& def) {
     glm::vec3 c(1.0f);
-    if (def.contains("color") && def["color"].is_array() && def["color"].size() == 3) {
-      for (int k = 0; k < 3; ++k) c[k] = def["color"][std::size_t(k)].get<float>();
-    }
+    if (!def.contains("color")) return c;
+    const Json& v = def["color"];
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+      L.fail(label + ": a light's color must be 3 numbers, got " + shownJson(v));
+    for (int k = 0; k < 3; ++k) c[k] = v[std::size_t(k)].get<float>();
     return c;
   };
   const Json* defs = nullptr;
@@ -515,7 +523,7 @@ void nodeLights(Loader& L, std::size_t index, const glm::dmat4& world, const std
       light.position = glm::vec3(0.0f);
       light.color = color(def);
       light.intensity = def.value("intensity", 1.0f);
-      addLight(L, light, world, def.value("name", what));
+      addLight(L, light, world, def.value("name", what), label);
     } else {
       L.fail(what + ": unknown light type '" + type + "'");
     }
@@ -547,7 +555,7 @@ void nodeLights(Loader& L, std::size_t index, const glm::dmat4& world, const std
     } else {
       L.fail(what + ": unknown area light type '" + type + "'");
     }
-    addLight(L, light, world, def.value("name", what));
+    addLight(L, light, world, def.value("name", what), label);
   }
 }
 

@@ -310,7 +310,14 @@ Spin readSpin(Context& ctx, Fields& f, glm::vec3 defaultPivot) {
 
 geo::TriangleMesh readShape(Context& ctx, Fields& f, const std::string& shape) {
   auto segments = [&](int fallback) { return f.integer("segments", fallback, 3, kMaxSegments); };
-  if (shape == "box") return makeBox(f.scalarOrVec("size", glm::vec3(1.0f), 3));
+  // Sizes of 0, -0 or below: the shape vanished without a word (a sphere's radius was refused).
+  auto size = [&](glm::vec3 fallback, int n) {
+    const glm::vec3 v = f.scalarOrVec("size", fallback, n);
+    for (int k = 0; k < n; ++k)
+      if (!(v[k] > 0.0f)) ctx.fail(f.at("size"), "must be positive, got " + Fields::fmtFloat(v[k]));
+    return v;
+  };
+  if (shape == "box") return makeBox(size(glm::vec3(1.0f), 3));
   if (shape == "plane" || shape == "quad") {
     if (shape == "quad" && f.has("corners")) {
       const Json* v = f.get("corners");
@@ -319,8 +326,7 @@ geo::TriangleMesh readShape(Context& ctx, Fields& f, const std::string& shape) {
       for (std::size_t i = 0; i < 4; ++i) corners[i] = f.toVec((*v)[i], f.at("corners"), 3);
       return makeQuad(corners);
     }
-    const glm::vec3 size = f.scalarOrVec("size", glm::vec3(shape == "plane" ? 10.0f : 1.0f), 2);
-    return makeQuad(glm::vec2(size));
+    return makeQuad(glm::vec2(size(glm::vec3(shape == "plane" ? 10.0f : 1.0f), 2)));
   }
   // Memory before allocating: the triangle count is known from the parameters, so a shape
   // this process cannot hold is refused before it is built (4096 x 4096 segments: 33.5 M
@@ -433,6 +439,9 @@ void readObject(Context& ctx, const Json& item, int index) {
       m.material = material >= 0          ? material
                    : source.material >= 0 ? model.materialBase + source.material
                                           : 0;
+      if (m.mesh.triangles.empty())
+        ctx.warn(ctx.where + ": " + f.context() + ": " + source.name + " has no triangle left (every one was dropped: "
+                 "`penumbra info` counts why)");
       placed.push_back(std::move(m));
     }
     for (const Light& light : model.model->lights) {
@@ -447,6 +456,11 @@ void readObject(Context& ctx, const Json& item, int index) {
     m.report.inputVertices = m.mesh.positions.size();
     m.report.inputFaces = m.mesh.triangles.size();
     geo::cleanMesh(m.mesh, m.report);
+    // A size of 1e-45, collinear quad corners, a transform that flattens the shape: triangles
+    // without area in float, all dropped; the object would vanish without a word.
+    if (m.mesh.triangles.empty())
+      ctx.fail(f.context(), "no triangle of the " + f.string("shape", "") + " has an area in float (its size, corners or "
+                            "transform collapse it): all " + std::to_string(m.report.inputFaces) + " dropped");
     geo::ensureShadingNormals(m.mesh);
     m.material = material >= 0 ? material : 0;
     placed.push_back(std::move(m));
@@ -552,6 +566,15 @@ void readLight(Context& ctx, const Json& item, int index) {
         ctx.fail(f.at("fps"), "an animated light needs \"fps\" > 0");
       }
     }
+  }
+  // An emission texture's negative texels (an EXR may hold them) gave visibility layers of -5.
+  for (const int t : light.emissionFrames) {
+    const Image& image = ctx.scene.textures[std::size_t(t)].image;
+    const std::size_t negative = std::size_t(std::count_if(image.data.begin(), image.data.end(), [](float v) { return v < 0.0f; }));
+    if (negative > 0)
+      ctx.fail(f.at(f.has("texture") ? "texture" : "frames"),
+               fmt::format("'{}' has {} negative values (a light cannot emit negative radiance)",
+                           ctx.scene.textures[std::size_t(t)].source, negative));
   }
   light.spin = readSpin(ctx, f, glm::vec3(0.0f));  // pivot: the world origin
   f.finish();
@@ -720,6 +743,7 @@ Scene interpretScene(const Json& doc, const std::string& where, const std::strin
 
   // Lights that came from glTF files are checked here too: a zero-scale node or a NaN in a
   // file must not reach a renderer.
+  std::map<std::string, std::size_t> lightNames;
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     const std::string context = describe("lights", int(i), l.name);
@@ -727,6 +751,13 @@ Scene interpretScene(const Json& doc, const std::string& where, const std::strin
                         isFinite(glm::vec3(l.size, 0.0f)) && isFinite(l.color) &&
                         std::isfinite(l.intensity);
     if (!finite) ctx.fail(context, "has a NaN or infinite parameter");
+    // glTF lights too (the scene file's own are refused as read): a light cannot emit negative
+    // radiance.
+    if (l.intensity < 0.0f || l.color.r < 0.0f || l.color.g < 0.0f || l.color.b < 0.0f)
+      ctx.fail(context, "a negative intensity or colour (a light cannot emit negative radiance)");
+    if (const auto [it, fresh] = lightNames.emplace(l.name, i); !fresh)
+      ctx.fail(context, "has the name of " + describe("lights", int(it->second), l.name) +
+                            ": light names must differ (they name each light's files and report rows)");
     if (l.isArea()) {
       if (const std::string why = lightExtentProblem(l); !why.empty()) ctx.fail(context, why);
     }
