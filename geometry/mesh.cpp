@@ -261,6 +261,8 @@ std::string MeshReport::summary() const {
   appendCount(s, polygonsTriangulated, "polygons triangulated");
   appendCount(s, duplicatedVertices, "vertices duplicated for refused faces");
   appendCount(s, hugeCoordinates, "vertices with |coordinate| > 1e6");
+  appendCount(s, ignoredElements, "line/point elements ignored");
+  if (vertexColours) s += ", vertex colours not used";
   appendCount(s, openEdges, "open edges");
   appendCount(s, nonManifoldEdges, "non-manifold edges");
   appendCount(s, inconsistentEdges, "inconsistently wound edges");

@@ -39,10 +39,14 @@ struct MeshReport {
   std::size_t inconsistentEdges = 0;     // two-triangle edges traversed in the same direction
   std::size_t components = 0;            // edge-connected components
   bool closed = false;                   // every edge has two oppositely oriented triangles
+  std::size_t ignoredElements = 0;       // line and point elements (OBJ `l`, `p`; PLY edges): not surfaces
+  bool vertexColours = false;            // colours per vertex in the file (OBJ `v x y z r g b`, PLY red/green/blue): not shaded
 
   std::size_t droppedTotal() const {
     return droppedInvalidIndex + droppedDegenerate + droppedNonFinite + droppedDuplicate;
   }
+  // What a loader must say: something dropped, ignored or unusual in the file.
+  bool worthWarning() const { return droppedTotal() > 0 || hugeCoordinates > 0 || ignoredElements > 0 || vertexColours; }
   // One line: "12 triangles, 0 dropped, 4 open edges, ..." (only non-zero counts beyond the first).
   std::string summary() const;
 };

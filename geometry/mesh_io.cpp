@@ -177,6 +177,8 @@ struct ObjData {
   std::vector<std::uint32_t> faceGroup;
   std::vector<std::string> groups{""};  // usemtl names in order of first use; [0] = none
   std::vector<std::string> libraries;   // mtllib arguments, as written
+  std::size_t linesAndPoints = 0;       // `l` and `p` statements
+  bool colours = false;                 // `v x y z r g b`
 };
 
 // The rest of a statement without surrounding blanks: material names may contain spaces
@@ -198,6 +200,11 @@ ObjData parseObj(std::string_view text) {
       double c[3];
       for (double& x : c) x = parseFloat(nextToken(line));
       (key == "v" ? d.v : d.vn).push_back(toVec3(c));
+      if (key == "v" && !d.colours) {  // x y z [w] or x y z r g b
+        int extra = 0;
+        while (!nextToken(line).empty()) ++extra;
+        d.colours = extra >= 3;
+      }
     } else if (key == "vt") {
       const std::string_view u = nextToken(line), w = nextToken(line);
       d.vt.emplace_back(u.empty() ? 0.0 : parseFloat(u), w.empty() ? 0.0 : parseFloat(w));
@@ -223,7 +230,9 @@ ObjData parseObj(std::string_view text) {
     } else if (key == "mtllib") {
       if (const std::string_view rest = trimmed(line); !rest.empty())
         d.libraries.emplace_back(rest);
-    }  // other statements (o, g, s, l, p, ...) carry nothing a shadow needs
+    } else if (key == "l" || key == "p") {
+      ++d.linesAndPoints;  // no surface: counted in the report
+    }  // other statements (o, g, s, ...) carry nothing a shadow needs
   }
   return d;
 }
@@ -235,6 +244,7 @@ TriangleMesh buildObjMesh(const ObjData& d, std::int64_t group, MeshReport& repo
   const FaceList& faces = d.faces;
   const auto& faceGroup = d.faceGroup;
   report.inputVertices = v.size();
+  if (group < 0) report.ignoredElements = d.linesAndPoints, report.vertexColours = d.colours;
   const auto inGroup = [&](std::size_t f) { return group < 0 || std::int64_t(faceGroup[f]) == group; };
 
   // Attributes are kept only when every used corner has a valid one: the mesh stores one
@@ -532,6 +542,10 @@ TriangleMesh loadPly(const std::string& path, std::string_view text, MeshReport&
       hasUv = hasUv || role == U;
       roles.push_back(role);
     }
+    if (e.name == "vertex")
+      for (const PlyProperty& p : e.properties)
+        report.vertexColours = report.vertexColours || p.name == "red" || p.name == "green" || p.name == "blue";
+    if (e.name == "edge") report.ignoredElements += e.count;
     if (e.name == "vertex") {
       // A second vertex element would append positions without the first one's normals or
       // uvs (found by fuzzing: tests/fuzz/regressions/ply/); the format has one.
@@ -704,7 +718,10 @@ ObjFile loadObjFile(const std::string& path) {
     total.droppedDuplicate += part.report.droppedDuplicate;
     out.parts.push_back(std::move(part));
   }
+  total.ignoredElements = d.linesAndPoints, total.vertexColours = d.colours;
   if (kept == 0) throw Error(path, "no triangles left (" + total.summary() + ")");
+  // Said once, with the file's first part.
+  if (!out.parts.empty()) out.parts.front().report.ignoredElements = d.linesAndPoints, out.parts.front().report.vertexColours = d.colours;
   return out;
 }
 

@@ -47,6 +47,8 @@ inputs() {
   # --param naming no technique's key lists what the run's techniques know, never the key itself.
   expect 2 "parameter 'bogus' (they take no parameters)" -- "$P" render -t none -W 16 -H 16 --param bogus=1 -o "$T/p.png"
   expect 2 "parameter 'bogus' (known: pcf, map," -- "$P" render -t mvr -W 16 -H 16 --param bogus=1 -o "$T/p.png"
+  # strtod read hex ("0x100") and hex floats as numbers.
+  expect 2 "map: expected a number, got '0x100'" -- "$P" render -t mvr -W 16 -H 16 --param map=0x100 -o "$T/p.png"
   if grep -q "known:.*bogus" "$T/err"; then echo "FAIL: --param lists the unknown key as known"; fail=1; fi
   # --log is accepted after the subcommand too; an unknown level is refused (spdlog read it as off).
   expect 2 "\-\-log: bogus not in" -- "$P" info --log bogus
@@ -168,6 +170,12 @@ render() {
   printf 'old report' > "$T/cmp/table.txt"
   expect 0 "" -- "$P" compare -W 16 -H 16 --samples 1 --techniques none --timing-frames 1 --warmup 0 -o "$T/cmp"
   if grep -q "old report\|INCOMPLETE" "$T/cmp/table.txt"; then echo "FAIL: a stale or incomplete table after the run"; fail=1; fi
+  # A LUT named for plain dcs (exact coverage, reads none) was accepted and ignored; a missing
+  # lut-dir fell back to a LUT built in memory.
+  expect 2 "lut-file: this dcs counts with the exact coverage test and reads no edge LUT" -- \
+    "$P" render -t dcs -W 16 -H 16 --param lut-file="$SRC/luts/edge_rect_stratified_correlated_n16_seed1.lut" -o "$T/l.png"
+  expect 2 "lut-file: '/nonexistent.lut': no such file" -- "$P" render -t dcs-lut -W 16 -H 16 --param lut-file=/nonexistent.lut -o "$T/l.png"
+  expect 2 "lut-dir: '$T/nolut' is not a folder" -- "$P" render -t dcs-lut -W 16 -H 16 --param lut-dir="$T/nolut" -o "$T/l.png"
   # GL limits and out-of-memory: one-line errors, never a crash or a GL error.
   noglerr() { if grep -q 'GL error\|GL: ' "$T/err"; then echo "FAIL: GL error logged"; cat "$T/err"; fail=1; fi; }
   expect 2 "map: 100000 is outside" -- "$P" render -t mvr -W 32 -H 32 --param map=100000 -o "$T/p.png"; noglerr

@@ -139,6 +139,31 @@ TEST(GeometryIo, MalformedObjLoadsWithCounts) {
   EXPECT_EQ(r.inputFaces, r.triangles + r.droppedTotal());
 }
 
+// Line and point elements and vertex colours carry nothing penumbra shades: counted and said
+// (a line-only OBJ said "0 dropped"), never silently gone.
+TEST(GeometryIo, LinesPointsAndVertexColoursAreCounted) {
+  const std::string obj = tempPath("lines.obj");
+  writeBytes(obj, "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\nl 1 2\nl 2 3\np 3\n");
+  MeshReport r;
+  loadMeshFile(obj, r);
+  EXPECT_EQ(r.ignoredElements, 3u);
+  EXPECT_TRUE(r.vertexColours);
+  EXPECT_TRUE(r.worthWarning());
+  EXPECT_NE(r.summary().find("3 line/point elements ignored, vertex colours not used"), std::string::npos) << r.summary();
+  writeBytes(obj, "v 0 0 0\nv 1 0 0\nl 1 2\n");
+  expectLoadError(obj, "no triangles left (0 triangles, 0 dropped, 1 line/point elements ignored");
+  const std::string ply = tempPath("edges.ply");
+  writeBytes(ply, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                  "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\n"
+                  "property list uchar int vertex_indices\nelement edge 2\nproperty int vertex1\nproperty int vertex2\n"
+                  "end_header\n0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n0 1\n1 2\n");
+  MeshReport p;
+  loadMeshFile(ply, p);
+  EXPECT_EQ(p.ignoredElements, 2u);
+  EXPECT_TRUE(p.vertexColours);
+  EXPECT_EQ(p.triangles, 1u);
+}
+
 TEST(GeometryIo, NanInAsciiPlyDropsOnlyItsFace) {
   MeshReport r;
   const TriangleMesh m = loadMeshFile(dataPath("nan_vertex.ply"), r);

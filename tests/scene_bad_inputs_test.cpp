@@ -755,8 +755,9 @@ TEST(SceneHostile, DeepNestingIsRefusedBeforeAnythingRecurses) {
               "the value is nested deeper than 128 arrays and objects");
 
   Json doc = cubeDocument();
-  std::string extras = "1";
-  for (int i = 0; i < 20000; ++i) extras = "{\"a\":" + extras + "}";
+  std::string extras;
+  for (int i = 0; i < 20000; ++i) extras += "{\"a\":";
+  extras += "1" + std::string(20000, '}');
   std::string text = doc.dump();
   text.insert(text.rfind('}'), ",\"extras\":" + extras);
   const std::string gltf = dir.file("deep.gltf", text);
@@ -836,6 +837,26 @@ TEST(SceneHostile, WhatWasAcceptedSilentlyIsRefusedOrNamed) {
   expectError([&] { loadScene(tiny); }, tiny, "no triangle of the box has an area in float");
   const std::string line = dir.file("line.json", R"({"objects": [{"shape": "quad", "corners": [[0,0,0],[1,0,0],[2,0,0],[3,0,0]]}]})");
   expectError([&] { loadScene(line); }, line, "no triangle of the quad has an area in float");
+
+  // What a glTF holds that penumbra does not use is said, once each.
+  Json extra = cubeDocument();
+  extra["cameras"] = Json::array({Json{{"type", "perspective"}, {"perspective", {{"yfov", 1.0}, {"znear", 0.1}}}}});
+  extra["extensionsUsed"] = Json::array({"KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat"});
+  extra["materials"] = Json::array({Json{{"pbrMetallicRoughness", {{"baseColorFactor", {2.0, 0.5, 0.5, 1.0}}}},
+                                         {"emissiveFactor", {1.0, 1.0, 1.0}},
+                                         {"extensions", {{"KHR_materials_pbrSpecularGlossiness", Json::object()}}}}});
+  extra["meshes"][0]["primitives"][0]["material"] = 0;
+  extra["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0;  // the positions, read as colours
+  const Scene said = loadScene(dir.file("extra.gltf", extra.dump()));
+  for (const char* w : {"1 camera(s) not used", "extension KHR_materials_clearcoat is not read",
+                        "extension KHR_materials_pbrSpecularGlossiness is not used (shaded as metallic-roughness",
+                        "emissiveFactor is not used", "baseColorFactor outside [0, 1], clamped",
+                        "1 primitive(s) with COLOR_0: vertex colours are not used"})
+    EXPECT_TRUE(hasWarning(said, w)) << w;
+
+  const std::string far = dir.file("far.json", R"({"objects": [{"shape": "box"}],
+      "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "near": 1e30}})");
+  expectError([&] { loadScene(far); }, far, "camera.near: 1e+30 is beyond every object");
 
   Image img(2, 2, 3, 0.5f);
   img.at(1, 1, 2) = -5.0f;

@@ -21,9 +21,10 @@ void KeyPlace::fail(const std::string& problem) const {
   throw Error(where, at.empty() ? problem : at + ": " + problem, code);
 }
 
-// strtod reads a prefix: the whole text must be read.
+// strtod reads a prefix: the whole text must be read. Decimal only: strtod also reads hex
+// ("0x10", "0x1p4"), "inf" and "nan", which a user did not mean as numbers.
 bool parseNumber(const std::string& text, double& x) {
-  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return false;
+  if (text.empty() || text.find_first_not_of("0123456789+-.eE") != std::string::npos) return false;
   char* end = nullptr;
   x = std::strtod(text.c_str(), &end);
   return end == text.c_str() + text.size();

@@ -337,8 +337,18 @@ void convertMaterials(Loader& L) {
     if (!std::isfinite(alpha) || !std::isfinite(m.baseColor.x + m.baseColor.y + m.baseColor.z)) {
       L.fail(what + ": baseColorFactor is not finite");
     }
+    if (glm::any(glm::lessThan(m.baseColor, glm::vec3(0.0f))) || glm::any(glm::greaterThan(m.baseColor, glm::vec3(1.0f))) ||
+        alpha < 0.0f || alpha > 1.0f)
+      L.warn(what + ": baseColorFactor outside [0, 1], clamped");
     m.baseColor = glm::clamp(m.baseColor, 0.0f, 1.0f);
     alpha = std::clamp(alpha, 0.0f, 1.0f);
+    // What the material holds that penumbra does not shade: said, not dropped silently.
+    for (const auto& [name, ext] : g.extensions)
+      if (name != "KHR_materials_emissive_strength")
+        L.warn(what + ": extension " + name + " is not used" +
+               (name == "KHR_materials_pbrSpecularGlossiness" ? " (shaded as metallic-roughness from its base factors)" : ""));
+    if (g.emissiveFactor.size() == 3 && (g.emissiveFactor[0] != 0.0 || g.emissiveFactor[1] != 0.0 || g.emissiveFactor[2] != 0.0))
+      L.warn(what + ": emissiveFactor is not used (surfaces do not emit; lights do)");
     m.alphaCutoff = float(g.alphaCutoff);
     if (g.alphaMode == "MASK") {
       m.alphaMode = AlphaMode::Mask;
@@ -523,6 +533,7 @@ void nodeLights(Loader& L, std::size_t index, const glm::dmat4& world, const std
       light.position = glm::vec3(0.0f);
       light.color = color(def);
       light.intensity = def.value("intensity", 1.0f);
+      if (def.contains("range")) L.warn(what + ": range is not used (the light's falloff is 1/r^2 everywhere)");
       addLight(L, light, world, def.value("name", what), label);
     } else {
       L.fail(what + ": unknown light type '" + type + "'");
@@ -569,6 +580,17 @@ Model loadGltf(const std::string& path) {
   Loader L{path, std::filesystem::path(path).filename().string(), gltf, json, out};
   try {
     convertMaterials(L);
+    // What the file holds that penumbra does not use, once each (the scene file's camera is
+    // the one rendered).
+    if (!gltf.cameras.empty())
+      L.warn(std::to_string(gltf.cameras.size()) + " camera(s) not used (the scene's camera renders)");
+    for (const std::string& e : gltf.extensionsUsed)
+      if (std::find(std::begin(kGltfExtensions), std::end(kGltfExtensions), e) == std::end(kGltfExtensions))
+        L.warn("extension " + e + " is not read");
+    std::size_t colours = 0;
+    for (const tinygltf::Mesh& mesh : gltf.meshes)
+      for (const tinygltf::Primitive& p : mesh.primitives) colours += p.attributes.count("COLOR_0");
+    if (colours) L.warn(std::to_string(colours) + " primitive(s) with COLOR_0: vertex colours are not used");
     const std::vector<int> parent = checkHierarchy(L);
 
     std::vector<int> roots;

@@ -27,9 +27,6 @@ constexpr std::uint32_t kChunkJson = 0x4E4F534A;
 constexpr std::uint32_t kChunkBin = 0x004E4942;
 constexpr int kMaxImageSide = 8192;
 
-const char* const kSupportedRequired[] = {"KHR_lights_punctual", "EXT_lights_area",
-                                          "KHR_materials_emissive_strength",
-                                          "KHR_texture_transform"};
 // The data: URI headers tinygltf decodes; anything else it would treat as a file name.
 const char* const kDataUriHeaders[] = {"data:application/octet-stream;base64,",
                                        "data:application/gltf-buffer;base64,",
@@ -196,7 +193,7 @@ struct Checker {
       if (!e.is_string()) fail("'extensionsRequired' must hold strings");
       const std::string name = e.get<std::string>();
       bool known = false;
-      for (const char* s : kSupportedRequired) known = known || name == s;
+      for (const char* s : kGltfExtensions) known = known || name == s;
       if (!known) fail("requires extension " + name + ", which penumbra does not support");
     }
   }

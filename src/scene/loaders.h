@@ -96,6 +96,10 @@ Json framingCamera(glm::vec3 lo, glm::vec3 hi);
 // keeps the last silently; a repeated key here throws penumbra::Error(path, "<item>: duplicate
 // key '<key>'") naming where it is (`objects[1]`, `lights[0].spin`, `meshes[0]`). Invalid JSON
 // throws Error(path, "invalid JSON: ...").
+// The glTF extensions penumbra reads (a file may require these; others it uses are warned).
+inline constexpr const char* kGltfExtensions[] = {"KHR_lights_punctual", "EXT_lights_area",
+                                                  "KHR_materials_emissive_strength", "KHR_texture_transform"};
+
 // Arrays and objects nested deeper than this are refused (Error(path, "<item>: nested deeper
 // than 128 ...")) as the text is read: the conversions and messages after it recurse per level
 // (a scene value or glTF `extras` 20,000 deep crashed them). Scene files need 4, glTF about 6.

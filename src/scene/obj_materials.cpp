@@ -308,7 +308,7 @@ Model loadObjModel(const std::string& path) {
       continue;
     }
     // Vertices copied for the silhouette mesh change nothing loaded: counted, not warned.
-    if (sm.report.droppedTotal() > 0 || sm.report.hugeCoordinates > 0)
+    if (sm.report.worthWarning())
       model.warnings.push_back(sm.name + ": " + sm.report.summary());
     model.meshes.push_back(std::move(sm));
   }

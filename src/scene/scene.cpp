@@ -418,7 +418,7 @@ Model loadGeometryFile(const std::string& path) {
   sm.mesh = geo::loadMeshFile(path, sm.report);
   sm.material = -1;
   // Vertices copied for the silhouette mesh change nothing loaded: counted, not warned.
-  if (sm.report.droppedTotal() > 0 || sm.report.hugeCoordinates > 0) {
+  if (sm.report.worthWarning()) {
     model.warnings.push_back(path + ": " + sm.report.summary());
   }
   model.meshes.push_back(std::move(sm));

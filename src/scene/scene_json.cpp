@@ -739,6 +739,19 @@ Scene interpretScene(const Json& doc, const std::string& where, const std::strin
     }
     readCamera(ctx, framingCamera(lo, hi));
   }
+  if (!scene.meshes.empty()) {
+    // A near plane beyond every object (`near` 1e30) rendered an empty image without a word.
+    glm::vec3 lo, hi;
+    scene.bounds(lo, hi);
+    double farthest = 0.0;
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+      farthest = std::max(farthest, glm::length(corner - glm::dvec3(scene.camera.position)));
+    }
+    if (double(scene.camera.zNear) >= farthest)
+      ctx.fail("camera.near", fmt::format("{} is beyond every object (the farthest point of the scene's bounds is {:.6g} "
+                                          "from the camera): nothing would be drawn", scene.camera.zNear, farthest));
+  }
   f.finish();
 
   // Lights that came from glTF files are checked here too: a zero-scale node or a NaN in a
