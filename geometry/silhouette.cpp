@@ -208,6 +208,15 @@ std::vector<std::uint32_t> trianglesNearBall(const EdgeTopology& topology, const
   return out;
 }
 
+std::optional<int> windingAtPathEnd(int atC, std::span<const PathCrossing> crossings) {
+  int w = atC;
+  for (const PathCrossing& x : crossings) {
+    if (x.sideS == 0) return std::nullopt;
+    w += x.sideC > 0 && x.sideS < 0 ? 1 : (x.sideC < 0 && x.sideS > 0 ? -1 : 0);
+  }
+  return w;
+}
+
 bool pathMeetsSegment(const EdgeTopology& topology, std::uint32_t t, const glm::dvec3& u, const glm::dvec3& v,
                       const glm::dvec3& c, const glm::dvec3& s) {
   const glm::dvec3& n = topology.faceNormals[t];

@@ -36,6 +36,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -131,6 +133,10 @@ std::vector<std::uint32_t> trianglesNearBall(const EdgeTopology& topology, const
 // Appends the crossings of the path c -> s with the candidate triangles.
 void pathCrossings(const EdgeTopology& topology, const std::vector<std::uint32_t>& candidates, const glm::dvec3& c,
                    const glm::dvec3& s, std::vector<PathCrossing>& out);
+// The winding number at the end s of a path from c, from the winding `atC` at c and the path's
+// crossings (pathCrossings): plus one per entry from the side the normals point to, minus one per
+// exit; nullopt when the path ends on the surface (s lies in no cell).
+std::optional<int> windingAtPathEnd(int atC, std::span<const PathCrossing> crossings);
 // For c and s in the plane of triangle t (facing 0 at both): the path c -> s meets the closed
 // segment u -> v of that plane (crosses it, touches it, or runs along it). A path along a
 // surface across the surface's border is where the crossings above and the volumes' edge events

@@ -37,22 +37,19 @@ const LightEnclosure& Enclosures::classify(int lightIndex, const Light& light, c
   std::vector<geo::PathCrossing> crossings;
   for (const Closed& c : closed_) {
     const geo::PointLocation at = geo::locatePoint(c.topology, centre);
-    // Each sample's winding: the centre's, plus one per entry (from the side the normals point
-    // to), minus one per exit along the path from the centre; a path ending on the surface puts
-    // the sample on it (no cell).
+    // Each sample's winding from the centre's along its path (geo::windingAtPathEnd); a sample
+    // on the surface has no cell.
     const std::vector<std::uint32_t> near = geo::trianglesNearBall(c.topology, centre, reach);
     bool onSurface = at.onSurface, apart = c.eyeClear && !at.onSurface;
     std::size_t otherCells = 0;
     for (const glm::vec3& s : samples.positions) {
-      int w = at.winding;
       crossings.clear();
       if (!near.empty()) geo::pathCrossings(c.topology, near, centre, glm::dvec3(s), crossings);
-      for (const geo::PathCrossing& x : crossings) {
-        onSurface = onSurface || x.sideS == 0 || x.sideC == 0;
-        w += x.sideC > 0 && x.sideS < 0 ? 1 : (x.sideC < 0 && x.sideS > 0 ? -1 : 0);
-      }
-      otherCells += w != at.winding;
-      apart = apart && w != c.eyeWinding;
+      const std::optional<int> w = geo::windingAtPathEnd(at.winding, crossings);
+      onSurface = onSurface || !w;
+      if (!w) break;
+      otherCells += *w != at.winding;
+      apart = apart && *w != c.eyeWinding;
     }
     if (onSurface) continue;  // touching its surface: neither separated nor straddling
     if (apart && out.separatedBy.empty()) out.separatedBy = c.name;

@@ -135,16 +135,11 @@ ShadowVolumeCounter::Placement ShadowVolumeCounter::place(const glm::dvec3& cent
     if (m.rule != geo::VolumeRule::ClosedFrontFaces) continue;
     const geo::PointLocation atEye = geo::locatePoint(m.topology, eye), atCentre = geo::locatePoint(m.topology, centre);
     bool closedRule = !atEye.onSurface && !atCentre.onSurface && atCentre.winding <= atEye.winding;
-    // A sample's winding number: the centre's plus one per entry (from the side the normal
-    // points to), minus one per exit, along the path; a path ending on a triangle (side 0) puts
-    // the sample on the surface.
+    // A sample on the surface (its path ends on a triangle) has no cell.
     for (std::size_t k = 0; k < n && closedRule; ++k) {
-      int w = atCentre.winding;
-      for (std::size_t j = foundStart[k]; j < foundStart[k + 1]; ++j) {
-        if (found[j].sideS == 0) closedRule = false;
-        w += found[j].sideC > 0 && found[j].sideS < 0 ? 1 : (found[j].sideC < 0 && found[j].sideS > 0 ? -1 : 0);
-      }
-      closedRule = closedRule && w <= atEye.winding;
+      const std::optional<int> w = geo::windingAtPathEnd(
+          atCentre.winding, std::span(found.data() + foundStart[k], foundStart[k + 1] - foundStart[k]));
+      closedRule = w && *w <= atEye.winding;
     }
     if (!closedRule) {
       out.rules[mi] = geo::VolumeRule::PerTriangle;
