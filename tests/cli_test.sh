@@ -128,12 +128,17 @@ render() {
   expect 2 "given twice" -- "$P" render -t mvr -W 32 -H 32 --param map=64 --param map=128 -o "$T/p.png"
   expect 2 "expected a number" -- "$P" render -t vwss -W 32 -H 32 --param scale=big -o "$T/p.png"
   # Non-finite numbers: refused in one line, before any rendering.
-  expect 2 "\-\-time: must be a finite number of seconds, got nan" -- "$P" render -W 32 -H 32 --time nan -o "$T/n.png"
-  expect 2 "\-\-time: must be a finite number of seconds, got inf" -- "$P" compare -W 32 -H 32 --time inf --techniques none -o "$T/cmpn"
+  expect 2 "\-\-time: expected a decimal number, got .nan." -- "$P" render -W 32 -H 32 --time nan -o "$T/n.png"
+  expect 2 "\-\-time: must be a finite number of seconds, got inf" -- "$P" compare -W 32 -H 32 --time 1e400 --techniques none -o "$T/cmpn"
   expect 2 "\-\-max-error: must be a finite RMSE >= 0, got -1" -- "$P" compare -W 32 -H 32 --techniques none --max-error -1 -o "$T/cmpn"
-  expect 2 "\-\-max-error: must be a finite RMSE >= 0, got nan" -- "$P" compare -W 32 -H 32 --techniques none --max-error nan -o "$T/cmpn"
+  expect 2 "\-\-max-error: expected a decimal number, got .nan." -- "$P" compare -W 32 -H 32 --techniques none --max-error nan -o "$T/cmpn"
   expect 2 "\-\-ppd: must be in .* pixels per degree, got 0" -- "$P" compare -W 32 -H 32 --techniques none --ppd 0 -o "$T/cmpn"
-  expect 2 "\-\-ppd: must be in .* pixels per degree, got inf" -- "$P" compare -W 32 -H 32 --techniques none --ppd inf -o "$T/cmpn"
+  expect 2 "\-\-ppd: must be in .* pixels per degree, got inf" -- "$P" compare -W 32 -H 32 --techniques none --ppd 1e999 -o "$T/cmpn"
+  # CLI11 reads 0x10 as 16 and 010 as 8: numbers are decimal only, every option.
+  expect 2 "\-\-samples: expected a decimal number, got .0x10." -- "$P" render -W 32 -H 32 --samples 0x10 -o "$T/n.png"
+  expect 2 "\-\-seed: expected a decimal number, got .010." -- "$P" render -W 32 -H 32 --seed 010 -o "$T/n.png"
+  expect 2 "\-\-time: expected a decimal number, got .0x1p2." -- "$P" render -W 32 -H 32 --time 0x1p2 -o "$T/n.png"
+  expect 2 "\-\-memory-budget: expected a positive size with a unit" -- "$P" --memory-budget 12 info
   test ! -e "$T/n.png" || { echo "FAIL: an image was written for --time nan"; fail=1; }
   # One technique's failure (vssm refuses a map that is not a power of two when it renders) is its
   # row in every output; the others go on; the run ends with exit 1 naming it.
@@ -176,6 +181,16 @@ render() {
     "$P" render -t dcs -W 16 -H 16 --param lut-file="$SRC/luts/edge_rect_stratified_correlated_n16_seed1.lut" -o "$T/l.png"
   expect 2 "lut-file: '/nonexistent.lut': no such file" -- "$P" render -t dcs-lut -W 16 -H 16 --param lut-file=/nonexistent.lut -o "$T/l.png"
   expect 2 "lut-dir: '$T/nolut' is not a folder" -- "$P" render -t dcs-lut -W 16 -H 16 --param lut-dir="$T/nolut" -o "$T/l.png"
+  # Refused before the work, naming what: an edge LUT too large for the run's memory (it took
+  # 117 s to build before failing), a swept value (as --sweep, before any GL setup), an empty
+  # shader folder (it was read as /).
+  expect 1 "dcs: an edge LUT of 1 sets with lut-cube 1024 and lut-line 4096 needs about" -- \
+    "$P" --memory-budget 256MiB render -t dcs-lut -W 16 -H 16 --seed 7 --param lut-cube=1024 --param lut-line=4096 -o "$T/l.png"
+  expect 2 "^penumbra: \-\-sweep: map: expected a number, got 'abc'" -- \
+    "$P" compare -W 16 -H 16 --techniques mvr --sweep map=64,abc -o "$T/sw"
+  grep -q "renderer:" "$T/err" && { echo "FAIL: a bad --sweep value was found after the GL setup"; fail=1; }
+  test ! -e "$T/sw" || { echo "FAIL: a refused compare made its output folder"; fail=1; }
+  expect 1 "PENUMBRA_SHADER_DIR: is set but empty" -- env PENUMBRA_SHADER_DIR= "$P" render -W 16 -H 16 -o "$T/l.png"
   # GL limits and out-of-memory: one-line errors, never a crash or a GL error.
   noglerr() { if grep -q 'GL error\|GL: ' "$T/err"; then echo "FAIL: GL error logged"; cat "$T/err"; fail=1; fi; }
   expect 2 "map: 100000 is outside" -- "$P" render -t mvr -W 32 -H 32 --param map=100000 -o "$T/p.png"; noglerr

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <filesystem>
@@ -66,6 +68,30 @@ TEST_F(Files, AFailedWriteLeavesTheFileThatWasThere) {
   EXPECT_EQ(contents(file), "the good one\n");
   EXPECT_EQ(entries(dir_), 1u);
   EXPECT_THROW(writeTextFile((dir_ / "no" / "such" / "x.txt").string(), "x"), Error);
+}
+
+// Ctrl-C in the middle of a write: the temporary goes, the good file stays, and the process ends
+// by the signal (a child process, so the test runner's own disposition is untouched).
+TEST_F(Files, AnInterruptedWriteLeavesNoTemporary) {
+  const fs::path file = dir_ / "image.exr";
+  writeTextFile(file.string(), "the good one\n");
+  for (const int sig : {SIGINT, SIGTERM}) {
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      installInterruptCleanup();
+      writeAtomically(file.string(), [&](const std::string& temporary) {
+        std::ofstream(temporary) << "half a fi";
+        std::raise(sig);
+      });
+      std::_Exit(0);  // not reached: the signal ends the child
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "status " << status;
+    EXPECT_EQ(contents(file), "the good one\n");
+    EXPECT_EQ(entries(dir_), 1u) << "the .partial- temporary is removed";
+  }
 }
 
 // One run at a time in a folder: the second is refused naming the folder; the hold ends with the

@@ -22,33 +22,12 @@ namespace {
 using detail::Json;
 using test::expectError;
 using test::hasWarning;
+using test::base64;
+using test::cubeDocument;
 using test::sceneData;
+using test::sceneWithTexture;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
-std::string base64(const std::string& bytes) {
-  static const char kAlphabet[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
-    std::uint32_t v = 0;
-    for (std::size_t k = 0; k < 3; ++k)
-      v = v << 8 | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
-    for (std::size_t k = 0; k < 4; ++k)
-      out += k <= n ? kAlphabet[(v >> (18 - 6 * k)) & 63] : '=';
-  }
-  return out;
-}
-
-// tests/data/scene/cube.gltf: one node, one mesh, 8 float positions and 36 uint16 indices in
-// one data: URI buffer (positions at 0, indices at 96).
-Json cubeDocument() {
-  std::ifstream in(sceneData("cube.gltf"));
-  std::stringstream text;
-  text << in.rdbuf();
-  return Json::parse(text.str());
-}
 
 struct CubeBuffer {
   float positions[8][3];
@@ -445,13 +424,6 @@ TEST(SceneBadInputs, PlyWithTwoVertexElementsIsRejected) {
 // files, NaN/Inf texels: rejected or sanitised with a warning"). The readers' own cases are in
 // core_image_io_test; here the scene must pass the warning on and name the texture on failure.
 
-std::string sceneWithTexture(const std::string& texture) {
-  return R"({"materials": [{"name": "m", "texture": ")" + texture +
-         R"("}], "objects": [{"shape": "plane", "material": "m"}],
-             "lights": [{"type": "rect", "position": [0, 2, 0], "texture": ")" +
-         texture + R"("}]})";
-}
-
 TEST(SceneBadInputs, ExrTextureNonFiniteTexelsAreSanitisedWithASceneWarning) {
   test::TempDir dir;
   Image img(3, 2, 3, 0.25f);
@@ -714,155 +686,6 @@ TEST(SceneBadInputs, ObjMaterialProblemsAreWarnedAndTheObjectMaterialWins) {
   EXPECT_NEAR(faded.opacity, 0.3f, 1e-6f);
   const Scene c = loadScene(dir.file("plain.obj", tri));
   EXPECT_FALSE(hasWarning(c, "mtl"));
-}
-
-}  // namespace
-}  // namespace penumbra
-
-namespace penumbra {
-namespace {
-
-// ---------------------------------------------------------------------------------------------
-// Hostile inputs: nesting and size. A value nested 70,000 deep (in a scene file or a --set
-// value) crashed the messages that quoted it (a recursive dump), glTF `extras` 20,000 deep
-// crashed tinygltf's conversion, and a 1 MB bad string came back as a 1 MB "line".
-
-std::string nested(std::size_t depth) { return std::string(depth, '[') + "1" + std::string(depth, ']'); }
-
-TEST(SceneHostile, DeepNestingIsRefusedBeforeAnythingRecurses) {
-  test::TempDir dir;
-  const std::string scene = dir.file("deep.json", "{\"name\": \"deep\", \"background\": " + nested(70000) + "}");
-  try {
-    loadScene(scene);
-    ADD_FAILURE() << "no error for a value nested 70,000 deep";
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(scene), std::string::npos) << what;
-    EXPECT_NE(what.find("nested deeper than 128 arrays and objects"), std::string::npos) << what;
-    EXPECT_LT(what.size(), 600u) << "one short line";
-  }
-  // 128 levels are read (and then refused for what they are, quoting at most 80 characters).
-  const std::string ok = dir.file("ok.json", "{\"background\": " + nested(127) + "}");
-  try {
-    loadScene(ok);
-    ADD_FAILURE() << "a nested background is not a colour";
-  } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()).find("nested deeper"), std::string::npos) << e.what();
-    EXPECT_LT(std::string(e.what()).size(), 400u) << e.what();
-  }
-  const std::string plain = dir.file("plain.json", "{}");
-  expectError([&] { loadScene(plain, {"camera.fov=" + nested(70000)}); }, "--set",
-              "the value is nested deeper than 128 arrays and objects");
-
-  Json doc = cubeDocument();
-  std::string extras;
-  for (int i = 0; i < 20000; ++i) extras += "{\"a\":";
-  extras += "1" + std::string(20000, '}');
-  std::string text = doc.dump();
-  text.insert(text.rfind('}'), ",\"extras\":" + extras);
-  const std::string gltf = dir.file("deep.gltf", text);
-  expectError([&] { loadScene(gltf); }, gltf, "extras.a.a.a");
-}
-
-TEST(SceneHostile, BadValuesAreQuotedShort) {
-  test::TempDir dir;
-  const std::string big(1 << 20, 'x');
-  const std::string scene = dir.file("long.json", "{\"resolution\": \"" + big + "\"}");
-  try {
-    loadScene(scene);
-    ADD_FAILURE() << "a string is not a resolution";
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("(1048578 characters)"), std::string::npos) << what.substr(0, 300);
-    EXPECT_LT(what.size(), 400u);
-  }
-  // A message built from anything stays one line of at most kMaxErrorMessage characters.
-  const Error e("where", std::string(100000, 'y') + "\n");
-  EXPECT_LE(std::string(e.what()).size(), kMaxErrorMessage + 40);
-  EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
-  // Abbreviated at a whole UTF-8 sequence ("é" is two bytes).
-  std::string accents;
-  for (int i = 0; i < 100; ++i) accents += "\xc3\xa9";
-  const std::string shown = abbreviate(accents, 81);
-  EXPECT_EQ(shown.substr(0, 80), accents.substr(0, 80));
-  EXPECT_EQ(shown.substr(80, 3), "...");
-}
-
-}  // namespace
-}  // namespace penumbra
-
-namespace penumbra {
-namespace {
-
-// Accepted silently before: a glTF light of negative intensity or colour (a scene file's was
-// refused), a colour of 4 numbers read as white, two lights of one name (the LUT tool overwrote
-// the first one's tables), box/plane/quad sizes of 0, -0 or 1e-45 and collinear quad corners (the
-// object vanished), a light texture with negative texels (a visibility layer of -5).
-TEST(SceneHostile, WhatWasAcceptedSilentlyIsRefusedOrNamed) {
-  test::TempDir dir;
-  const auto withLight = [&](const std::string& name, const Json& light, int nodes) {
-    Json doc = cubeDocument();
-    doc["extensionsUsed"] = Json::array({"KHR_lights_punctual"});
-    doc["extensions"]["KHR_lights_punctual"]["lights"] = Json::array({light});
-    for (int i = 1; i < nodes; ++i) {
-      doc["nodes"].push_back(Json{{"translation", {0.0, 2.0 * i, 0.0}}});
-      doc["scenes"][0]["nodes"].push_back(i);
-    }
-    for (int i = 0; i < nodes; ++i) doc["nodes"][std::size_t(i)]["extensions"]["KHR_lights_punctual"]["light"] = 0;
-    return dir.file(name, doc.dump());
-  };
-  const std::string negative = withLight("negative.gltf", Json{{"type", "point"}, {"intensity", -1.0}}, 1);
-  expectError([&] { loadScene(negative); }, negative, "a negative intensity or colour");
-  const std::string red = withLight("red.gltf", Json{{"type", "point"}, {"color", {1.0, -0.5, 0.0}}}, 1);
-  expectError([&] { loadScene(red); }, red, "a negative intensity or colour");
-  const std::string four = withLight("four.gltf", Json{{"type", "point"}, {"color", {1.0, 0.5, 0.0, 1.0}}}, 1);
-  expectError([&] { loadScene(four); }, four, "a light's color must be 3 numbers, got [1.0,0.5,0.0,1.0]");
-  // One light definition on two nodes: two lights, named apart by their nodes.
-  const std::string shared = withLight("shared.gltf", Json{{"type", "point"}, {"name", "lamp"}}, 2);
-  std::vector<std::string> lamps;
-  for (const Light& l : loadScene(shared).lights)  // (a bare glTF gets a default light too)
-    if (l.name.rfind("lamp", 0) == 0) lamps.push_back(l.name);
-  ASSERT_EQ(lamps.size(), 2u);
-  EXPECT_EQ(lamps[0], "lamp");
-  EXPECT_EQ(lamps[1].rfind("lamp@", 0), 0u) << lamps[1];
-  const std::string twice = dir.file("twice.json", R"({"objects": [{"shape": "plane"}],
-      "lights": [{"name": "key", "type": "point", "position": [0, 2, 0]}, {"name": "key", "type": "point", "position": [1, 2, 0]}]})");
-  expectError([&] { loadScene(twice); }, twice, "lights[1] 'key': has the name of lights[0] 'key': light names must differ");
-
-  for (const char* size : {"0", "-0", "[1, 0]", "[1, -2]"}) {
-    const std::string path = dir.file("zero.json", std::string(R"({"objects": [{"shape": "plane", "size": )") + size + "}]}");
-    expectError([&] { loadScene(path); }, path, "size: must be positive");
-  }
-  const std::string tiny = dir.file("tiny.json", R"({"objects": [{"shape": "box", "size": 1e-45}]})");
-  expectError([&] { loadScene(tiny); }, tiny, "no triangle of the box has an area in float");
-  const std::string line = dir.file("line.json", R"({"objects": [{"shape": "quad", "corners": [[0,0,0],[1,0,0],[2,0,0],[3,0,0]]}]})");
-  expectError([&] { loadScene(line); }, line, "no triangle of the quad has an area in float");
-
-  // What a glTF holds that penumbra does not use is said, once each.
-  Json extra = cubeDocument();
-  extra["cameras"] = Json::array({Json{{"type", "perspective"}, {"perspective", {{"yfov", 1.0}, {"znear", 0.1}}}}});
-  extra["extensionsUsed"] = Json::array({"KHR_materials_pbrSpecularGlossiness", "KHR_materials_clearcoat"});
-  extra["materials"] = Json::array({Json{{"pbrMetallicRoughness", {{"baseColorFactor", {2.0, 0.5, 0.5, 1.0}}}},
-                                         {"emissiveFactor", {1.0, 1.0, 1.0}},
-                                         {"extensions", {{"KHR_materials_pbrSpecularGlossiness", Json::object()}}}}});
-  extra["meshes"][0]["primitives"][0]["material"] = 0;
-  extra["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 0;  // the positions, read as colours
-  const Scene said = loadScene(dir.file("extra.gltf", extra.dump()));
-  for (const char* w : {"1 camera(s) not used", "extension KHR_materials_clearcoat is not read",
-                        "extension KHR_materials_pbrSpecularGlossiness is not used (shaded as metallic-roughness",
-                        "emissiveFactor is not used", "baseColorFactor outside [0, 1], clamped",
-                        "1 primitive(s) with COLOR_0: vertex colours are not used"})
-    EXPECT_TRUE(hasWarning(said, w)) << w;
-
-  const std::string far = dir.file("far.json", R"({"objects": [{"shape": "box"}],
-      "camera": {"position": [0, 0, 5], "target": [0, 0, 0], "near": 1e30}})");
-  expectError([&] { loadScene(far); }, far, "camera.near: 1e+30 is beyond every object");
-
-  Image img(2, 2, 3, 0.5f);
-  img.at(1, 1, 2) = -5.0f;
-  writeExr(dir.file("neg.exr", ""), {{"", &img}});
-  const std::string textured = dir.file("neg.json", sceneWithTexture("neg.exr"));
-  expectError([&] { loadScene(textured); }, textured, "has 1 negative values (a light cannot emit negative radiance)");
 }
 
 }  // namespace

@@ -3,8 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <nlohmann/json.hpp>
 #include <glm/glm.hpp>
 #include <string>
 
@@ -57,6 +61,35 @@ inline double signedVolume(const geo::TriangleMesh& m) {
 }
 
 using test::expectError;  // tests/test_util.h
+
+// tests/data/scene/cube.gltf: one node, one mesh, 8 float positions and 36 uint16 indices in
+// one data: URI buffer (positions at 0, indices at 96).
+inline nlohmann::json cubeDocument() {
+  std::ifstream in(sceneData("cube.gltf"));
+  std::stringstream text;
+  text << in.rdbuf();
+  return nlohmann::json::parse(text.str());
+}
+
+inline std::string base64(const std::string& bytes) {
+  static const char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t v = 0;
+    for (std::size_t k = 0; k < 3; ++k) v = v << 8 | (k < n ? static_cast<unsigned char>(bytes[i + k]) : 0u);
+    for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(v >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+// A scene file whose material and rect light both use `texture`.
+inline std::string sceneWithTexture(const std::string& texture) {
+  return R"({"materials": [{"name": "m", "texture": ")" + texture +
+         R"("}], "objects": [{"shape": "plane", "material": "m"}],
+             "lights": [{"type": "rect", "position": [0, 2, 0], "texture": ")" +
+         texture + R"("}]})";
+}
 
 inline bool hasWarning(const Scene& s, const std::string& fragment) {
   for (const std::string& w : s.warnings) {

@@ -25,6 +25,7 @@ int runStudy(CLI::App& app, int argc, char** argv, Options& o, int (*study)(cons
              const std::function<void()>& typed = {}) {
   std::string backend = "egl";
   app.add_option("--backend", backend, "GL backend: egl | osmesa");
+  cli::requireDecimalNumbers(app);
   CLI11_PARSE(app, argc, argv);
   try {
     o.backend = cli::parseBackend(backend);

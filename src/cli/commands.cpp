@@ -41,8 +41,8 @@ using nlohmann::json;
 namespace penumbra::cli {
 namespace {
 
-Scene loadSceneFor(const CommonOptions& o) {
-  return o.scene.empty() ? defaultScene(o.overrides) : loadScene(o.scene, o.overrides);
+Scene loadSceneFor(const CommonOptions& o, const LoadOptions& load = {}) {
+  return o.scene.empty() ? defaultScene(o.overrides, load) : loadScene(o.scene, o.overrides, load);
 }
 
 // Numbers CLI11 reads as floats accept "nan" and "inf": refused here, one line, exit 2.
@@ -200,7 +200,7 @@ int listTechniques(bool asJson, bool withParams, const std::string& format) {
 }
 
 int info(const CommonOptions& o) {
-  Scene scene = loadSceneFor(o);
+  Scene scene = loadSceneFor(o, LoadOptions{/*decodeTextures=*/false});  // sides from headers, no pixels
   json j;
   j["scene"] = scene.sourcePath.empty() ? "default" : scene.sourcePath;
   j["triangles"] = scene.triangleCount();
@@ -219,6 +219,9 @@ int info(const CommonOptions& o) {
                       {"components", r.components}, {"closed", r.closed}});
   }
   j["meshes"] = meshes;
+  json textures = json::array();
+  for (const Texture& t : scene.textures) textures.push_back({{"source", t.source}, {"width", t.width}, {"height", t.height}});
+  j["textures"] = textures;
   if (o.json) {
     std::printf("%s\n", j.dump(2).c_str());
     return 0;
@@ -227,6 +230,7 @@ int info(const CommonOptions& o) {
   std::printf("triangles  %zu\nlights     %zu\nmaterials  %zu%s\n", scene.triangleCount(), scene.lights.size(),
               scene.materials.size(), scene.hasSemiOpaque() ? " (semi-opaque surfaces present)" : "");
   for (auto& m : scene.meshes) std::printf("mesh %-40s %s\n", m.name.c_str(), m.report.summary().c_str());
+  for (const Texture& t : scene.textures) std::printf("texture    %s (%d x %d)\n", t.source.c_str(), t.width, t.height);
   for (auto& w : scene.warnings) std::printf("warning    %s\n", w.c_str());
   return 0;
 }
@@ -296,12 +300,13 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
 
   Scene scene = loadSceneFor(o);
   scene.makeCameraRelative();  // in place: each Renderer would otherwise translate a copy
+  RenderSettings settings = settingsFor(o, scene);
+  checkComparison(settings, options);  // before the output folder is touched or GL set up
   options.outDir = c.outDir.empty() ? (fs::path("out") / fileNameComponent(scene.name, "scene")).string() : c.outDir;
   checkWritableFolder(options.outDir, options.outDir, /*create=*/true);
   const FolderLock lock(options.outDir);
   removeReport(options.outDir);  // no report of an earlier run beside this run's images
   options.onRow = [&](const CompareResult& partial) { writeReport(partial, options.outDir); };
-  RenderSettings settings = settingsFor(o, scene);
   auto context = gl::Context::create(parseBackend(o.backend));
   PLOG_INFO("renderer: {} ({})", context->renderer(), context->version());
   checkImageSize(*context, settings);

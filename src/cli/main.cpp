@@ -6,8 +6,11 @@
 #include <new>
 
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "core/error.h"
+#include "core/files.h"
 #include "core/log.h"
+#include "core/memory.h"
 
 using namespace penumbra;
 
@@ -42,6 +45,10 @@ int main(int argc, char** argv) {
   // spdlog reads an unknown level as "off": refuse it instead of silencing every message.
   app.add_option("--log", logLevel, "log level: trace, debug, info, warn, error, off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+  std::string memoryBudget;
+  app.add_option("--memory-budget", memoryBudget,
+                 "the most memory this run may hold, e.g. 4GiB (default: physical memory and ulimit); "
+                 "a scene, texture or technique needing more is refused before it allocates");
   // Subcommands made below inherit this: an option of the main command (--log) is accepted
   // after the subcommand too (`penumbra render --log debug`), as README lists it.
   app.fallthrough();
@@ -100,6 +107,7 @@ int main(int argc, char** argv) {
   lut->add_flag("--ltc", lutOptions.ltc, "fit the LTC GGX table instead (ltc_ggx.lut and ltc_ggx_error.csv)");
   lut->add_option("--ltc-size", lutOptions.ltcSize, "LTC table size (cells a side)")->capture_default_str();
 
+  cli::requireDecimalNumbers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -109,8 +117,10 @@ int main(int argc, char** argv) {
     return int(ExitCode::Usage);
   }
   setLogLevel(logLevel);
+  installInterruptCleanup();  // Ctrl-C leaves no .partial-<pid> file behind
 
   try {
+    if (!memoryBudget.empty()) setMemoryBudget(cli::parseByteSize("--memory-budget", memoryBudget));
     if (*list) return cli::listTechniques(listJson, listParams, listFormat);
     if (*info) return cli::info(o);
     if (*render) return cli::render(o, technique, output);

@@ -1,8 +1,10 @@
 #include "cli/options.h"
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/key_values.h"
 #include "sampling/shared.hpp"
 
 namespace penumbra::cli {
@@ -33,6 +35,37 @@ PixelPattern parsePixelPattern(const std::string& s) {
   if (s == "decorrelated") return PixelPattern::Decorrelated;
   if (s == "interleaved") return PixelPattern::Interleaved;
   throw Error("--pattern", "unknown pixel pattern '" + s + "' (correlated|decorrelated|interleaved)", ExitCode::Usage);
+}
+
+double parseByteSize(const std::string& what, const std::string& text) {
+  static const std::pair<const char*, double> kUnits[] = {
+      {"KiB", 1024.0}, {"MiB", 1048576.0}, {"GiB", 1073741824.0}, {"TiB", 1099511627776.0}};
+  for (const auto& [unit, scale] : kUnits) {
+    const std::size_t n = std::char_traits<char>::length(unit);
+    double x = 0.0;
+    if (text.size() > n && text.compare(text.size() - n, n, unit) == 0 && parseNumber(text.substr(0, text.size() - n), x) &&
+        x > 0.0 && x * scale < 1e18)
+      return x * scale;
+  }
+  throw Error(what, "expected a positive size with a unit (512MiB, 1.5GiB; KiB, MiB, GiB, TiB), got '" + abbreviate(text) + "'",
+              ExitCode::Usage);
+}
+
+void requireDecimalNumbers(CLI::App& app) {
+  const CLI::Validator decimal(
+      [](std::string& text) -> std::string {
+        const std::size_t digits = text.find_first_not_of("+-");
+        double x = 0.0;
+        const bool octalLooking = digits != std::string::npos && text[digits] == '0' && digits + 1 < text.size() &&
+                                  std::isdigit(static_cast<unsigned char>(text[digits + 1]));
+        return parseNumber(text, x) && !octalLooking ? "" : "expected a decimal number, got '" + abbreviate(text) + "'";
+      },
+      "DECIMAL");
+  for (CLI::Option* option : app.get_options()) {
+    const std::string type = option->get_type_name();
+    if (type == "INT" || type == "UINT" || type == "FLOAT") option->check(decimal);
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) requireDecimalNumbers(*sub);
 }
 
 int parsePositive(const std::string& what, const std::string& v, int hi) {

@@ -10,6 +10,10 @@
 #include "pipeline/renderer.h"
 #include "sampling/light_samples.h"
 
+namespace CLI {
+class App;
+}
+
 namespace penumbra::cli {
 
 gl::Backend parseBackend(const std::string& name);         // "egl" | "osmesa", else Error("--backend")
@@ -22,6 +26,15 @@ PixelPattern parsePixelPattern(const std::string& s);        // "correlated|deco
 SweepAxis parseSweep(const std::string& arg);
 // "x,y,w,h"; throws Error("--inset") (usage).
 Inset parseInset(const std::string& arg);
+
+// A size in bytes: a decimal number and a binary unit, "512MiB", "1.5GiB" (KiB, MiB, GiB, TiB).
+// Throws Error(what) (usage).
+double parseByteSize(const std::string& what, const std::string& text);
+
+// Every number option of `app` and its subcommands takes decimal numbers only: CLI11 reads
+// integers with strtoll's base 0 ("0x10" is 16, "010" is 8) and floats with strtold ("0x1p4",
+// "inf"), none of which a user means.
+void requireDecimalNumbers(CLI::App& app);
 
 // An integer in 1..hi, else Error(what, "expected an integer in 1..hi, got 'v'") (usage).
 int parsePositive(const std::string& what, const std::string& v, int hi);

@@ -64,6 +64,54 @@ bool CompareResult::hasTemporal() const {
 
 namespace {
 
+struct Job {
+  const TechniqueInfo* technique;
+  std::vector<std::string> read;  // the parameters it read at this preset
+};
+
+// What a comparison will render: the presets, whether the converged reference is measured, and
+// per preset the techniques, every one created with its parameters (a key no technique reads is
+// refused; presets that do not change what a technique renders are dropped). No GL.
+struct Plan {
+  std::vector<ComparePreset> presets;
+  bool converged = false;
+  std::vector<std::vector<Job>> jobs;  // per preset
+};
+
+Plan planComparison(const RenderSettings& settings, const CompareOptions& o) {
+  Plan plan;
+  plan.presets = makePresets(settings, o.params, o.sweeps);
+  plan.converged = o.converged || std::any_of(o.sweeps.begin(), o.sweeps.end(), [](auto& a) { return a.key == "samples"; });
+  if (!o.reference.create || (plan.converged && !o.convergedReference.create))
+    throw Error("compare", "no reference technique was handed in (CompareOptions::reference, convergedReference)");
+  for (auto& r : o.insets)
+    if (r.x + r.w > plan.presets[0].width || r.y + r.h > plan.presets[0].height)
+      throw Error("compare", fmt::format("inset {},{},{},{} is outside the {}x{} image", r.x, r.y, r.w, r.h,
+                                         plan.presets[0].width, plan.presets[0].height), ExitCode::Usage);
+  plan.jobs.resize(plan.presets.size());
+  TechniqueParams all(plan.presets[0].params, plan.presets[0].swept);
+  std::vector<std::string> keys;
+  for (std::size_t p = 0; p < plan.presets.size(); ++p)
+    for (auto& info : o.techniques) {
+      TechniqueParams params(plan.presets[p].params, plan.presets[p].swept);
+      info.make(params);
+      all.noteReads(params);
+      std::string key = info.name + " " + renderKey(plan.presets[p], params.read());
+      if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
+      keys.push_back(key);
+      plan.jobs[p].push_back({&info, params.read()});
+    }
+  // The converged reference reads its own parameters (`reference-*`) from the same set.
+  if (plan.converged)
+    for (auto& preset : plan.presets) {
+      TechniqueParams params(preset.params, preset.swept);
+      o.convergedReference.make(params);
+      all.noteReads(params);
+    }
+  all.checkConsumed();
+  return plan;
+}
+
 // One call of compareTechniques: the plan (every technique at every preset, created and its
 // parameters checked before the long renders start), then per preset the references and the
 // techniques, each rendered, timed, measured and written.
@@ -72,19 +120,14 @@ class Comparison {
   Comparison(gl::Context& context, const Scene& scene, const RenderSettings& settings, const CompareOptions& o)
       : context_(context), scene_(scene), settings_(settings), o_(o), frames_(std::max(1, o.frames)),
         animated_(scene.isAnimated()) {
-    result_.presets = makePresets(settings, o.params, o.sweeps);
-    converged_ = o.converged || std::any_of(o.sweeps.begin(), o.sweeps.end(), [](auto& a) { return a.key == "samples"; });
+    Plan plan = planComparison(settings, o);
+    result_.presets = std::move(plan.presets);
+    converged_ = plan.converged;
+    jobs_ = std::move(plan.jobs);
     if (converged_ && !o.converged) PLOG_INFO("samples are swept: errors are also measured against {}", o.convergedReference.name);
-    if (!o.reference.create || (converged_ && !o.convergedReference.create))
-      throw Error("compare", "no reference technique was handed in (CompareOptions::reference, convergedReference)");
     if (frames_ > 1 && !animated_ &&
         std::all_of(scene.lights.begin(), scene.lights.end(), [](auto& l) { return l.emissionFrames.size() < 2; }))
       PLOG_WARN("--frames {}: the scene has no animation (no \"spin\", no animated light): every frame is the same", frames_);
-    for (auto& r : o.insets)
-      if (r.x + r.w > result_.presets[0].width || r.y + r.h > result_.presets[0].height)
-        throw Error("compare", fmt::format("inset {},{},{},{} is outside the {}x{} image", r.x, r.y, r.w, r.h,
-                                           result_.presets[0].width, result_.presets[0].height), ExitCode::Usage);
-    planJobs();
   }
 
   CompareResult run() {
@@ -101,10 +144,6 @@ class Comparison {
   }
 
  private:
-  struct Job {
-    const TechniqueInfo* technique;
-    std::vector<std::string> read;  // the parameters it read at this preset
-  };
   // The renderer of the last frame asked for, so warm-up and timed renders of one frame share it.
   struct Slot {
     std::unique_ptr<Renderer> renderer;
@@ -120,32 +159,6 @@ class Comparison {
     // without it the same-sample reference's.
     std::unique_ptr<HdrFlipReference> flip;
   };
-
-  // Presets that do not change what a technique renders are dropped; a parameter no technique
-  // reads is refused.
-  void planJobs() {
-    jobs_.resize(result_.presets.size());
-    TechniqueParams all(result_.presets[0].params);
-    std::vector<std::string> keys;
-    for (std::size_t p = 0; p < result_.presets.size(); ++p)
-      for (auto& info : o_.techniques) {
-        TechniqueParams params(result_.presets[p].params);
-        info.make(params);
-        all.noteReads(params);
-        std::string key = info.name + " " + renderKey(result_.presets[p], params.read());
-        if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
-        keys.push_back(key);
-        jobs_[p].push_back({&info, params.read()});
-      }
-    // The converged reference reads its own parameters (`reference-*`) from the same set.
-    if (converged_)
-      for (auto& preset : result_.presets) {
-        TechniqueParams params(preset.params);
-        o_.convergedReference.make(params);
-        all.noteReads(params);
-      }
-    all.checkConsumed();
-  }
 
   // Frame f: the scene posed at its time. Only moving scenes are copied, one frame at a time (a
   // long --frames run must not hold a copy of the scene per frame); a renderer made from a posed
@@ -236,7 +249,7 @@ class Comparison {
       result_.insetSource = o_.insets.empty() ? "chosen" : "given";
     }
     if (converged_) {
-      TechniqueParams params(result_.presets[presetIndex_].params);
+      TechniqueParams params(result_.presets[presetIndex_].params, result_.presets[presetIndex_].swept);
       auto conv = o_.convergedReference.make(params);
       // One per image size (and reference-* parameters, should a sweep vary them).
       std::string key = fmt::format("{}x{}", preset_.width, preset_.height);
@@ -275,7 +288,7 @@ class Comparison {
     std::vector<FrameVisibility> kept;
     FrameResult f;
     try {
-      TechniqueParams params(result_.presets[presetIndex_].params);
+      TechniqueParams params(result_.presets[presetIndex_].params, result_.presets[presetIndex_].swept);
       auto tech = job.technique->make(params);
       ShadingMode shading = preset_.shading;
       if (shading == ShadingMode::PerSample && !tech->providesPerSample()) shading = ShadingMode::Modulate;
@@ -382,6 +395,8 @@ class Comparison {
 };
 
 }  // namespace
+
+void checkComparison(const RenderSettings& settings, const CompareOptions& options) { planComparison(settings, options); }
 
 CompareResult compareTechniques(gl::Context& context, const Scene& given, const RenderSettings& settings,
                                 const CompareOptions& o) {

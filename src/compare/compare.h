@@ -133,6 +133,10 @@ struct CompareResult {
 // the order of the runs; none on the FLIP axis.
 std::vector<std::pair<const ComparePreset*, double>> referenceNoiseOn(const CompareResult& r, ErrorAxis axis);
 
+// What compareTechniques refuses before it renders (sweeps, insets, every technique created with
+// its parameters at every preset), without a GL context: a bad parameter costs no GL setup.
+void checkComparison(const RenderSettings& settings, const CompareOptions& options);
+
 // Renders the references and every technique at every preset, writing images (.exr, .png,
 // heat maps, inset crops) into options.outDir as it goes. Parameters are checked (a key no
 // technique reads is refused) before the first render. A technique that fails is a run with

@@ -57,6 +57,7 @@ std::vector<ComparePreset> makePresets(const RenderSettings& settings, const std
           p.height = std::max(1, int(std::lround(double(p.width) * settings.height / settings.width)));
         } else {
           p.params.push_back(axis.key + "=" + v);
+          p.swept.push_back(axis.key);
         }
         next.push_back(p);
       }

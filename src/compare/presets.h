@@ -25,6 +25,7 @@ struct ComparePreset {
   std::vector<std::pair<std::string, std::string>> values;
   int width = 0, height = 0, samples = 0;
   std::vector<std::string> params;  // key=value: the fixed parameters and this preset's swept ones
+  std::vector<std::string> swept;   // the keys of `params` a sweep gave
   std::string fileSuffix() const;   // "" or "__samples-32_map-512"
 };
 

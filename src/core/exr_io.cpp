@@ -22,6 +22,7 @@
 #include "core/image_io.h"
 #include "core/image_io_detail.h"
 #include "core/log.h"
+#include "core/memory.h"
 
 namespace penumbra {
 using namespace image_io_detail;
@@ -121,7 +122,7 @@ void checkExrAttributeSizes(const std::string& path) {
 // Validates everything that decides how much memory a read will take, before any reader
 // allocates: the core API parses only the header (the chunk table is read lazily), whereas
 // Imf::InputFile sizes its line-offset table from the data window straight away.
-void checkExrFile(const std::string& path) {
+ImageHeader exrHeader(const std::string& path) {
   {
     FilePtr probe(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!probe) throw Error(path, "cannot open: " + errnoText(errno));
@@ -156,7 +157,14 @@ void checkExrFile(const std::string& path) {
     throw Error(path, "data window " + sizeText(w, h) + " is larger than " +
                           sizeText(kMaxDimension, kMaxDimension));
   }
-  guard.reset();
+  return {int(w), int(h)};
+}
+
+void checkExrFile(const std::string& path) {
+  const ImageHeader header = exrHeader(path);
+  // Float RGBA texels; OpenEXR's own line buffers are a few lines.
+  checkMemory(path, "decoding its " + sizeText(header.width, header.height) + " texels",
+              double(header.width) * double(header.height) * 16.0);
   checkExrAttributeSizes(path);
   // reduceMemory/reduceTime bound what the check itself may allocate and read.
   if (Imf::checkOpenEXRFile(path.c_str(), /*reduceMemory=*/true, /*reduceTime=*/true)) {
@@ -328,6 +336,8 @@ Image readExr(const std::string& path, int* sanitized) {
   };
   return readExrWith(path, plan, "", sanitized);
 }
+
+ImageHeader readExrHeader(const std::string& path) { return exrHeader(path); }
 
 Image readExrLayer(const std::string& path, const std::string& layer, int* sanitized) {
   Planner plan = [](const std::string& path, const std::map<std::string, LayerChannels>& layers,

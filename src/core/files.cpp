@@ -4,7 +4,9 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cctype>
+#include <csignal>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -24,8 +26,64 @@ std::string fileNameComponent(const std::string& name, const std::string& fallba
   return out.empty() ? fallback : out;
 }
 
+namespace {
+
+// The temporaries being written, for the signal handler: fixed slots of plain characters, as a
+// handler may only read memory and call async-signal-safe functions (unlink, signal, raise).
+struct InFlight {
+  std::atomic<int> state{0};  // 0 free, 1 being filled, 2 holds a path
+  char path[4096];
+};
+InFlight gInFlight[32];
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads the slots' state");
+
+void removeInFlight(int sig) {
+  for (InFlight& slot : gInFlight)
+    if (slot.state.load(std::memory_order_acquire) == 2) ::unlink(slot.path);
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+// Registers `temporary` while it lives (a path too long for a slot, or more than 32 writes at
+// once, is written unregistered: left behind by a signal, as before).
+class InFlightTemporary {
+ public:
+  explicit InFlightTemporary(const std::string& temporary) {
+    if (temporary.size() >= sizeof(InFlight::path)) return;
+    for (InFlight& slot : gInFlight) {
+      int expected = 0;
+      if (!slot.state.compare_exchange_strong(expected, 1, std::memory_order_acquire)) continue;
+      std::memcpy(slot.path, temporary.c_str(), temporary.size() + 1);
+      slot.state.store(2, std::memory_order_release);
+      slot_ = &slot;
+      return;
+    }
+  }
+  ~InFlightTemporary() {
+    if (slot_) slot_->state.store(0, std::memory_order_release);
+  }
+  InFlightTemporary(const InFlightTemporary&) = delete;
+  InFlightTemporary& operator=(const InFlightTemporary&) = delete;
+
+ private:
+  InFlight* slot_ = nullptr;
+};
+
+}  // namespace
+
+void installInterruptCleanup() {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction action {};
+    action.sa_handler = &removeInFlight;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESETHAND;
+    sigaction(sig, &action, nullptr);
+  }
+}
+
 void writeAtomically(const std::string& path, const std::function<void(const std::string& temporary)>& write) {
   const std::string temporary = path + ".partial-" + std::to_string(::getpid());
+  const InFlightTemporary inFlight(temporary);
   try {
     write(temporary);
   } catch (...) {

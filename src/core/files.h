@@ -16,12 +16,16 @@ std::string fileNameComponent(const std::string& name, const std::string& fallba
 
 // Writes `path` through a temporary sibling ("<path>.partial-<pid>") that `write` fills and
 // closes (throwing penumbra::Error on any failure), renamed into place only then: a reader never
-// sees a half-written file, and a failed or interrupted write leaves the file that was there (an
-// interrupted one leaves its temporary beside it). On failure the temporary is removed.
+// sees a half-written file, and a failed or interrupted write leaves the file that was there. On
+// failure the temporary is removed; on Ctrl-C too, once installInterruptCleanup has run.
 void writeAtomically(const std::string& path, const std::function<void(const std::string& temporary)>& write);
 // `text` as the whole of `path`, atomically, every write and the close checked (a full disk is
 // an error naming `path`, never an empty file).
 void writeTextFile(const std::string& path, const std::string& text);
+
+// Ctrl-C (SIGINT), SIGTERM and SIGHUP remove the temporaries of the writes in flight, then end
+// the process as the signal would have (its exit status says so). main() installs it once.
+void installInterruptCleanup();
 
 // A run's hold on its output folder (an advisory lock, flock, on `<dir>/.penumbra-lock`), kept
 // while the object lives and dropped by the system if the process dies: a second run into the

@@ -2,6 +2,7 @@
 // All readers validate before allocating and throw penumbra::Error("<path>", "<problem>").
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,5 +41,25 @@ Image readPng(const std::string& path, bool srgb = true);
 
 // Reads a texture by extension (.exr or .png); other extensions are rejected.
 Image readTexture(const std::string& path, bool srgb = true);
+
+// The sides an image file declares, read from its header without decoding a pixel.
+struct ImageHeader {
+  int width = 0, height = 0;
+};
+
+// A texture file's header by extension (.png IHDR, .exr data window), validated as the readers
+// validate it before they allocate; the readers also refuse what memory (core/memory.h) cannot
+// hold before decoding.
+ImageHeader readImageHeader(const std::string& path);
+ImageHeader readExrHeader(const std::string& path);
+ImageHeader readPngHeader(const std::string& path);
+
+// Non-empty (the reason) when `bytes` bytes of PNG cannot hold the `width` x `height` image of
+// `bitDepth` and `colourType` its header declares: deflate compresses at most 1032:1 (RFC 1951's
+// longest match, 258 bytes, in a code of at least 2 bits), so the rows' smallest raw size (a
+// filter byte and the packed samples each) bounds the compressed data from below. A 71-byte file
+// declaring 16000^2 is refused before anything is allocated for it.
+std::string pngSizeProblem(std::int64_t width, std::int64_t height, int bitDepth, int colourType,
+                           std::uint64_t bytes);
 
 }  // namespace penumbra

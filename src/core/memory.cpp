@@ -23,6 +23,8 @@ double procStatusBytes(const std::string& key) {
   return 0.0;
 }
 
+double gBudget = 0.0;  // setMemoryBudget
+
 struct Budget {
   double bytes;
   std::string limit;  // which one decides, for messages
@@ -39,6 +41,13 @@ Budget budget() {
       b = {left, fmt::format("{} limit of {:.0f} MiB less {:.0f} MiB in use", resource == RLIMIT_AS ? "ulimit -v" : "ulimit -d",
                              double(r.rlim_cur) / 1048576.0, procStatusBytes(used) / 1048576.0)};
   }
+  if (gBudget > 0.0) {
+    const double held = procStatusBytes("VmRSS");
+    const double left = std::max(0.0, gBudget - held);
+    if (left < b.bytes)
+      b = {left, fmt::format("the run's memory budget of {:.0f} MiB less {:.0f} MiB held", gBudget / 1048576.0,
+                             held / 1048576.0)};
+  }
   return b;
 }
 
@@ -46,10 +55,12 @@ Budget budget() {
 
 double memoryBudgetBytes() { return budget().bytes; }
 
+void setMemoryBudget(double bytes) { gBudget = bytes > 0.0 ? bytes : 0.0; }
+
 void checkMemory(const std::string& where, const std::string& what, double bytes) {
   const Budget b = budget();
   if (bytes > b.bytes)
-    throw Error(where, fmt::format("{} needs about {:.0f} MiB, more than the {:.0f} MiB this process may allocate ({})",
+    throw MemoryError(where, fmt::format("{} needs about {:.0f} MiB, more than the {:.0f} MiB this process may allocate ({})",
                                    what, bytes / 1048576.0, b.bytes / 1048576.0, b.limit));
 }
 

@@ -5,13 +5,27 @@
 
 #include <string>
 
+#include "core/error.h"
+
 namespace penumbra {
 
-// Bytes this process may still allocate: the smaller of physical memory and, where set, the
-// address-space and data limits (`ulimit -v`, `ulimit -d`) less what the process already uses.
+// Bytes this process may still allocate: the smallest of physical memory, the address-space
+// and data limits where set (`ulimit -v`, `ulimit -d`, less what the process has mapped) and the
+// run's own budget where set (setMemoryBudget, less the memory the process holds).
 double memoryBudgetBytes();
 
-// Throws Error(where, "<what> needs about <N> MiB, more than the <M> MiB this process may
+// The run's own memory budget in bytes (0: none, the default): what a user caps a run at so that
+// an untrusted scene is refused before it allocates more (the fuzz targets run under 1 GiB).
+void setMemoryBudget(double bytes);
+
+// What checkMemory throws: a refusal no loader turns into a warning (a texture that cannot be read
+// may be dropped with one; one that does not fit must stop the run).
+class MemoryError : public Error {
+ public:
+  using Error::Error;
+};
+
+// Throws MemoryError(where, "<what> needs about <N> MiB, more than the <M> MiB this process may
 // allocate (<which limit>)") when `bytes` exceeds memoryBudgetBytes().
 void checkMemory(const std::string& where, const std::string& what, double bytes);
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 
 #include <png.h>
@@ -16,6 +17,7 @@
 #include "core/image_io.h"
 #include "core/image_io_detail.h"
 #include "core/log.h"
+#include "core/memory.h"
 
 namespace penumbra {
 using namespace image_io_detail;
@@ -61,7 +63,52 @@ struct PngHeader {
   int channels = 0;
 };
 
+// The header's sides against the largest accepted and the file's size (pngSizeProblem).
+void checkPngSize(const std::string& path, std::int64_t width, std::int64_t height, int bitDepth,
+                  int colourType) {
+  if (width > kMaxDimension || height > kMaxDimension) {
+    throw Error(path, "image " + sizeText(width, height) + " is larger than " +
+                          sizeText(kMaxDimension, kMaxDimension));
+  }
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (!ec) {
+    if (const std::string why = pngSizeProblem(width, height, bitDepth, colourType, bytes); !why.empty())
+      throw Error(path, why);
+  }
+}
+
+std::uint32_t bigEndian32(const unsigned char* b) {
+  return std::uint32_t(b[0]) << 24 | std::uint32_t(b[1]) << 16 | std::uint32_t(b[2]) << 8 | b[3];
+}
+
 }  // namespace
+
+std::string pngSizeProblem(std::int64_t width, std::int64_t height, int bitDepth, int colourType,
+                           std::uint64_t bytes) {
+  const int channels = colourType == PNG_COLOR_TYPE_RGB ? 3 : colourType == PNG_COLOR_TYPE_RGB_ALPHA ? 4
+                     : colourType == PNG_COLOR_TYPE_GRAY_ALPHA ? 2 : 1;
+  const double raw = double(height) * (1.0 + std::ceil(double(width) * channels * std::max(bitDepth, 1) / 8.0));
+  if (raw <= 1032.0 * double(bytes) + 1024.0) return {};
+  return "declares " + sizeText(width, height) + " texels (" + std::to_string(std::int64_t(raw / 1048576.0)) +
+         " MiB of rows) in " + std::to_string(bytes) + " bytes, more than deflate can compress into them: "
+         "truncated or corrupt";
+}
+
+ImageHeader readPngHeader(const std::string& path) {
+  FilePtr file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) throw Error(path, "cannot open: " + errnoText(errno));
+  unsigned char b[26];
+  const std::size_t got = std::fread(b, 1, sizeof b, file.get());
+  if (got == 0) throw Error(path, "empty file, not a PNG image");
+  if (got < 8 || png_sig_cmp(b, 0, 8) != 0) throw Error(path, "not a PNG file");
+  if (got < sizeof b || std::memcmp(b + 12, "IHDR", 4) != 0)
+    throw Error(path, "invalid PNG file: no IHDR chunk first");
+  const std::uint32_t width = bigEndian32(b + 16), height = bigEndian32(b + 20);
+  if (width == 0 || height == 0) throw Error(path, "invalid PNG file: image of size " + sizeText(width, height));
+  checkPngSize(path, width, height, b[24], b[25]);
+  return {int(width), int(height)};
+}
 
 void writePng(const std::string& path, const Image& linear, float exposure) {
   PENUMBRA_CHECK(!linear.empty() && linear.width > 0 && linear.height > 0,
@@ -148,10 +195,10 @@ Image readPng(const std::string& path, bool srgb) {
       }, &hdr)) {
     throw Error(path, "invalid PNG file: " + oneLine(io.message));
   }
-  if (hdr.width > kMaxDimension || hdr.height > kMaxDimension) {
-    throw Error(path, "image " + sizeText(hdr.width, hdr.height) + " is larger than " +
-                          sizeText(kMaxDimension, kMaxDimension));
-  }
+  checkPngSize(path, hdr.width, hdr.height, hdr.bitDepth, hdr.colorType);
+  // The decode's peak: 8- or 16-bit RGBA rows, then float RGBA.
+  checkMemory(path, "decoding its " + sizeText(hdr.width, hdr.height) + " texels",
+              double(hdr.width) * double(hdr.height) * (hdr.bitDepth == 16 ? 24.0 : 20.0));
 
   // Every layout becomes 8- or 16-bit RGBA: palette/low-bit grey/tRNS expand, grey widens to
   // RGB, and a missing alpha is filled opaque.

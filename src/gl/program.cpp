@@ -20,7 +20,9 @@ namespace penumbra::gl {
 const std::map<std::string, std::string>& embeddedShaders();
 
 std::string shaderSource(const std::string& file) {
+  // Set and empty is a mistake (`PENUMBRA_SHADER_DIR= penumbra ...`), not the root folder.
   if (const char* dir = std::getenv("PENUMBRA_SHADER_DIR")) {
+    if (!*dir) throw Error("PENUMBRA_SHADER_DIR", "is set but empty: unset it for the built-in shaders, or name a folder");
     std::ifstream in(std::string(dir) + "/" + file);
     if (!in) throw Error(std::string(dir) + "/" + file, "cannot read shader");
     std::stringstream ss;

@@ -170,14 +170,26 @@ GpuScene::GpuScene(const Scene& scene, int width, int height, std::size_t maxVer
   for (auto& d : draws_) allOpaque_ = allOpaque_ && scene.materials[std::size_t(d.material)].opacity >= 1.0f;
 
   for (auto& t : scene.textures) {
-    auto tex = gl::Texture::make2D(GL_RGBA32F, t.image.width, t.image.height);
-    Image rgba = t.image;
-    if (rgba.channels != 4) {  // loaders give RGBA; tolerate RGB
-      rgba = Image(t.image.width, t.image.height, 4, 1.0f);
-      for (std::size_t i = 0; i < t.image.pixelCount(); ++i)
-        for (int c = 0; c < std::min(3, t.image.channels); ++c) rgba.data[i * 4 + c] = t.image.data[i * t.image.channels + c];
+    PENUMBRA_CHECK(!t.image.empty(), "texture " + t.source + " was loaded without its pixels");
+    // A texture the GL cannot hold is the scene's problem, named by its file, not the
+    // technique's or the reference's that happens to render first.
+    gl::Texture tex;
+    try {
+      const int maxSize = gl::limits().maxTextureSize;
+      if (maxSize > 0 && std::max(t.image.width, t.image.height) > maxSize)
+        throw Error("", fmt::format("{} x {} texels, more than this GL's {} a side", t.image.width, t.image.height, maxSize));
+      tex = gl::Texture::make2D(GL_RGBA32F, t.image.width, t.image.height);
+      if (t.image.channels == 4) {
+        tex.upload(t.image.data.data(), 4);
+      } else {  // loaders give RGBA; tolerate RGB
+        Image rgba(t.image.width, t.image.height, 4, 1.0f);
+        for (std::size_t i = 0; i < t.image.pixelCount(); ++i)
+          for (int c = 0; c < std::min(3, t.image.channels); ++c) rgba.data[i * 4 + c] = t.image.data[i * t.image.channels + c];
+        tex.upload(rgba.data.data(), 4);
+      }
+    } catch (const Error& e) {
+      throw Error(t.source, std::string("texture cannot be uploaded: ") + e.what(), e.exitCode());
     }
-    tex.upload(rgba.data.data(), 4);
     glTextureParameteri(tex.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(tex.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(tex.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);

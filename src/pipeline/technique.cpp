@@ -99,7 +99,8 @@ const ParamSpec& TechniqueArgs::spec(const std::string& key) const {
 
 // ---- TechniqueParams -------------------------------------------------------------------------
 
-TechniqueParams::TechniqueParams(const std::vector<std::string>& keyValues) {
+TechniqueParams::TechniqueParams(const std::vector<std::string>& keyValues, std::vector<std::string> swept)
+    : swept_(std::move(swept)) {
   for (auto& kv : keyValues) {
     auto eq = kv.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
@@ -123,34 +124,36 @@ const std::string* TechniqueParams::find(const std::string& key) const {
   return nullptr;
 }
 
-namespace {
-KeyPlace paramPlace(const ParamSpec& spec) { return {"--param", spec.key, ExitCode::Usage}; }
-}  // namespace
+std::string TechniqueParams::origin(const std::string& key) const {
+  return std::find(swept_.begin(), swept_.end(), key) != swept_.end() ? "--sweep" : "--param";
+}
+
+KeyPlace TechniqueParams::place(const ParamSpec& spec) const { return {origin(spec.key), spec.key, ExitCode::Usage}; }
 
 int TechniqueParams::integer(const ParamSpec& spec) const {
   PENUMBRA_CHECK(spec.type == ParamSpec::Type::Integer, "integer read of a non-integer parameter");
   const std::string* v = find(spec.key);
-  return v ? readInteger(KeyValue::ofText(*v), paramPlace(spec), int(spec.lo), int(spec.hi)) : int(spec.fallback);
+  return v ? readInteger(KeyValue::ofText(*v), place(spec), int(spec.lo), int(spec.hi)) : int(spec.fallback);
 }
 
 double TechniqueParams::number(const ParamSpec& spec) const {
   PENUMBRA_CHECK(spec.type == ParamSpec::Type::Number, "number read of a non-number parameter");
   const std::string* v = find(spec.key);
-  return v ? readNumber(KeyValue::ofText(*v), paramPlace(spec), spec.lo, spec.hi) : spec.fallback;
+  return v ? readNumber(KeyValue::ofText(*v), place(spec), spec.lo, spec.hi) : spec.fallback;
 }
 
 bool TechniqueParams::boolean(const ParamSpec& spec) const {
   PENUMBRA_CHECK(spec.type == ParamSpec::Type::Boolean, "boolean read of a non-boolean parameter");
   const std::string* v = find(spec.key);
-  return v ? readBoolean(KeyValue::ofText(*v), paramPlace(spec)) : spec.fallback != 0.0;
+  return v ? readBoolean(KeyValue::ofText(*v), place(spec)) : spec.fallback != 0.0;
 }
 
 std::string TechniqueParams::text(const ParamSpec& spec) const {
   PENUMBRA_CHECK(spec.type == ParamSpec::Type::Choice || spec.type == ParamSpec::Type::Text, "text read of a value parameter");
   const std::string* v = find(spec.key);
   if (!v) return spec.text;
-  if (spec.type == ParamSpec::Type::Text) return readString(KeyValue::ofText(*v), paramPlace(spec));
-  return spec.choices[std::size_t(readChoice(KeyValue::ofText(*v), paramPlace(spec), spec.choices))];
+  if (spec.type == ParamSpec::Type::Text) return readString(KeyValue::ofText(*v), place(spec));
+  return spec.choices[std::size_t(readChoice(KeyValue::ofText(*v), place(spec), spec.choices))];
 }
 
 void TechniqueParams::checkConsumed() const {
@@ -158,7 +161,7 @@ void TechniqueParams::checkConsumed() const {
     if (std::find(consumed_.begin(), consumed_.end(), k) == consumed_.end()) {
       std::string known;
       for (auto& n : known_) known += (known.empty() ? "" : ", ") + n;
-      throw Error("--param", "no technique of this run has a parameter '" + k + "' (" +
+      throw Error(origin(k), "no technique of this run has a parameter '" + k + "' (" +
                                  (known.empty() ? "they take no parameters" : "known: " + known) + ")",
                   ExitCode::Usage);
     }

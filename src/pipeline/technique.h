@@ -132,11 +132,14 @@ struct ParamSpec {
 // them as known and consumed); `checkConsumed` then refuses a key no technique read, naming the
 // keys that were known, so a misspelt parameter is never silently dropped. Values are converted
 // and checked by the reader the scene loader uses too (core/key_values.h).
+struct KeyPlace;  // core/key_values.h
+
 class TechniqueParams {
  public:
   TechniqueParams() = default;
-  // "key=value" strings; throws Error("--param") for a malformed one or a repeated key.
-  explicit TechniqueParams(const std::vector<std::string>& keyValues);
+  // "key=value" strings; throws Error("--param") for a malformed one or a repeated key. The
+  // values of the `swept` keys come from a sweep: their errors name "--sweep".
+  explicit TechniqueParams(const std::vector<std::string>& keyValues, std::vector<std::string> swept = {});
   int integer(const ParamSpec& spec) const;
   double number(const ParamSpec& spec) const;
   bool boolean(const ParamSpec& spec) const;
@@ -154,7 +157,10 @@ class TechniqueParams {
 
  private:
   const std::string* find(const std::string& key) const;
+  std::string origin(const std::string& key) const;  // "--param" or "--sweep"
+  KeyPlace place(const ParamSpec& spec) const;
   std::vector<std::pair<std::string, std::string>> values_;
+  std::vector<std::string> swept_;
   mutable std::vector<std::string> known_, consumed_;
 };
 

@@ -14,7 +14,10 @@
 #include <map>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "core/error.h"
+#include "core/memory.h"
 #include "scene/loaders.h"
 
 namespace penumbra::detail {
@@ -27,6 +30,7 @@ struct Loader {
   const tinygltf::Model& gltf;
   const Json& json;
   Model& out;
+  LoadOptions options;
   // Drops summed over distinct primitives, reported once per file rather than per primitive
   // (CAD exports have hundreds); each SceneMesh keeps its own counts in its report.
   geo::MeshReport drops;
@@ -382,7 +386,8 @@ void convertMaterials(Loader& L) {
       t.source = L.path + (img.uri.empty() || img.uri.rfind("data:", 0) == 0 ? "#image" + std::to_string(image)
                                                                             : "#" + img.uri);
       std::string why = "no data";
-      if (img.image.empty() || !decodeGltfImage(img.image, t.image, why, srgb)) {
+      const bool readable = !img.image.empty() && encodedImageSize(img.image, t.width, t.height, why);
+      if (!readable || (L.options.decodeTextures && !decodeGltfImage(img.image, t.image, why, srgb))) {
         L.warn(what + ": image " + std::to_string(image) + ": " + why + "; " + slot + " ignored");
         return -1;
       }
@@ -572,13 +577,104 @@ void nodeLights(Loader& L, std::size_t index, const glm::dmat4& world, const std
 
 }  // namespace
 
-Model loadGltf(const std::string& path) {
+// The default scene's root nodes (every parentless node when the file names no scene).
+std::vector<int> sceneRoots(Loader& L, const std::vector<int>& parent) {
+  const tinygltf::Model& gltf = L.gltf;
+  std::vector<int> roots;
+  if (gltf.defaultScene < 0 && gltf.scenes.empty()) {
+    for (std::size_t n = 0; n < gltf.nodes.size(); ++n)
+      if (parent[n] < 0) roots.push_back(int(n));
+    return roots;
+  }
+  const int s = std::max(gltf.defaultScene, 0);
+  if (std::size_t(s) >= gltf.scenes.size()) L.fail("scene " + std::to_string(s) + " does not exist");
+  std::vector<bool> listed(gltf.nodes.size(), false);
+  for (int n : gltf.scenes[std::size_t(s)].nodes) {
+    if (n < 0 || std::size_t(n) >= gltf.nodes.size())
+      L.fail("scene " + std::to_string(s) + ": node " + std::to_string(n) + " does not exist");
+    if (parent[std::size_t(n)] >= 0)
+      L.fail("scene " + std::to_string(s) + " lists node " + std::to_string(n) + ", which is a child of node " +
+             std::to_string(parent[std::size_t(n)]));
+    if (listed[std::size_t(n)]) L.fail("scene " + std::to_string(s) + " lists node " + std::to_string(n) + " twice");
+    listed[std::size_t(n)] = true;
+    roots.push_back(n);
+  }
+  return roots;
+}
+
+// Triangles a primitive declares (its index or vertex count), before anything is read; 0 for an
+// accessor its bufferView cannot hold (converting it names that).
+double declaredTriangles(const tinygltf::Model& gltf, const tinygltf::Primitive& p) {
+  const auto position = p.attributes.find("POSITION");
+  const int index = p.indices >= 0 ? p.indices : position != p.attributes.end() ? position->second : -1;
+  if (index < 0 || std::size_t(index) >= gltf.accessors.size()) return 0.0;
+  const tinygltf::Accessor& accessor = gltf.accessors[std::size_t(index)];
+  const double count = double(accessor.count);
+  if (accessor.bufferView < 0 || std::size_t(accessor.bufferView) >= gltf.bufferViews.size()) return 0.0;
+  const double element = double(tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType))) *
+                         double(tinygltf::GetNumComponentsInType(std::uint32_t(accessor.type)));
+  if (!(element > 0.0) || count * element > double(gltf.bufferViews[std::size_t(accessor.bufferView)].byteLength))
+    return 0.0;
+  if (p.mode == TINYGLTF_MODE_TRIANGLES || p.mode < 0) return std::floor(count / 3.0);
+  if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP || p.mode == TINYGLTF_MODE_TRIANGLE_FAN) return std::max(0.0, count - 2.0);
+  return 0.0;
+}
+
+// What the file will take before a triangle is placed or a texel decoded: the triangles of every
+// mesh instance the scene's nodes place (a 2 MB file can place one mesh on 20,000 nodes) and the
+// texels of every image a material uses, from the images' headers. Refused with the estimate
+// when it does not fit (core/memory.h).
+void checkMemoryNeeds(Loader& L, const std::vector<int>& roots) {
+  const tinygltf::Model& gltf = L.gltf;
+  double triangles = 0.0;
+  std::size_t instances = 0;
+  std::vector<int> stack(roots.rbegin(), roots.rend());  // a tree: checkHierarchy refused cycles
+  while (!stack.empty()) {
+    const tinygltf::Node& node = gltf.nodes[std::size_t(stack.back())];
+    stack.pop_back();
+    stack.insert(stack.end(), node.children.begin(), node.children.end());
+    if (node.mesh < 0 || std::size_t(node.mesh) >= gltf.meshes.size()) continue;
+    ++instances;
+    for (const tinygltf::Primitive& p : gltf.meshes[std::size_t(node.mesh)].primitives)
+      triangles += declaredTriangles(gltf, p);
+  }
+  checkMemory(L.path, fmt::format("placing {:.0f} triangles ({} mesh instances on {} nodes)", triangles,
+                                  instances, gltf.nodes.size()),
+              triangles * kCleanBytesPerTriangle);
+  if (!L.options.decodeTextures) return;
+  std::vector<bool> used(gltf.images.size(), false);
+  auto use = [&](int texture) {
+    if (texture < 0 || std::size_t(texture) >= gltf.textures.size()) return;
+    const int image = gltf.textures[std::size_t(texture)].source;
+    if (image >= 0 && std::size_t(image) < used.size()) used[std::size_t(image)] = true;
+  };
+  for (const tinygltf::Material& m : gltf.materials) {
+    use(m.pbrMetallicRoughness.baseColorTexture.index);
+    use(m.pbrMetallicRoughness.metallicRoughnessTexture.index);
+  }
+  double bytes = 0.0, texels = 0.0;
+  std::size_t images = 0;
+  for (std::size_t i = 0; i < used.size(); ++i) {
+    int w = 0, h = 0;
+    std::string why;
+    if (!used[i] || !encodedImageSize(gltf.images[i].image, w, h, why)) continue;  // warned when converted
+    ++images;
+    texels += double(w) * double(h);
+    bytes += decodeBytes(w, h);
+  }
+  checkMemory(L.path, fmt::format("decoding its {} images ({:.0f} texels)", images, texels), bytes);
+}
+
+Model loadGltf(const std::string& path, const LoadOptions& options) {
   Model out;
   tinygltf::Model gltf;
   Json json;
   parseGltfSandboxed(path, gltf, json, out.warnings);
-  Loader L{path, std::filesystem::path(path).filename().string(), gltf, json, out};
+  Loader L{path, std::filesystem::path(path).filename().string(), gltf, json, out, options};
   try {
+    const std::vector<int> parent = checkHierarchy(L);
+    const std::vector<int> roots = sceneRoots(L, parent);
+    checkMemoryNeeds(L, roots);
     convertMaterials(L);
     // What the file holds that penumbra does not use, once each (the scene file's camera is
     // the one rendered).
@@ -591,31 +687,6 @@ Model loadGltf(const std::string& path) {
     for (const tinygltf::Mesh& mesh : gltf.meshes)
       for (const tinygltf::Primitive& p : mesh.primitives) colours += p.attributes.count("COLOR_0");
     if (colours) L.warn(std::to_string(colours) + " primitive(s) with COLOR_0: vertex colours are not used");
-    const std::vector<int> parent = checkHierarchy(L);
-
-    std::vector<int> roots;
-    if (gltf.defaultScene >= 0 || !gltf.scenes.empty()) {
-      const int s = std::max(gltf.defaultScene, 0);
-      if (std::size_t(s) >= gltf.scenes.size())
-        L.fail("scene " + std::to_string(s) + " does not exist");
-      for (int n : gltf.scenes[std::size_t(s)].nodes) {
-        if (n < 0 || std::size_t(n) >= gltf.nodes.size()) {
-          L.fail("scene " + std::to_string(s) + ": node " + std::to_string(n) + " does not exist");
-        }
-        if (parent[std::size_t(n)] >= 0) {
-          L.fail("scene " + std::to_string(s) + " lists node " + std::to_string(n) +
-                 ", which is a child of node " + std::to_string(parent[std::size_t(n)]));
-        }
-        if (std::find(roots.begin(), roots.end(), n) != roots.end()) {
-          L.fail("scene " + std::to_string(s) + " lists node " + std::to_string(n) + " twice");
-        }
-        roots.push_back(n);
-      }
-    } else {
-      for (std::size_t n = 0; n < gltf.nodes.size(); ++n) {
-        if (parent[n] < 0) roots.push_back(int(n));
-      }
-    }
     if (!gltf.skins.empty() || !gltf.animations.empty()) {
       L.warn("skins and animations ignored: nodes are placed by their static transforms");
     }

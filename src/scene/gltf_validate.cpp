@@ -13,6 +13,7 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/image_io.h"
 #include "scene/loaders.h"
 
 namespace penumbra::detail {
@@ -177,10 +178,16 @@ struct Checker {
   }
 
   void checkVersion() const {
+    // glTF 1.0 keeps its objects in dictionaries keyed by id, where 2.0 has arrays.
+    for (const char* key : {"meshes", "nodes", "accessors", "buffers", "bufferViews", "materials"})
+      if (const auto it = doc.find(key); it != doc.end() && it->is_object())
+        fail(std::string("a glTF 1.0 file ('") + key +
+             "' is a dictionary): only glTF 2.0 is read; convert it (Blender, or gltf-pipeline's 1.0-to-2.0 upgrade)");
     const auto asset = doc.find("asset");
     if (asset == doc.end() || !asset->is_object()) fail("no 'asset' object: not a glTF 2.0 file");
     const auto version = asset->find("version");
-    if (version == asset->end() || !version->is_string()) fail("'asset.version' missing");
+    if (version == asset->end()) fail("'asset.version' missing: not a glTF 2.0 file");
+    if (!version->is_string()) fail("'asset.version' must be a string (\"2.0\"), got " + shownJson(*version));
     const std::string v = version->get<std::string>();
     if (v.rfind("2.", 0) != 0) fail("glTF version " + v + " is not supported (2.x only)");
   }
@@ -318,6 +325,136 @@ struct Checker {
     }
   }
 
+  // The JSON types of the properties penumbra reads, as the glTF 2.0 schema gives them. tinygltf
+  // ignores a property of the wrong type without a word (a node's "mesh": "0" dropped the mesh,
+  // a two-number translation was no translation, "children": "1" no children) or fails with a
+  // message that does not say where: both become one error naming the object and the property.
+  enum class Kind { Index, Number, Boolean, String, Object, Indices, Numbers };
+  struct Property {
+    const char* key;
+    Kind kind;
+    std::size_t count = 0;  // Numbers: the length the schema fixes (0: any)
+  };
+  void checkProperties(const Json& object, const std::string& what, std::initializer_list<Property> properties) const {
+    for (const Property& p : properties) {
+      const auto it = object.find(p.key);
+      if (it == object.end()) continue;
+      const Json& v = *it;
+      auto index = [](const Json& x) { return x.is_number_unsigned() || (x.is_number_integer() && x.get<long long>() >= 0); };
+      bool ok = false;
+      std::string expected;
+      switch (p.kind) {
+        case Kind::Index: ok = index(v), expected = "a non-negative integer"; break;
+        case Kind::Number: ok = v.is_number(), expected = "a number"; break;
+        case Kind::Boolean: ok = v.is_boolean(), expected = "true or false"; break;
+        case Kind::String: ok = v.is_string(), expected = "a string"; break;
+        case Kind::Object: ok = v.is_object(), expected = "an object"; break;
+        case Kind::Indices:
+          ok = v.is_array() && std::all_of(v.begin(), v.end(), index), expected = "an array of non-negative integers";
+          break;
+        case Kind::Numbers:
+          ok = v.is_array() && (p.count == 0 || v.size() == p.count) &&
+               std::all_of(v.begin(), v.end(), [](const Json& x) { return x.is_number(); });
+          expected = p.count ? std::to_string(p.count) + " numbers" : "an array of numbers";
+          break;
+      }
+      if (!ok) fail(what + ": '" + p.key + "' must be " + expected + ", got " + shownJson(v));
+    }
+  }
+
+  void checkTypes() const {
+    using K = Kind;
+    auto each = [&](const char* key, std::initializer_list<Property> properties) {
+      if (const Json* items = arrayOf(key))
+        for (std::size_t i = 0; i < items->size(); ++i)
+          checkProperties((*items)[i], std::string(key) + "[" + std::to_string(i) + "]", properties);
+    };
+    each("accessors", {{"bufferView", K::Index}, {"byteOffset", K::Index}, {"componentType", K::Index},
+                       {"normalized", K::Boolean}, {"count", K::Index}, {"type", K::String}, {"max", K::Numbers},
+                       {"min", K::Numbers}, {"sparse", K::Object}, {"name", K::String}});
+    each("bufferViews", {{"buffer", K::Index}, {"byteOffset", K::Index}, {"byteLength", K::Index},
+                         {"byteStride", K::Index}, {"target", K::Index}, {"name", K::String}});
+    each("buffers", {{"uri", K::String}, {"byteLength", K::Index}, {"name", K::String}});
+    each("images", {{"uri", K::String}, {"mimeType", K::String}, {"bufferView", K::Index}, {"name", K::String}});
+    each("textures", {{"sampler", K::Index}, {"source", K::Index}, {"name", K::String}});
+    each("samplers", {{"magFilter", K::Index}, {"minFilter", K::Index}, {"wrapS", K::Index}, {"wrapT", K::Index}});
+    each("nodes", {{"camera", K::Index}, {"children", K::Indices}, {"skin", K::Index}, {"matrix", K::Numbers, 16},
+                   {"mesh", K::Index}, {"rotation", K::Numbers, 4}, {"scale", K::Numbers, 3},
+                   {"translation", K::Numbers, 3}, {"weights", K::Numbers}, {"name", K::String},
+                   {"extensions", K::Object}});
+    each("scenes", {{"nodes", K::Indices}, {"name", K::String}});
+    each("materials", {{"name", K::String}, {"extensions", K::Object}});
+    if (const Json* meshes = arrayOf("meshes")) {
+      for (std::size_t i = 0; i < meshes->size(); ++i) {
+        const std::string mesh = "meshes[" + std::to_string(i) + "]";
+        checkProperties((*meshes)[i], mesh, {{"weights", K::Numbers}, {"name", K::String}});
+        const Json& primitives = (*meshes)[i]["primitives"];  // an array: checkTopLevel
+        for (std::size_t k = 0; k < primitives.size(); ++k) {
+          const std::string what = mesh + ".primitives[" + std::to_string(k) + "]";
+          if (!primitives[k].is_object()) fail(what + " must be an object, got " + shownJson(primitives[k]));
+          checkProperties(primitives[k], what, {{"attributes", K::Object}, {"indices", K::Index}, {"material", K::Index},
+                                                {"mode", K::Index}, {"extensions", K::Object}});
+          if (const auto a = primitives[k].find("attributes"); a != primitives[k].end())
+            for (const auto& [name, value] : a->items())
+              checkProperties(*a, what + ".attributes", {{name.c_str(), K::Index}});
+        }
+      }
+    }
+  }
+
+  // Materials as the specification types them: tinygltf drops a pbrMetallicRoughness, texture
+  // reference or factor of the wrong JSON type without a word (a string `index` left the
+  // material untextured, a pbr block given as an array shaded it white), so they are refused here.
+  void checkMaterials() const {
+    const Json* materials = arrayOf("materials");
+    if (!materials) return;
+    for (std::size_t i = 0; i < materials->size(); ++i) {
+      const Json& m = (*materials)[i];
+      const std::string what = "materials[" + std::to_string(i) + "]";
+      auto numbers = [&](const Json& o, const char* key, std::size_t count, const std::string& at) {
+        const auto it = o.find(key);
+        if (it == o.end()) return;
+        bool ok = count == 1 ? it->is_number() : it->is_array() && it->size() == count;
+        if (it->is_array())
+          for (const Json& x : *it) ok = ok && x.is_number();
+        if (!ok)
+          fail(at + "'" + key + "' must be " + (count == 1 ? std::string("a number") : std::to_string(count) + " numbers") +
+               ", got " + shownJson(*it));
+      };
+      auto textureInfo = [&](const Json& o, const char* key, const std::string& at) {
+        const auto it = o.find(key);
+        if (it == o.end()) return;
+        const std::string here = at + "'" + key + "'";
+        if (!it->is_object()) fail(here + " must be an object, got " + shownJson(*it));
+        std::uint64_t index = 0, texCoord = 0;
+        if (!unsignedField(*it, "index", index)) fail(here + " has no 'index'");
+        if (index == std::numeric_limits<std::uint64_t>::max())
+          fail(here + ": 'index' must be a non-negative integer, got " + shownJson(it->at("index")));
+        if (unsignedField(*it, "texCoord", texCoord) && texCoord == std::numeric_limits<std::uint64_t>::max())
+          fail(here + ": 'texCoord' must be a non-negative integer, got " + shownJson(it->at("texCoord")));
+        numbers(*it, "scale", 1, here + ": ");
+        numbers(*it, "strength", 1, here + ": ");
+      };
+      const std::string at = what + ": ";
+      if (const auto pbr = m.find("pbrMetallicRoughness"); pbr != m.end()) {
+        if (!pbr->is_object()) fail(at + "'pbrMetallicRoughness' must be an object, got " + shownJson(*pbr));
+        const std::string in = at + "pbrMetallicRoughness: ";
+        numbers(*pbr, "baseColorFactor", 4, in);
+        numbers(*pbr, "metallicFactor", 1, in);
+        numbers(*pbr, "roughnessFactor", 1, in);
+        textureInfo(*pbr, "baseColorTexture", in);
+        textureInfo(*pbr, "metallicRoughnessTexture", in);
+      }
+      for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture"}) textureInfo(m, key, at);
+      numbers(m, "emissiveFactor", 3, at);
+      numbers(m, "alphaCutoff", 1, at);
+      if (const auto mode = m.find("alphaMode"); mode != m.end() && !mode->is_string())
+        fail(at + "'alphaMode' must be a string, got " + shownJson(*mode));
+      if (const auto sided = m.find("doubleSided"); sided != m.end() && !sided->is_boolean())
+        fail(at + "'doubleSided' must be true or false, got " + shownJson(*sided));
+    }
+  }
+
   void checkTopLevel() const {
     for (const char* key : {"accessors", "animations", "cameras", "materials", "meshes", "nodes",
                             "samplers", "scenes", "skins", "textures"}) {
@@ -419,8 +556,10 @@ void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& j
     check.checkVersion();
     check.checkExtensions();
     check.checkTopLevel();
+    check.checkTypes();
     check.checkBufferViews(check.checkBuffers());
     check.checkImages();
+    check.checkMaterials();
   } catch (const Json::exception& e) {
     throw Error(path, std::string("malformed glTF: ") + e.what());
   }
@@ -444,14 +583,15 @@ void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& j
   if (!warn.empty()) warnings.push_back(path + ": tinygltf: " + firstLines(warn));
 }
 
-bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std::string& why, bool srgb) {
-  // Sides from the header first, so a tiny file cannot make stb allocate gigabytes.
+bool encodedImageSize(const std::vector<unsigned char>& encoded, int& width, int& height, std::string& why) {
   long long w = -1, h = -1;
   const auto* b = encoded.data();
   const std::size_t n = encoded.size();
-  if (n >= 24 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0) {
+  if (n >= 26 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0) {
     w = (long long)b[16] << 24 | b[17] << 16 | b[18] << 8 | b[19];
     h = (long long)b[20] << 24 | b[21] << 16 | b[22] << 8 | b[23];
+    if (w > 0 && h > 0) why = pngSizeProblem(w, h, b[24], b[25], n);
+    if (!why.empty()) return false;
   } else if (n >= 4 && b[0] == 0xFF && b[1] == 0xD8) {
     for (std::size_t i = 2; i + 9 < n;) {
       if (b[i] != 0xFF) {
@@ -482,6 +622,21 @@ bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std:
           std::to_string(kMaxImageSide) + "^2";
     return false;
   }
+  width = int(w);
+  height = int(h);
+  return true;
+}
+
+double decodeBytes(int width, int height) {
+  return double(width) * double(height) * 24.0;  // stb's samples (at most 8 bytes) + float RGBA
+}
+
+bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std::string& why, bool srgb) {
+  // Sides from the header first, so a tiny file cannot make stb allocate gigabytes.
+  int w = 0, h = 0;
+  if (!encodedImageSize(encoded, w, h, why)) return false;
+  const auto* b = encoded.data();
+  const std::size_t n = encoded.size();
   tinygltf::Image decoded;
   std::string err, warn;
   if (!tinygltf::LoadImageData(&decoded, 0, &err, &warn, 0, 0, b, int(n), nullptr) ||

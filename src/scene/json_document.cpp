@@ -120,6 +120,12 @@ std::size_t jsonNestingDepth(const std::string& text) {
 }
 
 Json parseJsonDocument(const std::string& text, const std::string& path, const std::string& root) {
+  // JSON is UTF-8 (RFC 8259 section 8.1): a UTF-16 or UTF-32 file (a Windows editor's "Unicode")
+  // is named as such, not reported as an invalid literal of a raw byte. A byte-order mark, or a
+  // NUL among the first two bytes (every JSON text starts with an ASCII character), tells.
+  const auto byte = [&](std::size_t i) { return i < text.size() ? (unsigned char)text[i] : 0x100u; };
+  if ((byte(0) == 0xFF && byte(1) == 0xFE) || (byte(0) == 0xFE && byte(1) == 0xFF) || byte(0) == 0 || byte(1) == 0)
+    throw Error(path, "is UTF-16 or UTF-32 text (a byte-order mark or NUL bytes), not UTF-8: save it as UTF-8");
   Json result;
   DuplicateKeyChecker checker(result, path, root);
   try {

@@ -30,7 +30,7 @@ struct Model {
 
 // glTF 2.0 (.gltf / .glb). Every URI must stay inside the file's folder. Throws
 // penumbra::Error(path, ...) on anything malformed; recoverable problems become warnings.
-Model loadGltf(const std::string& path);
+Model loadGltf(const std::string& path, const LoadOptions& options = {});
 
 // gltf_validate.cpp: reads a .gltf/.glb, checks everything tinygltf would trust (GLB container,
 // URIs, buffer and bufferView bounds, data: URIs, required extensions) and parses it with
@@ -39,24 +39,34 @@ Model loadGltf(const std::string& path);
 void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& json,
                         std::vector<std::string>& warnings);
 
+// The sides an encoded glTF image (PNG/JPEG) declares in its header. Returns false with `why`
+// set when the header is unreadable, the sides exceed 8192^2, or (PNG) the bytes cannot hold
+// them (pngSizeProblem).
+bool encodedImageSize(const std::vector<unsigned char>& encoded, int& width, int& height, std::string& why);
+
 // Decodes an encoded glTF image (PNG/JPEG, at most 8192^2) to linear RGBA float, colour
 // channels converted from sRGB when `srgb` (colour textures; data textures such as
 // metallicRoughnessTexture are linear). Returns false with `why` set if it cannot.
 bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std::string& why, bool srgb = true);
 
+// Bytes a decode of a `width` x `height` image takes at its peak (the decoder's 8- or 16-bit
+// samples and the float RGBA texture), for checkMemory before decoding.
+double decodeBytes(int width, int height);
+
 // A texture file (.png sRGB-decoded, .exr linear) already resolved: what scene-file materials,
-// lights and OBJ materials (map_Kd) load. EXR NaN/Inf texels are replaced by 0 and counted in
-// `warnings`. Throws penumbra::Error naming the file.
-Image readTextureFile(const std::string& path, std::vector<std::string>& warnings);
+// lights and OBJ materials (map_Kd) load; its header only (sides, no pixels) without
+// `options.decodeTextures`. EXR NaN/Inf texels are replaced by 0 and counted in `warnings`.
+// Throws penumbra::Error naming the file (MemoryError when it does not fit).
+Texture readTextureFile(const std::string& path, std::vector<std::string>& warnings, const LoadOptions& options);
 
 // An OBJ file with its materials (obj_materials.cpp): the faces split by `usemtl` into one mesh
 // per material, the `mtllib` files' Kd, map_Kd, d and Tr read into materials, everything else
 // in them warned about.
-Model loadObjModel(const std::string& path);
+Model loadObjModel(const std::string& path, const LoadOptions& options = {});
 
 // Any supported geometry file by extension: glTF through loadGltf, OBJ/PLY/OFF/STL through
 // geo::loadMeshFile.
-Model loadGeometryFile(const std::string& path);
+Model loadGeometryFile(const std::string& path, const LoadOptions& options = {});
 
 bool isGeometryExtension(const std::string& extension);  // lower-case, with the dot
 
@@ -114,7 +124,8 @@ void applyOverrides(Json& doc, const std::vector<std::string>& overrides);
 
 // Interprets a scene document. `where` names it in messages (the file, or "<default scene>");
 // relative paths resolve against `baseDir`. Empty `baseDir` forbids file references.
-Scene interpretScene(const Json& doc, const std::string& where, const std::string& baseDir);
+Scene interpretScene(const Json& doc, const std::string& where, const std::string& baseDir,
+                     const LoadOptions& options = {});
 
 // The document of the built-in scene.
 Json defaultSceneDocument();

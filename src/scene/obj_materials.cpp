@@ -21,6 +21,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/memory.h"
 #include "core/key_values.h"
 #include "scene/loaders.h"
 
@@ -73,6 +74,7 @@ std::string referenceProblem(const std::string& reference, const fs::path& folde
 struct MtlReader {
   Model& model;
   std::string objFolder;  // the root every path must stay inside
+  const LoadOptions& options;
   std::map<std::string, int> materialByName;
   std::map<std::string, int> textureByPath;
 
@@ -87,9 +89,10 @@ struct MtlReader {
     }
     if (const auto it = textureByPath.find(resolved); it != textureByPath.end()) return it->second;
     Texture t;
-    t.source = resolved;
     try {
-      t.image = readTextureFile(resolved, model.warnings);
+      t = readTextureFile(resolved, model.warnings, options);
+    } catch (const MemoryError&) {
+      throw;  // a texture too large for memory stops the run; an unreadable one is dropped
     } catch (const Error& e) {
       model.warnings.push_back(mtl + ": " + context + ": map_Kd '" + reference +
                                "' cannot be read (" + e.what() + "); the material has no texture");
@@ -264,11 +267,11 @@ std::vector<std::string> libraryNames(const std::string& statement, const fs::pa
 
 }  // namespace
 
-Model loadObjModel(const std::string& path) {
+Model loadObjModel(const std::string& path, const LoadOptions& options) {
   geo::ObjFile obj = geo::loadObjFile(path);
   Model model;
   const fs::path folder = fs::path(path).parent_path();
-  MtlReader reader{model, folder.empty() ? std::string(".") : folder.string(), {}, {}};
+  MtlReader reader{model, folder.empty() ? std::string(".") : folder.string(), options, {}, {}};
   std::vector<std::string> libraries;
   for (const std::string& statement : obj.libraries) {
     for (const std::string& lib : libraryNames(statement, folder)) {

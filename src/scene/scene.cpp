@@ -390,24 +390,31 @@ std::string resolveSceneReference(const std::string& reference, const std::strin
   return resolved;
 }
 
-Image readTextureFile(const std::string& path, std::vector<std::string>& warnings) {
+Texture readTextureFile(const std::string& path, std::vector<std::string>& warnings, const LoadOptions& options) {
+  Texture t;
+  t.source = path;
+  const ImageHeader header = readImageHeader(path);
+  t.width = header.width;
+  t.height = header.height;
+  if (!options.decodeTextures) return t;
   if (lowerExtension(path) == ".exr") {
     // NaN/Inf texels are replaced by 0; the scene's warnings say how many, as `penumbra info`
     // prints them (hard-cases.md, bad inputs: EXR textures "sanitised with a warning").
     int sanitized = 0;
-    Image image = readExr(path, &sanitized);
+    t.image = readExr(path, &sanitized);
     if (sanitized > 0)
       warnings.push_back(path + ": replaced " + std::to_string(sanitized) +
                          " non-finite texels with 0");
-    return image;
+  } else {
+    t.image = readTexture(path, /*srgb=*/true);
   }
-  return readTexture(path, /*srgb=*/true);
+  return t;
 }
 
-Model loadGeometryFile(const std::string& path) {
+Model loadGeometryFile(const std::string& path, const LoadOptions& options) {
   const std::string ext = lowerExtension(path);
-  if (ext == ".gltf" || ext == ".glb") return loadGltf(path);
-  if (ext == ".obj") return loadObjModel(path);
+  if (ext == ".gltf" || ext == ".glb") return loadGltf(path, options);
+  if (ext == ".obj") return loadObjModel(path, options);
   if (!isGeometryExtension(ext)) {
     throw Error(path, "unsupported geometry format '" + ext +
                           "' (expected .gltf, .glb, .obj, .ply, .off or .stl)");
@@ -449,7 +456,7 @@ std::string folderOf(const std::string& path) {
 
 }  // namespace
 
-Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides, const LoadOptions& options) {
   const std::string ext = detail::lowerExtension(path);
   const std::string stem = fs::path(path).stem().string();
   Json doc;
@@ -462,7 +469,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     if (const std::string why = fileProblem(path); !why.empty()) throw Error(path, why);
     // Loaded once here for its bounds; interpretScene loads it again, which keeps a single
     // code path for placement (bare files are small compared with the cost of rendering).
-    detail::Model model = detail::loadGeometryFile(path);
+    detail::Model model = detail::loadGeometryFile(path, LoadOptions{/*decodeTextures=*/false});
     Scene probe;
     for (SceneMesh& m : model.meshes) probe.meshes.push_back(std::move(m));
     glm::vec3 lo, hi;
@@ -474,16 +481,16 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
                           "' (expected .json, .gltf, .glb, .obj, .ply, .off or .stl)");
   }
   detail::applyOverrides(doc, overrides);
-  Scene scene = detail::interpretScene(doc, path, folderOf(path));
+  Scene scene = detail::interpretScene(doc, path, folderOf(path), options);
   scene.sourcePath = path;
   return scene;
 }
 
-Scene defaultScene(const std::vector<std::string>& overrides) {
+Scene defaultScene(const std::vector<std::string>& overrides, const LoadOptions& options) {
   Json doc = detail::defaultSceneDocument();
   detail::applyOverrides(doc, overrides);
   // File references added by overrides resolve against the working directory.
-  Scene scene = detail::interpretScene(doc, "<default scene>", ".");
+  Scene scene = detail::interpretScene(doc, "<default scene>", ".", options);
   scene.sourcePath.clear();
   return scene;
 }

@@ -18,8 +18,9 @@
 namespace penumbra {
 
 struct Texture {
-  std::string source;  // file it came from, for messages
-  Image image;         // linear RGBA float
+  std::string source;      // file it came from, for messages
+  Image image;             // linear RGBA float; empty when loaded without pixels (LoadOptions)
+  int width = 0, height = 0;  // the sides the file declares, decoded or not
 };
 
 enum class AlphaMode { Opaque, Mask, Blend };
@@ -143,15 +144,22 @@ struct Scene {
   Scene posedAt(float time) const;
 };
 
+// How much of a scene to read. `penumbra info` reads the textures' headers only (their sides),
+// never their pixels: a 16384^2 texture costs it nothing.
+struct LoadOptions {
+  bool decodeTextures = true;
+};
+
 // Loads a scene file: .json (scene description) or a bare geometry file (.gltf, .glb, .obj,
 // .ply, .off, .stl) which gets the default camera and light framing it. `overrides` are
 // "key=value" pairs from --set, applied to the JSON before interpretation (dotted keys,
 // array indices as numbers: "lights.0.size=[2,2]", "camera.fov=30"). Throws penumbra::Error
 // naming the file and the problem.
-Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {},
+                const LoadOptions& options = {});
 
 // The built-in default scene: a textured rectangular area light (a procedural stained-glass
 // texture) over a floor and occluders of different heights. Same overrides as loadScene.
-Scene defaultScene(const std::vector<std::string>& overrides = {});
+Scene defaultScene(const std::vector<std::string>& overrides = {}, const LoadOptions& options = {});
 
 }  // namespace penumbra

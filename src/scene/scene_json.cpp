@@ -30,6 +30,7 @@ struct Context {
   std::string where;
   std::string baseDir;
   Scene& scene;
+  LoadOptions options;
   std::map<std::string, int> materialByName;
   std::map<std::string, int> textureByKey;  // resolved path or procedural name
   std::map<std::pair<int, float>, int> opacityVariants;
@@ -184,15 +185,16 @@ int loadTexture(Context& ctx, const std::string& reference, const std::string& c
   }
   if (const auto it = ctx.textureByKey.find(key); it != ctx.textureByKey.end()) return it->second;
   Texture texture;
-  texture.source = key;
   if (procedural) {
+    texture.source = key;
     texture.image = stainedGlassImage(64);
+    texture.width = texture.image.width;
+    texture.height = texture.image.height;
   } else {
     std::vector<std::string> warnings;
-    texture.image = readTextureFile(key, warnings);
+    texture = readTextureFile(key, warnings, ctx.options);
     for (const std::string& w : warnings) ctx.warn(w);
   }
-  if (texture.image.empty()) ctx.fail(context, "texture '" + reference + "' is empty");
   const int index = int(ctx.scene.textures.size());
   ctx.scene.textures.push_back(std::move(texture));
   ctx.textureByKey[key] = index;
@@ -381,8 +383,19 @@ int withOpacity(Context& ctx, int material, float opacity) {
 
 const Context::Placed& placeModel(Context& ctx, const std::string& path) {
   if (const auto it = ctx.models.find(path); it != ctx.models.end()) return it->second;
-  auto model = std::make_shared<Model>(loadGeometryFile(path));
-  for (SceneMesh& m : model->meshes) geo::ensureShadingNormals(m.mesh);  // once per file, not per instance
+  auto model = std::make_shared<Model>(loadGeometryFile(path, ctx.options));
+  for (SceneMesh& m : model->meshes) {
+    // The file's own normals: a zero or non-finite one shades its corners with the face's
+    // normal (the G-buffer's rule), said once per mesh rather than repaired in silence.
+    const std::size_t bad = std::size_t(std::count_if(m.mesh.normals.begin(), m.mesh.normals.end(), [](const glm::vec3& n) {
+      const float length = glm::length(n);
+      return !(length > 0.0f) || !std::isfinite(length);
+    }));
+    if (bad > 0)
+      ctx.warn(fmt::format("{}: {} of its {} vertex normals are zero or not finite: their corners shade with the face's normal",
+                           m.name, bad, m.mesh.normals.size()));
+    geo::ensureShadingNormals(m.mesh);  // once per file, not per instance
+  }
   Context::Placed placed;
   placed.model = model;
   placed.materialBase = int(ctx.scene.materials.size());
@@ -597,6 +610,16 @@ void readCamera(Context& ctx, const Json& item) {
     ctx.fail("camera.up", "is parallel to the viewing direction");
   }
   if (!(c.fovY > 0.0f && c.fovY < 180.0f)) ctx.fail("camera.fov", "must be in (0, 180) degrees");
+  // A pixel spans 2 d tan(fov / 2) / height at distance d, and float resolves d to d 2^-23:
+  // below 4 float steps a pixel, neighbouring pixels see the same float point (fov 1e-30
+  // rendered one point stretched over the image). Relative to float, not to the scene's size.
+  const double pixel = 2.0 * std::tan(double(c.fovY) * 3.14159265358979323846 / 360.0) / double(ctx.scene.height);
+  const double step = 4.0 * std::ldexp(1.0, -23);
+  if (pixel < step)
+    ctx.fail("camera.fov", fmt::format("{:.3g} degrees: a pixel of the {}-row image would span {:.3g} of the distance it "
+                                       "looks at, below the {:.3g} float resolves; at least {:.3g} degrees",
+                                       c.fovY, ctx.scene.height, pixel, step,
+                                       2.0 * std::atan(step * double(ctx.scene.height) / 2.0) * 360.0 / 3.14159265358979323846));
   if (!(c.zNear > 0.0f)) ctx.fail("camera.near", "must be positive");
 }
 
@@ -694,9 +717,10 @@ void applyOverrides(Json& doc, const std::vector<std::string>& overrides) {
   }
 }
 
-Scene interpretScene(const Json& doc, const std::string& where, const std::string& baseDir) {
+Scene interpretScene(const Json& doc, const std::string& where, const std::string& baseDir,
+                     const LoadOptions& options) {
   Scene scene;
-  Context ctx{where, baseDir, scene, {}, {}, {}, {}};
+  Context ctx{where, baseDir, scene, options, {}, {}, {}, {}};
   Fields f(ctx, doc, "scene");
   scene.name = f.string("name", "scene");
   f.get("description");  // free text, documented

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "core/memory.h"
 #include "scene/scene.h"
 
 namespace penumbra::fuzz {
@@ -157,6 +158,7 @@ const std::vector<std::string>& formats() {
 const std::string& workspace() {
   // Never destroyed: the exit handler that removes the folder runs after static destructors.
   static const std::string* dir = [] {
+    setMemoryBudget(double(kMaxInputBytes));
     const auto* d = new std::string(makeWorkspace());
     std::atexit([] {
       std::error_code ec;

@@ -13,6 +13,14 @@
 
 namespace penumbra::fuzz {
 
+// The rule of a fuzz case (hard-cases.md, hostile inputs): no input may make the loader allocate
+// more than 1 GiB or run longer than 10 s. The harness runs the loader under a memory budget of
+// kMaxInputBytes (core/memory.h), so that what would need more is refused before it allocates;
+// libFuzzer enforces both bounds (tests/fuzz/run.sh: -malloc_limit_mb, -timeout) and the replay
+// test measures them (replay_test.cpp).
+constexpr std::size_t kMaxInputBytes = std::size_t(1) << 30;
+constexpr double kMaxInputSeconds = 10.0;
+
 // The formats with a fuzz target: the input's bytes become a file of that extension. "exr" and
 // "png" are texture files, loaded as the emission texture of a fixed scene.
 const std::vector<std::string>& formats();

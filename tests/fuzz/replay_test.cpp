@@ -5,7 +5,10 @@
 // stay checked without clang/libFuzzer; under tests/sanitize.sh they also run with ASan/UBSan.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -17,6 +20,12 @@ namespace penumbra::fuzz {
 namespace {
 
 namespace fs = std::filesystem;
+
+long peakResidentKiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss;
+}
 
 struct Counts {
   int loaded = 0, rejected = 0;
@@ -34,9 +43,16 @@ Counts replay(const std::string& root, const std::string& format) {
   for (const fs::path& file : files) {
     std::ifstream in(file, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const long peakBefore = peakResidentKiB();
+    const auto start = std::chrono::steady_clock::now();
     const Verdict v =
         loadInput(format, reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(v.problem, "") << file;
+    // The fuzz rule, measured: the peak resident set may not grow by 1 GiB, nor a load take 10 s
+    // on any input.
+    EXPECT_LT(double(peakResidentKiB() - peakBefore) * 1024.0, double(kMaxInputBytes)) << file;
+    EXPECT_LT(seconds, kMaxInputSeconds) << file;
     (v.loaded ? counts.loaded : counts.rejected)++;
   }
   std::printf("[          ] %s/%s: %d loaded, %d rejected\n", root.c_str(), format.c_str(),

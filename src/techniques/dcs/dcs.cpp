@@ -740,6 +740,7 @@ class DepthComplexitySampling final : public Technique {
         dcs::checkEdgeLutMatches(table, path, normalised, s.count, s.setCount);
         PLOG_INFO("dcs: edge LUT {}", path);
       } else {
+        dcs::checkEdgeLutFits("dcs", options_.lutSize, s.count, s.setCount);
         table = dcs::buildEdgeLut(normalised, s.count, s.setCount, options_.lutSize);
         PLOG_INFO("dcs: edge LUT for {} built in memory (`penumbra lut` writes it to luts/)", dcs::edgeLutFileName(s));
       }

@@ -2,7 +2,25 @@
 
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "core/memory.h"
+
 namespace penumbra::dcs {
+
+void checkEdgeLutFits(const std::string& who, const EdgeLutSize& size, int samples, int sets) {
+  const gl::Limits& gl = gl::limits();
+  if ((gl.maxCubeMapSize > 0 && size.cube > gl.maxCubeMapSize) || (gl.maxTextureSize > 0 && size.line > gl.maxTextureSize) ||
+      (gl.maxArrayLayers > 0 && 6 * sets > gl.maxArrayLayers))
+    throw Error(who, fmt::format("an edge LUT of {} sets with lut-cube {} and lut-line {} exceeds this GL's textures "
+                                 "(cube maps of {}, 2D of {}, {} array layers)",
+                                 sets, size.cube, size.line, gl.maxCubeMapSize, gl.maxTextureSize, gl.maxArrayLayers));
+  const double texels = double(sets) * (6.0 * size.cube * size.cube + double(size.line) * size.line);
+  const double words = double((samples + 31) / 32);
+  const double bytes = texels * (words * 4.0 + 16.0) + (gl.maxAllocationBytes > 0 ? texels * 16.0 : 0.0);
+  checkMemory(who, fmt::format("an edge LUT of {} sets with lut-cube {} and lut-line {}", sets, size.cube, size.line), bytes);
+}
 
 GpuEdgeLut uploadEdgeLut(const EdgeLut& table) {
   // Bit fields widened to RGBA32UI texels (words beyond `words` are 0).

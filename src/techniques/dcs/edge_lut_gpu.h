@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 
 #include "gl/objects.h"
 #include "techniques/dcs/edge_lut.h"
@@ -19,5 +20,10 @@ struct GpuEdgeLut {
 };
 
 GpuEdgeLut uploadEdgeLut(const EdgeLut& table);
+
+// Refuses (Error naming `who`) an edge LUT of `size` for `sets` sets of `samples` that this GL's
+// texture limits or this process's memory cannot hold, before buildEdgeLut spends minutes on it:
+// the tables' bit fields, their RGBA32UI widening and, on a software GL, the textures.
+void checkEdgeLutFits(const std::string& who, const EdgeLutSize& size, int samples, int sets);
 
 }  // namespace penumbra::dcs

@@ -184,8 +184,11 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
       if (count > capacity_) {  // more than one pass can hold: halve the band
         if (y1 - y0 < 2)
           throw Error(name(), fmt::format("one row of the {}^2 point-generation view holds {} points, more than one pass "
-                                          "of this GL's storage blocks holds ({}); use a smaller --param scale",
-                                          sourceSize_, count, passLimit));
+                                          "holds ({}, {}); use a smaller scale{}",
+                                          sourceSize_, count, passLimit,
+                                          passLimit == std::size_t(o_.passPoints) ? "the pass-points parameter"
+                                                                                  : "the limit of this GL's storage blocks",
+                                          passLimit == std::size_t(o_.passPoints) ? " or a larger pass-points" : ""));
         const int mid = y0 + (y1 - y0) / 2;
         todo.push_back({mid, y1});
         todo.push_back({y0, mid});
