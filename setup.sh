@@ -28,7 +28,7 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
 cmake --build build
 mkdir -p out
 ./build/src/cli/penumbra compare --techniques all --samples 16 -o out/default
-# Issue 16's shading scene (glossy metallic-roughness materials, smooth normals, three lights):
+# The shading scene (glossy metallic-roughness materials, smooth normals, three lights):
 # every shaded image also measured against the converged shaded reference.
 ./build/src/cli/penumbra compare scenes/glossy.json --techniques dcs,hard-sv,mvr,pcss,vssm --samples 16 \
   --converged -o out/glossy

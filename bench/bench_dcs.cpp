@@ -1,4 +1,4 @@
-// Benchmark (not a test) of the DCS studies of issue 4, in one run on one machine: the covered-
+// Benchmark (not a test) of the DCS paper's studies, in one run on one machine: the covered-
 // sample modes (exact / naive / lut) and N = 16 against 64 (DCS paper 8.2: DCS16 about 5x faster
 // than DCS64, lut 25-33% faster than naive), the semi-opaque overhead (paper: < 4%), eq. 3
 // against eq. 6 (paper: 8-12%), interleaving's cost, and the memory of every buffer at the

@@ -1,4 +1,4 @@
-// Benchmark (not a test) of the multi-view shadow-map studies of issue 5, in one run on one
+// Benchmark (not a test) of the multi-view shadow-map studies, in one run on one
 // machine (VWSS paper, section 4):
 //  1. Tables 1-2: scenes of about 110k, 220k, 550k and 660k triangles (the engine instanced
 //     1, 2, 5 and 6 times), 24 and 128 maps: points, G-buffer, point generation, depth maps,

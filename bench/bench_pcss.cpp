@@ -1,4 +1,4 @@
-// Benchmark (not a test) of the single-map studies of issue 6 in one run on one machine:
+// Benchmark (not a test) of the single-map studies (pcss, vssm) in one run on one machine:
 //  1. Sterna's Table 1 (2018): the shadow-mask passes of regular soft shadows (fixed kernel),
 //     regular contact-hardening (per-pixel blocker search), the penumbra mask + shadow mask, the
 //     min filter, and checkerboarding of both, with their RMSE against the same-sample reference.

@@ -1,8 +1,8 @@
-// Benchmark (not a test) of the shading modes of issue 16: on every shipped scene, one technique
+// Benchmark (not a test) of the shading modes: on every shipped scene, one technique
 // (dcs, whose per-sample results equal ray tracing) shaded with `ratio` (Heitz, Hill and McGuire
 // 2018), `modulate` (DCS eq. 3) and `per-sample` (eq. 6), each image's RMSE against the
 // converged shaded reference (raytrace-converged: the same BRDF, 1024 stratified samples per
-// pixel, issue 16 section 5) relative to that reference's mean radiance, and each mode's frame
+// pixel) relative to that reference's mean radiance, and each mode's frame
 // and shading-stage time (median of the timed frames after warm-up, one run, one machine).
 //
 //   penumbra_bench_shading [--scenes a.json,b.json] [-W 128] [--samples 16] [--frames 3]

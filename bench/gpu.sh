@@ -124,7 +124,7 @@ run() {
   rc=0
   "$UNPACKED/bin/penumbra" bench --quick "$@" || rc=$?
   [ "$rc" -eq 0 ] || { echo "bench: exit $rc"; failed=1; }
-  # Issue 19's study at its full sizes (dcs raster and compute paths on the engine, 256^2 and
+  # The dcs-at-scale study at its full sizes (dcs raster and compute paths on the engine, 256^2 and
   # 512^2, 16 and 64 samples): the question a GPU answers (few graphics units, compute on all).
   echo "== penumbra bench --studies dcs-scale $*"
   rc=0

@@ -69,10 +69,10 @@ int dcsScale(const StudyRun& r, std::FILE* out) {
     o.frames = r.quick ? 1 : 2;
     o.techniques = {"hard-sv", "mvr"};
     // dcs-4096: the raster path packed by the paper's rule for the partial counts (on the
-    // engine base 4096, as every frame was before issue 19 section 2), beside the plan for the
+    // engine base 4096, as every frame was before counters were planned from measured counts), beside the plan for the
     // final counts that `dcs` makes from its second frame on.
     // dcs-one-side-plane: the raster path's wedge solids without the end cones' planes (before
-    // issue 19's cut solids).
+    // the cut wedge solids).
     o.variants = {{"dcs", "dcs", {"path=raster"}, {"profile=true"}},
                   {"dcs-one-side-plane", "dcs", {"path=raster", "end-planes=0"}, {"profile=true"}},
                   {"dcs-4096", "dcs", {"path=raster", "min-base=4096"}, {"profile=true"}},

@@ -96,8 +96,8 @@ struct TimingOptions {
 };
 int techniqueTimings(const TimingOptions& o, std::FILE* out);
 
-// Shading modes against the converged shaded reference on every shipped scene (bench_shading.cpp,
-// issue 16): ratio, modulate and per-sample, their error and their cost per frame.
+// Shading modes against the converged shaded reference on every shipped scene (bench_shading.cpp):
+// ratio, modulate and per-sample, their error and their cost per frame.
 struct ShadingStudyOptions {
   // The speed-error study's scenes (every shipped scene, the glossy one's metallic-roughness
   // materials among them).

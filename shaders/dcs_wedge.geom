@@ -12,7 +12,7 @@
 // by the near plane), the screen rectangle is drawn instead.
 //
 // A wedge solid is drawn cut by the compute path's end planes (dcsSidePlanes: the faces of the
-// cones q + cone(q - L_e) at the endpoints q that face along the edge; issue 19) and by the view:
+// cones q + cone(q - L_e) at the endpoints q that face along the edge) and by the view:
 // the five-plane solid is loose where a large light meets a short edge, and every surface behind
 // its front faces costs a fragment (engine, 256^2, 16 samples: 28.5 M -> 8.8 M). The polyhedron
 // is built here (wedgePolyhedron, cutPolyhedron) in homogeneous world coordinates, its points at

@@ -392,7 +392,7 @@ PENUMBRA_FN void penumbraClipEdge(PENUMBRA_INOUT(PenumbraPolygonClip) c, vec3 u,
 // elementary closed form off its axis (its vector irradiance is that of a circular current loop,
 // elliptic integrals) and none once clipped; through Lambert's formula the 32-gon is within 3e-6
 // relative of the disk while it is wholly above the horizon, 1.4e-4 where the horizon cuts it
-// (issue 16 section 2; tests/raytrace_analytic.cpp). The corners by rotating one (a rect's by
+// (tests/raytrace_analytic.cpp). The corners by rotating one (a rect's by
 // pi / 2, the disk's by 2 pi / 32: no GL cos and sin). The emitter's one-sidedness is the
 // caller's (a point behind the light's plane sees none of it).
 PENUMBRA_FN vec2 penumbraLightPolygon(int shape, vec3 p, vec3 ng, vec3 ns, vec3 centre, vec3 tangent, vec3 bitangent,

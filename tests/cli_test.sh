@@ -33,6 +33,10 @@ inputs() {
   expect 2 "\-\-backend" -- "$P" render --backend vulkan -o "$T/x.png"
   expect 2 "\-\-shape" -- "$P" lut --shape triangle -o "$T"
   expect 2 "\-\-line" -- "$P" lut --line 3 -o "$T"
+  # Each subcommand takes only the options it uses.
+  expect 2 "not expected: \-\-shading" -- "$P" lut --shading ratio -o "$T"
+  expect 2 "not expected: \-\-param" -- "$P" lut --param map=64 -o "$T"
+  expect 2 "not expected: \-\-samples" -- "$P" info --samples 4
   expect 0 "" -- "$P" lut --samples 8 --line 16 --cube 4 -o "$T"
   test -s "$T/edge_rect_stratified_correlated_n8_seed1.lut" || { echo "FAIL: lut wrote no table"; fail=1; }
   # Lut creates a missing output folder as compare does (it refused it),

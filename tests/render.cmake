@@ -52,11 +52,15 @@ set_tests_properties(cli_inputs PROPERTIES LABELS cpu)
 add_test(NAME cli_render COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/cli_test.sh $<TARGET_FILE:penumbra> ${PROJECT_SOURCE_DIR} render)
 set_tests_properties(cli_render PROPERTIES SKIP_RETURN_CODE 77 LABELS "gl;sanitize")
 
-# README's technique-parameter table equals the declarations (`penumbra list --params --format
-# markdown`, tests/params_readme_test.sh). No GL needed.
-add_test(NAME params_readme COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/params_readme_test.sh $<TARGET_FILE:penumbra>
+# The docs' tables generated from the code (README's techniques, docs/cli.md's parameters) equal
+# it, README links every page of docs/ (tests/generated_tables_test.sh); every citation resolves
+# in docs/references.md and no issue number is left (tests/references_test.sh). No GL needed.
+add_test(NAME generated_tables COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/generated_tables_test.sh $<TARGET_FILE:penumbra>
          ${PROJECT_SOURCE_DIR})
-set_tests_properties(params_readme PROPERTIES LABELS cpu)
+add_test(NAME references COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/references_test.sh ${PROJECT_SOURCE_DIR})
+# No flag named outside src/cli (tests/flags_test.sh).
+add_test(NAME flags_only_in_cli COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/flags_test.sh ${PROJECT_SOURCE_DIR})
+set_tests_properties(generated_tables references flags_only_in_cli PROPERTIES LABELS cpu)
 
 # Technique parameters: declarations, dcs through --param, the shared key/value reader. No GL.
 penumbra_add_test(test_technique_params ${CMAKE_CURRENT_SOURCE_DIR}/technique_params_test.cpp LIBS penumbra_techniques)

@@ -42,7 +42,7 @@ TEST_P(DcsVsRaytrace, PerSampleVisibilityMatchesOutsideEdgeBand) {
   EXPECT_EQ(statistic(r.frame, "opacityCoding"), double(PENUMBRA_DCS_OPACITY_OPAQUE));
 }
 
-// Every shipped scene and hard case of issue 3 (1-7, 9, 11, 14, 15, 19, 20, 23), at 16 and 64
+// Every shipped scene and the hard cases 1-7, 9, 11, 14, 15, 19, 20 and 23, at 16 and 64
 // samples; 32 and 128 on a subset (the code paths differ only in the packing layout); the two
 // heaviest scenes (engine, 729 spheres) at 16 only, to keep the suite short.
 std::vector<Case> cases() {
@@ -146,7 +146,7 @@ TEST(Dcs, DefaultSceneWithTexturedLight) {
   EXPECT_LE(r.errors.visibilityOutsideBand.rmse, 1e-3);
 }
 
-// Animated textured light (issue 4, eq. 2): each frame's emission weights the samples; dcs
+// Animated textured light (DCS eq. 2): each frame's emission weights the samples; dcs
 // matches the reference at every time, and the two frames give different coloured shadows.
 TEST(Dcs, AnimatedTexturedLightMatchesTheReferenceAtEveryTime) {
   Scene scene = loadScene(scenePath("scenes/animated-window.json"));
@@ -229,7 +229,7 @@ TEST(Dcs, StandardSilhouettesFailAccurateMatch) {
   EXPECT_GT(statistic(accurate.frame, "edges"), statistic(standard.frame, "edges"));
 }
 
-// Semi-opaque occluders (issue 4, DCS paper section 3): the product coding against the
+// Semi-opaque occluders (DCS paper section 3): the product coding against the
 // reference, which multiplies (1 - opacity) per surface crossing. Same gates as the opaque
 // cases; the coding's own error is at most 1/1024 per layer (dcs/opacity.h).
 class DcsSemiOpaque : public ::testing::TestWithParam<Case> {};
@@ -285,7 +285,7 @@ TEST(DcsSemiOpaqueSum, IsThePapersSaturatedSumPerSample) {
   EXPECT_GT(r.errors.visibilityOutsideBand.rmse, 0.02) << "the sum should differ from the product here";
 }
 
-// The paper's approximate covered-sample modes (issue 4; DCS paper 7.1, 7.3, Fig. 9): the
+// The paper's approximate covered-sample modes (DCS paper 7.1, 7.3, Fig. 9): the
 // fraction of (pixel, sample) decisions where `naive` (8-bit packed positions) and `lut` (edge
 // LUT) differ from the exact test, and their visibility error against the reference. Gates from
 // the measured values (README "Results") with room.
@@ -383,7 +383,7 @@ TEST(DcsCoverageModes, RefusesALutOfAnotherPattern) {
   EXPECT_NO_THROW(r16.render(*ok));
 }
 
-// Sampling strategies (issue 4, DCS paper 5.1-5.2, Fig. 5): visibility RMSE of dcs against the
+// Sampling strategies (DCS paper 5.1-5.2, Fig. 5): visibility RMSE of dcs against the
 // converged reference (2048 stratified samples per pixel, fresh sets per pixel) for the
 // paper's configurations at N = 16 and 64. The documented ordering: more samples, less error;
 // decorrelated sets (rotated per pixel) trade the correlated pattern's structured error for
@@ -435,7 +435,7 @@ TEST(DcsSampling, StrategiesAgainstTheConvergedReference) {
   }
 }
 
-// Direct illumination (issue 4, DCS paper section 6): eq. 3 (visibility-modulated point light at
+// Direct illumination (DCS paper section 6): eq. 3 (visibility-modulated point light at
 // the centre) against eq. 6 (the sum over the light samples, each with its own radiance and
 // visibility), both with the Lambertian BRDF of the reference. With dcs's per-sample results,
 // eq. 6 equals the reference's eq. 6 image; eq. 3 differs from it by the point-light

@@ -540,7 +540,7 @@ FloorErrors unshadowedFloorErrors(const Scene& scene) {
 }
 }  // namespace
 
-// Issue 16 "Must show": LTC GGX against the converged shaded reference on a glossy plane. The
+// LTC GGX against the converged shaded reference on a glossy plane. The
 // floor of GlossyShadingIsTheSharedBrdfOnGpuAndCpu (makeGlossy) unoccluded under a rect and a disk
 // light (unshadowedFloorErrors): the ratio image is Lambert's formula for the diffuse part and the
 // LTC integral (shared.h penumbraLtcPolygon, luts/ltc_ggx.lut) for the specular one; its error
@@ -565,7 +565,7 @@ TEST(Pipeline, LtcSpecularAgainstTheConvergedShadedReference) {
     }
 }
 
-// Issue 16 section 2, textured lights: the stained-glass window (scenes/textures) as a rect and a
+// Textured lights: the stained-glass window (scenes/textures) as a rect and a
 // disk light over a Lambertian and a glossy floor, unoccluded (unshadowedFloorErrors). The ratio
 // image's unshadowed term is Lambert's formula and the LTC integral each times the emission
 // prefiltered for its lobe (Heitz et al. 2016 section 5.3; src/shading/prefiltered_light.h);

@@ -1,4 +1,4 @@
-// Scale and offset invariance (issue 14 sections 1-2, hard cases 25 and 26 of
+// Scale and offset invariance (hard cases 25 and 26 of
 // shared/docs/hard-cases.md): the evaluation point's epsilon follows the point's own float
 // magnitude (shared.h penumbraSurfaceEpsilon), so the shadows do not depend on how large the
 // floor is; the pipeline renders in camera-relative coordinates (Scene::makeCameraRelative), so

@@ -109,7 +109,7 @@ INSTANTIATE_TEST_SUITE_P(
         ShippedCase{"scenes/bunny-crowd.json",
                     {{"pcss", 0.155, 0.066}, {"pcss-ultra", 0.150, 0.064}, {"vssm", 0.285, 0.143}, {"msm-soft", 0.150, 0.059}, {"evsm", 0.153, 0.058}, {"raytrace-denoised", 0.135, 0.065}},
                     0.135},
-        // vssm's light bleeding (issue 17's measure; msm-soft and evsm bleed less, tests/render_msm_test.cpp)
+        // vssm's light bleeding (the moment methods' measure; msm-soft and evsm bleed less, tests/render_msm_test.cpp)
         // measured (visibility/shaded): pcss 0.0500/0.0255, pcss-ultra 0.0483/0.0244, vssm 0.1123/0.0515, msm-soft 0.0673/0.0346, evsm 0.0777/0.0391, raytrace-denoised 0.0701/0.0375; msm vs hard-sv 0.0762
         ShippedCase{"scenes/engine.json",
                     {{"pcss", 0.063, 0.032}, {"pcss-ultra", 0.061, 0.031}, {"vssm", 0.141, 0.065}, {"msm-soft", 0.085, 0.044}, {"evsm", 0.098, 0.049}, {"raytrace-denoised", 0.088, 0.047}},

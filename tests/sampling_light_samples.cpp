@@ -428,7 +428,7 @@ TEST(Sampling, Errors) {
       makeLightSamples(scene, makeLight(LightShape::Rect), p);
       ADD_FAILURE() << "count " << n << " accepted";
     } catch (const Error& e) {
-      EXPECT_EQ(e.where(), "--samples");
+      EXPECT_EQ(e.where(), "samples");
     }
   }
   EXPECT_NO_THROW(

@@ -54,7 +54,7 @@ TEST(SceneHostile, DeepNestingIsRefusedBeforeAnythingRecurses) {
     EXPECT_LT(std::string(e.what()).size(), 400u) << e.what();
   }
   const std::string plain = dir.file("plain.json", "{}");
-  expectError([&] { loadScene(plain, {"camera.fov=" + nested(70000)}); }, "--set",
+  expectError([&] { loadScene(plain, {"camera.fov=" + nested(70000)}); }, "override",
               "the value is nested deeper than 128 arrays and objects");
 
   Json doc = cubeDocument();

@@ -211,11 +211,11 @@ TEST(SceneJson, Overrides) {
   EXPECT_TRUE(hasWarning(created, "objects[0] 'box': unknown key 'bogus'"));
   EXPECT_TRUE(hasWarning(created, "unknown key 'extra'"));
 
-  expectError([&] { loadScene(path, {"lights.9.size=1"}); }, "--set", "index 9 out of range");
-  expectError([&] { loadScene(path, {"lights.x.size=1"}); }, "--set", "is not an index");
-  expectError([&] { loadScene(path, {"camera.fov.x=1"}); }, "--set", "'camera.fov' is number");
-  expectError([&] { loadScene(path, {"camera.fov"}); }, "--set", "expected key=value");
-  expectError([&] { loadScene(path, {"camera..fov=1"}); }, "--set", "empty path component");
+  expectError([&] { loadScene(path, {"lights.9.size=1"}); }, "override", "index 9 out of range");
+  expectError([&] { loadScene(path, {"lights.x.size=1"}); }, "override", "is not an index");
+  expectError([&] { loadScene(path, {"camera.fov.x=1"}); }, "override", "'camera.fov' is number");
+  expectError([&] { loadScene(path, {"camera.fov"}); }, "override", "expected key=value");
+  expectError([&] { loadScene(path, {"camera..fov=1"}); }, "override", "empty path component");
   expectError([&] { loadScene(path, {"camera.fov=nan"}); }, path, "camera.fov: expected a number");
 }
 

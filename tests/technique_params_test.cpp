@@ -60,9 +60,9 @@ TEST(TechniqueParams, DcsTakesItsOptionsThroughParam) {
   EXPECT_NO_THROW(p.checkConsumed());
   EXPECT_EQ(p.read().size(), 8u);
   EXPECT_NE(errorOf([] { makeTechnique("dcs", TechniqueParams({"coverage=fast"})); })
-                .find("--param: coverage: expected one of exact, naive, lut, got 'fast'"),
+                .find("param: coverage: expected one of exact, naive, lut, got 'fast'"),
             std::string::npos);
-  EXPECT_NE(errorOf([] { makeTechnique("dcs", TechniqueParams({"targets=8"})); }).find("--param: targets: 8 is outside [1, 7]"),
+  EXPECT_NE(errorOf([] { makeTechnique("dcs", TechniqueParams({"targets=8"})); }).find("param: targets: 8 is outside [1, 7]"),
             std::string::npos);
   EXPECT_NE(errorOf([] { makeTechnique("dcs", TechniqueParams({"min-base=48"})); }).find("min-base: expected one of 8, 16, 32, 64"),
             std::string::npos);
@@ -85,14 +85,14 @@ TEST(TechniqueParams, UnreadKeysAreRefused) {
 }
 
 TEST(KeyValueReader, TextAndJsonValuesShareTheirChecksAndWording) {
-  const KeyPlace param{"--param", "map", ExitCode::Usage}, scene{"a.json", "camera.resolution", ExitCode::Error};
+  const KeyPlace param{"param", "map", ExitCode::Usage}, scene{"a.json", "camera.resolution", ExitCode::Error};
   KeyValue json;
   json.kind = KeyValue::Kind::Number, json.number = 2.5, json.shown = "2.5";
-  EXPECT_EQ(errorOf([&] { readInteger(KeyValue::ofText("2.5"), param, 0, 10); }), "--param: map: expected an integer, got '2.5'");
+  EXPECT_EQ(errorOf([&] { readInteger(KeyValue::ofText("2.5"), param, 0, 10); }), "param: map: expected an integer, got '2.5'");
   EXPECT_EQ(errorOf([&] { readInteger(json, scene, 0, 10); }), "a.json: camera.resolution: expected an integer, got 2.5");
-  EXPECT_EQ(errorOf([&] { readNumber(KeyValue::ofText("20"), param, 0, 10); }), "--param: map: 20 is outside [0, 10]");
-  EXPECT_EQ(errorOf([&] { readNumber(KeyValue::ofText("1e400"), param, 0, 10); }), "--param: map: not a finite number: '1e400'");
-  EXPECT_EQ(errorOf([&] { readNumber(KeyValue::ofText("12abc"), param, 0, 100); }), "--param: map: expected a number, got '12abc'");
+  EXPECT_EQ(errorOf([&] { readNumber(KeyValue::ofText("20"), param, 0, 10); }), "param: map: 20 is outside [0, 10]");
+  EXPECT_EQ(errorOf([&] { readNumber(KeyValue::ofText("1e400"), param, 0, 10); }), "param: map: not a finite number: '1e400'");
+  EXPECT_EQ(errorOf([&] { readNumber(KeyValue::ofText("12abc"), param, 0, 100); }), "param: map: expected a number, got '12abc'");
   EXPECT_EQ(readNumber(KeyValue::ofText("0.25"), param, 0, 1), 0.25);
   EXPECT_TRUE(readBoolean(KeyValue::ofText("on"), param));
   EXPECT_FALSE(readBoolean(KeyValue::ofText("0"), param));

@@ -185,9 +185,14 @@ int listTechniques(bool asJson, bool withParams, const std::string& format) {
     std::printf("%s\n", j.dump(2).c_str());
     return 0;
   }
-  if (format == "markdown") {
-    if (!withParams) throw Error("--format", "markdown is the parameter table: use it with --params", ExitCode::Usage);
-    std::printf("%s", paramsMarkdown().c_str());
+  if (format == "markdown") {  // README's technique table; with --params, docs/cli.md's parameter table
+    if (withParams) {
+      std::printf("%s", paramsMarkdown().c_str());
+      return 0;
+    }
+    std::printf("| name | family | what |\n|---|---|---|\n");
+    for (auto& t : techniqueTable())
+      std::printf("| `%s` | %s | %s |\n", t.name.c_str(), toString(t.family), t.description.c_str());
     return 0;
   }
   for (auto& t : techniqueTable()) {

@@ -16,23 +16,33 @@ using namespace penumbra;
 
 namespace {
 
-void addCommon(CLI::App* app, cli::CommonOptions& o, bool renderOptions) {
+// Each subcommand takes only the options it uses (`penumbra lut --shading ratio` is a usage
+// error), in groups: the scene, the light samples, the rendering.
+enum class Options { Scene = 1, Samples = 2, Rendering = 4 };
+constexpr int operator|(Options a, Options b) { return int(a) | int(b); }
+
+void addOptions(CLI::App* app, cli::CommonOptions& o, int groups) {
   app->add_option("scene", o.scene, "scene file (.json, .gltf, .glb, .obj, .ply, .off, .stl); none: built-in default");
   app->add_option("--set", o.overrides, "override a scene key: key=value (repeatable)");
   app->add_flag("--json", o.json, "machine-readable output on stdout");
-  app->add_option("--param", o.params, "technique parameter key=value (repeatable; see README, e.g. map=512)");
-  if (!renderOptions) return;
-  app->add_option("--backend", o.backend, "GL backend: egl | osmesa")->capture_default_str();
-  app->add_option("-W,--width", o.width, "image width (default: the scene's)");
-  app->add_option("-H,--height", o.height, "image height (default: the scene's)");
-  app->add_option("--samples", o.samples, "light samples per light, for every technique and the reference")->capture_default_str();
-  app->add_option("--strategy", o.strategy, "sample strategy: stratified | poisson | vogel")->capture_default_str();
-  app->add_option("--pattern", o.pattern, "per-pixel sets: correlated | decorrelated | interleaved")->capture_default_str();
-  app->add_option("--seed", o.seed, "sample seed")->capture_default_str();
-  app->add_option("--time", o.time, "animation time in seconds (animated textured lights)")->capture_default_str();
-  app->add_option("--shading", o.shading, "ratio (unshadowed term x shadow ratio, Heitz et al. 2018) | ratio-exact (the unshadowed term integrated on the CPU, not the LTC) | modulate (DCS eq. 3) | per-sample (eq. 6)")->capture_default_str();
-  app->add_flag("--no-interleave-filter", o.noInterleaveFilter,
+  if (groups & int(Options::Samples)) {
+    auto* g = app->add_option_group("light samples");
+    g->add_option("--samples", o.samples, "light samples per light, for every technique and the reference")->capture_default_str();
+    g->add_option("--strategy", o.strategy, "sample strategy: stratified | poisson | vogel")->capture_default_str();
+    g->add_option("--pattern", o.pattern, "per-pixel sets: correlated | decorrelated | interleaved")->capture_default_str();
+    g->add_option("--seed", o.seed, "sample seed")->capture_default_str();
+    g->add_option("--time", o.time, "animation time in seconds (animated textured lights)")->capture_default_str();
+  }
+  if (groups & int(Options::Rendering)) {
+    auto* g = app->add_option_group("rendering");
+    g->add_option("--param", o.params, "technique parameter key=value (repeatable; `penumbra list --params`, e.g. map=512)");
+    g->add_option("--backend", o.backend, "GL backend: egl | osmesa")->capture_default_str();
+    g->add_option("-W,--width", o.width, "image width (default: the scene's)");
+    g->add_option("-H,--height", o.height, "image height (default: the scene's)");
+    g->add_option("--shading", o.shading, "ratio (unshadowed term x shadow ratio, Heitz et al. 2018) | ratio-exact (the unshadowed term integrated on the CPU, not the LTC) | modulate (DCS eq. 3) | per-sample (eq. 6)")->capture_default_str();
+    g->add_flag("--no-interleave-filter", o.noInterleaveFilter,
                 "with --pattern interleaved: skip the normal/depth-aware gather of the K x K sets");
+  }
 }
 
 }  // namespace
@@ -59,22 +69,22 @@ int main(int argc, char** argv) {
   auto* list = app.add_subcommand("list", "list the techniques, one line each");
   list->add_flag("--json", listJson, "machine-readable output (as --format json)");
   list->add_flag("--params", listParams, "every technique's parameters (--param key=value): default, values, meaning");
-  list->add_option("--format", listFormat, "text, markdown (README's parameter table, with --params) or json")
+  list->add_option("--format", listFormat, "text, markdown (README's technique table; with --params docs/cli.md's parameter table) or json")
       ->capture_default_str();
 
   auto* info = app.add_subcommand("info", "print a scene's triangle and light counts and mesh reports");
-  addCommon(info, o, false);
+  addOptions(info, o, int(Options::Scene));
 
   std::string technique = "hard-sv", output;
   auto* render = app.add_subcommand("render", "render one technique");
-  addCommon(render, o, true);
+  addOptions(render, o, Options::Samples | Options::Rendering);
   render->add_option("-t,--technique", technique, "technique (see `penumbra list`)")->capture_default_str();
   render->add_option("-o,--output", output, "output image (.exr: float RGB + visibility layers; .png: sRGB)")->required();
 
   std::string techniques = "all";
   cli::CompareCliOptions cmp;
   auto* compare = app.add_subcommand("compare", "render techniques and the raytrace reference with the same samples; write index.html, report.json/.csv, plot.svg, images");
-  addCommon(compare, o, true);
+  addOptions(compare, o, Options::Samples | Options::Rendering);
   compare->add_option("--techniques", techniques, "comma-separated techniques, or 'all'")->capture_default_str();
   compare->add_option("-o,--output", cmp.outDir, "output folder (default: out/<scene name>)");
   double maxError = 0.0;
@@ -99,7 +109,7 @@ int main(int argc, char** argv) {
 
   cli::LutOptions lutOptions;
   auto* lut = app.add_subcommand("lut", "write the dcs edge LUT of a sample pattern (and textured lights' luminance tables), or the LTC GGX table");
-  addCommon(lut, o, true);
+  addOptions(lut, o, int(Options::Samples));
   lut->add_option("--shape", lutOptions.shape, "light shape when no scene is given: rect | disk")->capture_default_str();
   lut->add_option("--cube", lutOptions.cube, "sector table size (cube map faces)")->capture_default_str();
   lut->add_option("--line", lutOptions.line, "line table size")->capture_default_str();
@@ -142,7 +152,10 @@ int main(int argc, char** argv) {
       return cli::compare(o, cmp);
     }
   } catch (const Error& e) {
-    std::fprintf(stderr, "penumbra: %s\n", e.what());
+    // A field the libraries name is shown as the flag that sets it.
+    const std::string command = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
+    const std::string flag = cli::flagFor(e.where(), command);
+    std::fprintf(stderr, "penumbra: %s\n", flag.empty() ? e.what() : Error(flag, e.detail()).what());
     return int(e.exitCode());
   } catch (const std::bad_alloc&) {
     // What the up-front estimates (core/memory.h) did not foresee: still one line, exit 1.

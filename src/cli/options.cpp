@@ -37,6 +37,16 @@ PixelPattern parsePixelPattern(const std::string& s) {
   throw Error("--pattern", "unknown pixel pattern '" + s + "' (correlated|decorrelated|interleaved)", ExitCode::Usage);
 }
 
+std::string flagFor(const std::string& field, const std::string& subcommand) {
+  if (field == "technique") return subcommand == "compare" ? "--techniques" : "--technique";
+  static const std::pair<const char*, const char*> kFlags[] = {
+      {"param", "--param"},     {"sweep", "--sweep"},     {"override", "--set"},
+      {"samples", "--samples"}, {"reference-samples", "--param reference-samples"}};
+  for (const auto& [name, flag] : kFlags)
+    if (field == name) return flag;
+  return {};
+}
+
 double parseByteSize(const std::string& what, const std::string& text) {
   static const std::pair<const char*, double> kUnits[] = {
       {"KiB", 1024.0}, {"MiB", 1048576.0}, {"GiB", 1073741824.0}, {"TiB", 1099511627776.0}};

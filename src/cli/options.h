@@ -36,6 +36,11 @@ double parseByteSize(const std::string& what, const std::string& text);
 // "inf"), none of which a user means.
 void requireDecimalNumbers(CLI::App& app);
 
+// The flag that sets a field the libraries name in an Error's `where` ("param", "sweep",
+// "override", "technique", "samples"), for `subcommand`; "" for a field no flag sets (a file, a
+// scene object, a technique). The libraries never name flags: this table is where fields meet them.
+std::string flagFor(const std::string& field, const std::string& subcommand);
+
 // An integer in 1..hi, else Error(what, "expected an integer in 1..hi, got 'v'") (usage).
 int parsePositive(const std::string& what, const std::string& v, int hi);
 

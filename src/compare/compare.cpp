@@ -127,7 +127,7 @@ class Comparison {
     if (converged_ && !o.converged) PLOG_INFO("samples are swept: errors are also measured against {}", o.convergedReference.name);
     if (frames_ > 1 && !animated_ &&
         std::all_of(scene.lights.begin(), scene.lights.end(), [](auto& l) { return l.emissionFrames.size() < 2; }))
-      PLOG_WARN("--frames {}: the scene has no animation (no \"spin\", no animated light): every frame is the same", frames_);
+      PLOG_WARN("{} frames: the scene has no animation (no \"spin\", no animated light): every frame is the same", frames_);
   }
 
   CompareResult run() {

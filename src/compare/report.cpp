@@ -383,7 +383,7 @@ std::string reportHtml(const CompareResult& r) {
     for (std::size_t k = 0; k < r.insets.size(); ++k) {
       const Inset& in = r.insets[k];
       h += fmt::format("<h3>region {}: x {}, y {}, {}x{} px ({})</h3>\n<div class=\"insets\">\n", k + 1, in.x, in.y, in.w, in.h,
-                       r.insetSource == "given" ? "given with --inset" : "most penumbra pixels of the reference");
+                       r.insetSource == "given" ? "given" : "most penumbra pixels of the reference");
       for (auto& run : r.runs) {
         if (run.preset != 0 || k >= run.insetImages.size()) continue;
         h += "<figure><img src=\"" + escapeMarkup(run.insetImages[k]) + "\" alt=\"" + escapeMarkup(run.technique) + " inset\"><figcaption>" +

@@ -29,7 +29,7 @@ struct KeyValue {
 
 // Where a value sits: errors are Error(where, at + ": " + problem, code).
 struct KeyPlace {
-  std::string where;  // the file or option ("scenes/a.json", "--param")
+  std::string where;  // the file or field ("scenes/a.json", "param")
   std::string at;     // the key, with its object path ("lights[0].size", "map")
   ExitCode code = ExitCode::Error;
   [[noreturn]] void fail(const std::string& problem) const;

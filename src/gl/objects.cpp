@@ -220,7 +220,7 @@ GLuint createTexture(GLenum target, GLenum fmt, int w, int h, int layers, Textur
   if (w <= 0 || h <= 0 || (layers == 0 && target != GL_TEXTURE_2D) || layers < 0)
     throw Error("GPU memory", "cannot allocate " + what + " (empty)");
   if (w > maxSize || h > maxSize)
-    throw Error("GPU memory", fmt::format("{} exceeds this GL's {} ({}); use a smaller -W/-H or --param map", what,
+    throw Error("GPU memory", fmt::format("{} exceeds this GL's {} ({}); use a smaller image or map", what,
                                           target == GL_TEXTURE_CUBE_MAP_ARRAY ? "GL_MAX_CUBE_MAP_TEXTURE_SIZE"
                                                                              : "GL_MAX_TEXTURE_SIZE",
                                           maxSize));
@@ -373,7 +373,7 @@ Framebuffer Framebuffer::empty(int width, int height, int layers) {
   if (width <= 0 || height <= 0 || width > l.maxFramebufferWidth || height > l.maxFramebufferHeight ||
       width > l.maxViewport[0] || height > l.maxViewport[1] || layers > l.maxFramebufferLayers)
     throw Error("GPU memory", fmt::format("a {} x {} x {} framebuffer without attachments exceeds this GL's "
-                                          "GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT/LAYERS ({} x {} x {}); use a smaller -W/-H or --param map",
+                                          "GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT/LAYERS ({} x {} x {}); use a smaller image or map",
                                           width, height, layers, l.maxFramebufferWidth, l.maxFramebufferHeight,
                                           l.maxFramebufferLayers));
   GLuint id = 0;

@@ -104,12 +104,12 @@ TechniqueParams::TechniqueParams(const std::vector<std::string>& keyValues, std:
   for (auto& kv : keyValues) {
     auto eq = kv.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
-      throw Error("--param", "expected key=value, got '" + kv + "'", ExitCode::Usage);
+      throw Error("param", "expected key=value, got '" + kv + "'", ExitCode::Usage);
     std::string key = kv.substr(0, eq);
     // A plain lookup, not find(): find() records the key as one a technique knows, which made
     // an unread key list itself as known ("(known: bogus)").
     for (auto& [k, v] : values_)
-      if (k == key) throw Error("--param", "key '" + key + "' given twice", ExitCode::Usage);
+      if (k == key) throw Error("param", "key '" + key + "' given twice", ExitCode::Usage);
     values_.emplace_back(key, kv.substr(eq + 1));
   }
 }
@@ -125,7 +125,7 @@ const std::string* TechniqueParams::find(const std::string& key) const {
 }
 
 std::string TechniqueParams::origin(const std::string& key) const {
-  return std::find(swept_.begin(), swept_.end(), key) != swept_.end() ? "--sweep" : "--param";
+  return std::find(swept_.begin(), swept_.end(), key) != swept_.end() ? "sweep" : "param";
 }
 
 KeyPlace TechniqueParams::place(const ParamSpec& spec) const { return {origin(spec.key), spec.key, ExitCode::Usage}; }

@@ -101,7 +101,7 @@ class Technique {
 // One technique parameter, declared once beside the technique (pbrt-v4's Create(dict) model):
 // the declaration gives the factory its value (default, range or choices checked), `--param`
 // its checking, `penumbra list --params` its line and README its table row (tests/
-// params_readme_test.sh compares README with `penumbra list --params --format markdown`).
+// generated_tables_test.sh compares docs/cli.md with `penumbra list --params --format markdown`).
 struct ParamSpec {
   enum class Type { Integer, Number, Boolean, Choice, Text };
   std::string key;
@@ -137,15 +137,15 @@ struct KeyPlace;  // core/key_values.h
 class TechniqueParams {
  public:
   TechniqueParams() = default;
-  // "key=value" strings; throws Error("--param") for a malformed one or a repeated key. The
-  // values of the `swept` keys come from a sweep: their errors name "--sweep".
+  // "key=value" strings; throws Error("param") for a malformed one or a repeated key. The
+  // values of the `swept` keys come from a sweep: their errors name "sweep".
   explicit TechniqueParams(const std::vector<std::string>& keyValues, std::vector<std::string> swept = {});
   int integer(const ParamSpec& spec) const;
   double number(const ParamSpec& spec) const;
   bool boolean(const ParamSpec& spec) const;
   std::string text(const ParamSpec& spec) const;  // Choice (one of its choices) or Text
   bool empty() const { return values_.empty(); }
-  // Throws Error("--param") if a given key was read by no technique created with these params.
+  // Throws Error("param") if a given key was read by no technique created with these params.
   void checkConsumed() const;
   // "key=value" of the given keys some technique created with these params read.
   std::vector<std::string> read() const;
@@ -157,7 +157,7 @@ class TechniqueParams {
 
  private:
   const std::string* find(const std::string& key) const;
-  std::string origin(const std::string& key) const;  // "--param" or "--sweep"
+  std::string origin(const std::string& key) const;  // "param" or "sweep"
   KeyPlace place(const ParamSpec& spec) const;
   std::vector<std::pair<std::string, std::string>> values_;
   std::vector<std::string> swept_;

@@ -340,7 +340,7 @@ int LightSampleSet::setForPixel(int x, int y) const {
 }
 
 std::vector<glm::vec2> unitSquareSamples(SampleStrategy strategy, int count, std::uint32_t seed) {
-  checkCount(count, kMaxSingleSetCount, "--samples");
+  checkCount(count, kMaxSingleSetCount, "samples");
   std::vector<glm::vec2> out;
   out.reserve(count);
   for (const glm::dvec2& p : unitPoints(strategy, count, seed))
@@ -350,15 +350,15 @@ std::vector<glm::vec2> unitSquareSamples(SampleStrategy strategy, int count, std
 
 LightSampleSet makeLightSamples(const Scene& scene, const Light& light,
                                 const SamplingParams& params, float time) {
-  checkCount(params.count, PENUMBRA_MAX_SAMPLES, "--samples");
+  checkCount(params.count, PENUMBRA_MAX_SAMPLES, "samples");
   if (params.pattern == PixelPattern::Decorrelated &&
       (params.decorrelatedSets < 1 || params.decorrelatedSets > kMaxDecorrelatedSets))
-    throw Error("--sets", "decorrelated set count must be in 1.." +
+    throw Error("decorrelated sets", "decorrelated set count must be in 1.." +
                               std::to_string(kMaxDecorrelatedSets) + ", got " +
                               std::to_string(params.decorrelatedSets));
   if (params.pattern == PixelPattern::Interleaved &&
       (params.interleaveK < 1 || params.interleaveK > kMaxInterleaveK))
-    throw Error("--interleave", "interleave tile size K must be in 1.." +
+    throw Error("interleave K", "interleave tile size K must be in 1.." +
                                     std::to_string(kMaxInterleaveK) + ", got " +
                                     std::to_string(params.interleaveK));
   const LightMap m = makeLightMap(scene, light, time);
@@ -417,7 +417,7 @@ LightSampleSet makeLightSamples(const Scene& scene, const Light& light,
 
 LightSampleSet makeLightSampleSet(const Scene& scene, const Light& light, SampleStrategy strategy,
                                   int count, std::uint32_t seed, float time) {
-  checkCount(count, kMaxSingleSetCount, "--reference-samples");
+  checkCount(count, kMaxSingleSetCount, "reference-samples");
   const LightMap m = makeLightMap(scene, light, time);
   LightSampleSet out;
   out.shape = light.shape;

@@ -63,11 +63,11 @@ struct LightSampleSet {
 };
 
 // Makes the sample sets of `light` at animation time `time` (selects the emission frame).
-// Throws penumbra::Error("--samples", ...) for count outside 1..PENUMBRA_MAX_SAMPLES and
+// Throws penumbra::Error("samples", ...) for count outside 1..PENUMBRA_MAX_SAMPLES and
 // penumbra::Error(light.name, ...) for a zero-size area light.
 // A point light (count 1) or count == 1 (the centre) collapses to one correlated set: callers
 // must use the returned count/setCount/pattern/interleaveK, not the params. Also throws
-// Error("--sets") for decorrelatedSets outside 1..4096 and Error("--interleave") for interleaveK
+// Error("decorrelated sets") for decorrelatedSets outside 1..4096 and Error("interleave K") for interleaveK
 // outside 1..16 (when that pattern is used), and Error(light.name) for a bad emission texture.
 LightSampleSet makeLightSamples(const Scene& scene, const Light& light, const SamplingParams& params,
                                 float time = 0.0f);
@@ -75,7 +75,7 @@ LightSampleSet makeLightSamples(const Scene& scene, const Light& light, const Sa
 // One set of `count` points (1..2^20, not limited by PENUMBRA_MAX_SAMPLES) of `strategy` seeded
 // by `seed`, mapped onto the light exactly like the base set of makeLightSamples (pattern
 // correlated, one set). The converged reference makes a fresh one per pixel. Throws
-// penumbra::Error("--reference-samples", ...) for a bad count, and like makeLightSamples for the
+// penumbra::Error("reference-samples", ...) for a bad count, and like makeLightSamples for the
 // light.
 LightSampleSet makeLightSampleSet(const Scene& scene, const Light& light, SampleStrategy strategy,
                                   int count, std::uint32_t seed, float time = 0.0f);

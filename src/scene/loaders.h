@@ -100,7 +100,7 @@ Light transformLight(const Light& light, const glm::mat4& m);
 Json framingCamera(glm::vec3 lo, glm::vec3 hi);
 
 // "key=value" overrides (see scene.h) applied to the document in place. Throws
-// penumbra::Error("--set", ...) on a malformed pair or an array index out of range.
+// penumbra::Error("override", ...) on a malformed pair or an array index out of range.
 // Parses a scene file's or a glTF file's JSON (`root` "scene" or "glTF"; // and /* */ comments
 // allowed in scene files only). JSON lets an object repeat a key and nlohmann (tinygltf too)
 // keeps the last silently; a repeated key here throws penumbra::Error(path, "<item>: duplicate

@@ -105,7 +105,7 @@ const LtcTable& builtinLtcTable() {
   static const LtcTable table = [] {
     if (kEmbeddedLtcGgxSize == 0)
       throw Error("luts/ltc_ggx.lut", "this build has no LTC table (the file was missing at build time); "
-                                      "make it with `penumbra lut --ltc` and rebuild");
+                                      "fit it with the LUT tool (luts/README.md) and rebuild");
     return parseLtcTable(std::string(reinterpret_cast<const char*>(kEmbeddedLtcGgx), kEmbeddedLtcGgxSize),
                          "luts/ltc_ggx.lut (built in)");
   }();

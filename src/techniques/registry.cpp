@@ -136,7 +136,7 @@ const TechniqueInfo& findTechnique(const std::string& name) {
     if (t.name == name) return t;
     known += (known.empty() ? "" : ", ") + t.name;
   }
-  throw Error("--technique", "unknown technique '" + name + "' (known: " + known + ")", ExitCode::Usage);
+  throw Error("technique", "unknown technique '" + name + "' (known: " + known + ")", ExitCode::Usage);
 }
 
 std::vector<TechniqueInfo> findTechniques(const std::vector<std::string>& names) {

@@ -12,7 +12,7 @@
 namespace penumbra {
 
 const std::vector<TechniqueInfo>& techniqueTable();
-// Throws penumbra::Error("--technique", ...) listing the known names.
+// Throws penumbra::Error("technique", ...) listing the known names.
 const TechniqueInfo& findTechnique(const std::string& name);
 // findTechnique of each name, in order.
 std::vector<TechniqueInfo> findTechniques(const std::vector<std::string>& names);

@@ -1,4 +1,4 @@
-// The compute path of dcs's wedge pass (`path=compute`, issue 19): the solids of the selected
+// The compute path of dcs's wedge pass (`path=compute`): the solids of the selected
 // edges (shaders/dcs_solids.comp), then per screen tile the edges whose solid meets the bounding
 // box of the tile's visible points, evaluated per pixel inside the solid with the raster path's
 // update function (shaders/dcs_wedge.comp); the counts are added to the initialised counters

@@ -17,7 +17,7 @@
 // checksum of all updates; where the pixel's bound fits the base a mismatch cannot be an
 // overflow and is reported (see below), elsewhere it is a carry and the pass is redone.
 //
-// The compute path (`path=compute`, issue 19) replaces step (4)'s rasterised wedges: the solids
+// The compute path (`path=compute`) replaces step (4)'s rasterised wedges: the solids
 // of the selected edges (shaders/dcs_solids.comp), then per 8x8 tile the edges whose solid
 // meets the bounding box of the tile's visible points, evaluated per pixel inside the solid with
 // the raster path's update function (shaders/dcs_wedge.comp). It adds each pixel's counts once,
@@ -463,7 +463,7 @@ class DepthComplexitySampling final : public Technique {
   // later frames from the counts its last pass measured). A light's first frame has none: it
   // plans for the widest base that costs no more targets than base 256 and no extra pass (4096
   // at 16 samples, 64 at 64), and its pass measures the counts for the next (and renders again
-  // where they do not fit). Until issue 19 a separate bound pass measured them first,
+  // where they do not fit). Before the counts were planned from earlier frames, a separate bound pass measured them first,
   // rasterising every wedge once more (54-70% of a counter pass; engine 256^2: 2.5 s).
   dcs::CountBound firstFrameGuess(const LightPass& pass, const LightFrame& f) const {
     auto both = [](int count) { return dcs::CountBound{count, dcs::Reach::any(count)}; };

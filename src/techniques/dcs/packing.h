@@ -1,7 +1,7 @@
 // Float-base packing of depth-complexity counters (DCS paper 7.3, eq. 7-10). A float counts
 // every integer up to 2^24 exactly, so one channel holds `digits` counters in base B with
 // B^digits <= 2^24: base 256 x 3, 64 x 4, 16 x 6, 8 x 8 (the paper's), plus 32 x 4 (2^20, for the
-// counts of 30-odd that complex scenes reach, issue 19), 4096 x 2 and 2^24 x 1, our fallbacks
+// counts of 30-odd that complex scenes reach), 4096 x 2 and 2^24 x 1, our fallbacks
 // for depth complexities above 255. No GL here.
 //
 // The paper sizes the base for the largest value a counter takes while the updates are blended.
@@ -82,7 +82,7 @@ PackingPlan planPacking(int samples, int maxCount, int maxTargets, int minLayout
 
 // The widest layout whose plan needs no more targets than the plan for `maxCount` and no more
 // passes than the fewest any layout needs: the counts that can be had without an extra pass. A
-// light's first frame, with no bound measured yet, plans for it (dcs.cpp, issue 19 section 3;
+// light's first frame, with no bound measured yet, plans for it (dcs.cpp;
 // a second pass costs as much as the bound pass this replaces, so it is never guessed).
 PackingPlan widestPlanAtTheCostOf(int samples, int maxCount, int maxTargets, int minLayout = 0);
 

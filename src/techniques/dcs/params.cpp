@@ -99,17 +99,17 @@ DcsOptions readDcsOptions(const TechniqueArgs& args) {
   // ignored), a file or folder that is not there (a missing folder fell back to a LUT built in
   // memory without a word).
   if (o.coverage == PENUMBRA_DCS_COVERAGE_EXACT && (!o.lutFile.empty() || !o.lutDirectory.empty()))
-    throw Error("--param", std::string(o.lutFile.empty() ? "lut-dir" : "lut-file") +
+    throw Error("param", std::string(o.lutFile.empty() ? "lut-dir" : "lut-file") +
                                ": this dcs counts with the exact coverage test and reads no edge LUT (dcs-lut and "
                                "dcs-naive read one)", ExitCode::Usage);
   if (!o.lutFile.empty())
     if (const std::string why = fileProblem(o.lutFile); !why.empty())
-      throw Error("--param", "lut-file: '" + abbreviate(o.lutFile) + "': " + why, ExitCode::Usage);
+      throw Error("param", "lut-file: '" + abbreviate(o.lutFile) + "': " + why, ExitCode::Usage);
   if (!o.lutDirectory.empty() && !std::filesystem::is_directory(o.lutDirectory))
-    throw Error("--param", "lut-dir: '" + abbreviate(o.lutDirectory) + "' is not a folder", ExitCode::Usage);
+    throw Error("param", "lut-dir: '" + abbreviate(o.lutDirectory) + "' is not a folder", ExitCode::Usage);
   o.lutSize.cube = args.integer("lut-cube");
   o.lutSize.line = args.integer("lut-line");
-  if (o.lutSize.line % 2) throw Error("--param", "lut-line: must be even, got " + std::to_string(o.lutSize.line), ExitCode::Usage);
+  if (o.lutSize.line % 2) throw Error("param", "lut-line: must be even, got " + std::to_string(o.lutSize.line), ExitCode::Usage);
   o.profile = args.boolean("profile");
   return o;
 }

@@ -61,7 +61,7 @@ std::vector<ParamSpec> msmParams(const MsmOptions& o) {
 std::unique_ptr<Technique> makeMomentShadowMapping(const TechniqueArgs& args, MsmOptions o) {
   if (!o.soft) {
     o.filter = args.integer("filter");
-    if (o.filter % 2 == 0) throw Error("--param", "filter: must be odd, got " + std::to_string(o.filter), ExitCode::Usage);
+    if (o.filter % 2 == 0) throw Error("param", "filter: must be odd, got " + std::to_string(o.filter), ExitCode::Usage);
   }
   if (o.soft) o.subKernels = args.integer("sub-kernels");
   o.momentBias = args.number("moment-bias");

@@ -90,7 +90,7 @@ void occlusionFilter(const RTCFilterFunctionNArguments* args) {
 }
 
 // Embree accepts ray origins and directions with |components| <= FLT_LARGE (1.844e18, its
-// RayK::valid(); beyond it a debug build aborts, issue 14 section 5: a light of size 1e19). A
+// RayK::valid(); beyond it a debug build aborts: hard case 31, a light of size 1e19). A
 // segment towards a sample that far is shortened by an exact power of two 2^k and tfar grows by
 // the same 2^k: the ray's points o + t d are the same floats, so the hit (and the shadow) are
 // exactly those of the unscaled segment. The scene loader refuses lights beyond float's range.

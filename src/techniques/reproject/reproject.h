@@ -1,4 +1,4 @@
-// `reproject`: fragment reprojection (Fragment Reprojection paper, section 3): one z-buffered
+// `reproject`: fragment reprojection (REPROJECT paper, section 3): one z-buffered
 // depth map from the light centre, every texel rebuilt as a world point and reprojected into
 // every light sample's map by a compute shader, synchronised with atomicMax (section 3.2) or not
 // (`reproject-unsync`: plain stores, the last writer wins). Only the nearest surface of the

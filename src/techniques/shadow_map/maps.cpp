@@ -316,7 +316,7 @@ void MultiViewTechnique::renderSemiOpaque(LightPass& pass, const MapFrame& frame
       double bytes = 4.0 * double(frame.size) * frame.size * frame.layers * (slots + 1);
       if (frame.layers * slots > maxLayers || bytes > 4.0 * 1024 * 1024 * 1024)
         throw Error(name_, fmt::format("{} semi-opaque surfaces on one map texel need {} layers ({:.0f} MiB) for {} maps of "
-                                       "{}^2: beyond this GL's {} layers or 4 GiB (use a smaller --param map)",
+                                       "{}^2: beyond this GL's {} layers or 4 GiB (use a smaller map)",
                                        slots, frame.layers * slots, bytes / 1048576.0, frame.layers, frame.size, maxLayers));
       semiCount_ = gl::Texture::make2DArray(GL_R32UI, frame.size, frame.size, frame.layers);
       semiLayers_ = gl::Texture();
@@ -360,7 +360,7 @@ const gl::Texture& MultiViewTechnique::ensureMaps(GLenum format, const MapFrame&
     try {
       maps_ = gl::Texture::make2DArray(format, frame.size, frame.size, frame.layers);
     } catch (const Error&) {  // GL_OUT_OF_MEMORY (gl/objects.cpp): name the technique and the parameter
-      throw Error(name_, fmt::format("out of GPU memory for {} depth maps of {}^2 ({:.0f} MiB); use a smaller --param map",
+      throw Error(name_, fmt::format("out of GPU memory for {} depth maps of {}^2 ({:.0f} MiB): use a smaller map",
                                      frame.layers, frame.size, 4.0 * frame.size * double(frame.size) * frame.layers / 1048576.0));
     }
   }

@@ -95,7 +95,7 @@ void setMapUniforms(const gl::Program& program, const MapFrame& frame);
 void renderDepthView(const std::string& technique, LightPass& pass, const MapFrame& frame, const glm::vec3& eye,
                      const gl::Framebuffer& fbo, const gl::Program& program, bool semiOpaque = false);
 
-// Self-checks (issue 14 section 4, never silent). opaqueTriangleCoversAPixel: an opaque
+// Self-checks (never silent). opaqueTriangleCoversAPixel: an opaque
 // triangle (front-facing towards `eye` only, when cullBack) lies wholly in the view from `eye`
 // along the frame's axis (near plane `zNear`, size^2 pixels) with an inscribed circle of at
 // least one pixel in radius, so the rasteriser must give it a fragment (a disc of diameter

@@ -20,7 +20,7 @@ ParamSpec subKernelsParam(int fallback) {
 
 int readSatBits(const TechniqueArgs& args) {
   const int bits = args.integer("sat-bits");
-  if (bits != 32 && bits != 64) throw Error("--param", "sat-bits: must be 32 or 64, got " + std::to_string(bits), ExitCode::Usage);
+  if (bits != 32 && bits != 64) throw Error("param", "sat-bits: must be 32 or 64, got " + std::to_string(bits), ExitCode::Usage);
   return bits;
 }
 

@@ -92,7 +92,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
       const double ratio = double(cap) / double(frame.size);  // eq. 3's (z_n + d) / z_n at the cap
       PLOG_WARN("{}: eq. 3 asks for a {:.0f}^2 point-generation view; capped at {} ({}): occluders nearer the light than "
                 "{:.3g} are sampled below mvr's rate", name(), wanted, cap,
-                cap == o_.maxView ? "--param max-view" : "the GL's limit",
+                cap == o_.maxView ? "the max-view parameter" : "the GL's limit",
                 ratio > 1.0 ? double(distance_) / (ratio - 1.0) : double(INFINITY));
       warnedCap_ = true;
     }
@@ -236,7 +236,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
   }
 
   // Points one generation pass may hold: the storage-block limit (a count, 3 floats a point,
-  // after the 16-byte header), or --param pass-points when smaller.
+  // after the 16-byte header), or the pass-points parameter when smaller.
   std::size_t passPointLimit() const {
     const GLint64 block = gl::limits().maxStorageBlockSize;
     std::size_t limit = block > 16 ? std::size_t(block - 16) / 12 : std::size_t(1) << 24;
