@@ -1,4 +1,4 @@
-# The layers of penumbra and which may use which (README "Layers"). Held by the build twice:
+# The layers of penumbra and which may use which (docs/architecture.md). Held by the build twice:
 #
 #  * include roots: a library's headers are reachable only through its own root,
 #    <build>/include/<target>/<folder> (a link to the source folder), which it publishes PUBLIC.

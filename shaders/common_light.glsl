@@ -32,5 +32,5 @@ uint pixelSampleBase(ivec2 pixel) {
 }
 
 // Horizon rule shared with the reference: a sample below the surface's tangent plane is not
-// seen (README "Conventions").
+// seen (docs/architecture.md "Conventions").
 bool aboveHorizon(vec3 p, vec3 n, vec3 x) { return dot(n, x - p) > 0.0; }

@@ -1,5 +1,5 @@
 // Writes the G-buffer. The normal is the geometric normal turned towards the camera, so
-// surfaces are two-sided and the horizon rule (README "Conventions") is the same for every
+// surfaces are two-sided and the horizon rule (docs/architecture.md "Conventions") is the same for every
 // technique and the reference. The shading normal (the BRDF's) is the
 // interpolated vertex normal, normalised, turned to the geometric normal's side: a back face
 // seen by the camera is shaded as its own front (two-sided, as the geometric normal), and a

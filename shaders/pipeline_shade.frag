@@ -8,14 +8,14 @@
 // technique with V only. A pixel whose samples all miss (sum_k w_k = 0) gets ratio 0, as eq. 6.
 // BRDF: shared.h penumbraBrdf (Lambertian or the glTF metallic-roughness BRDF, from the
 // G-buffer's material target), its cosine with the shading normal (the G-buffer's interpolated
-// vertex normal), the horizon rule with the geometric one (README "Conventions"). In the ratio
+// vertex normal), the horizon rule with the geometric one (docs/architecture.md "Conventions"). In the ratio
 // mode the diffuse part's unshadowed term is Lambert's formula times the samples' mean of the
 // diffuse BRDF (1 - F varies over the light; exact for LAMBERT); the specular part's is the LTC
 // integral (shared.h penumbraLightPolygon, the table of src/shading/ltc.h) times norm and Schlick's
 // Fresnel at shared.h penumbraLtcFresnelDirection for rect and disk lights, else the sample sum (sphere
 // lights: no polygon). A textured rect or disk light's two integrals are each times its emission
 // prefiltered for that lobe (Heitz et al. 2016 section 5.3: shared.h penumbraPrefilterFootprint,
-// src/shading/prefiltered_light.h); a textured sphere keeps the sample sum (README "Shading").
+// src/shading/prefiltered_light.h); a textured sphere keeps the sample sum (docs/architecture.md "Lighting pipeline").
 #include "common_light.glsl"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;

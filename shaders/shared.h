@@ -329,7 +329,7 @@ PENUMBRA_FN vec3 penumbraLtcMap(vec3 w, vec3 x, vec3 y, vec3 z, vec4 minv) {
 
 // The light's polygon is clipped to half-spaces dot(plane_k, x) > 0 through the point, in order:
 // 0 the geometric normal ng (the horizon rule every technique and the reference apply per sample,
-// README "Conventions"), 1 the shading normal ns (the cosine's max(., 0)), and for the LTC 2 the
+// docs/architecture.md "Conventions"), 1 the shading normal ns (the cosine's max(., 0)), and for the LTC 2 the
 // plane the transform maps to z = 0 (D_o's support). Clipping is streamed edge by edge (no vertex
 // arrays, whose dynamic indexing made llvmpipe compile the shading shader for 80 s): an edge is
 // cut by each plane in turn; where it leaves plane k's half-space the cut point is the clipped
@@ -470,7 +470,7 @@ PENUMBRA_FN float penumbraCapCosine(float cosBeta, float sin2Alpha) {
   return max(f, 0.0f);
 }
 
-// The same integral for a sphere light as penumbra models it (README "Lighting pipeline": a
+// The same integral for a sphere light as penumbra models it (docs/architecture.md "Lighting pipeline": a
 // ball of isotropic points, sampled in its volume, of total intensity L pi R^2). While the ball
 // lies wholly above both the geometric and the shading normal's planes through p, the cosines
 // need no clamping and the integral is the normal component of an inverse-square field, which
@@ -516,7 +516,7 @@ PENUMBRA_FN float penumbraBallIrradiance(vec3 p, vec3 ng, vec3 ns, vec3 centre, 
 
 // ---- a light sample's geometric term -----------------------------------------------------
 // cos(theta_s) [cos(theta_l)] / r^2 of the light point x seen from p: 0 below the geometric
-// normal ng's horizon (the horizon rule, README "Conventions"), the cosine with the shading
+// normal ng's horizon (the horizon rule, docs/architecture.md "Conventions"), the cosine with the shading
 // normal ns clamped at 0, [cos(theta_l)] only for a one-sided emitter (lightNormal its emission
 // normal; 0 for isotropic lights, LightSampleSet::lightNormal). The pipeline's shading and the
 // reference's shaded image both weight each sample by it.

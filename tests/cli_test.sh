@@ -1,5 +1,5 @@
 #!/bin/sh
-# CLI exit codes and one-line errors (README "Exit codes"). Usage: cli_test.sh PENUMBRA SRCDIR PART
+# CLI exit codes and one-line errors (docs/cli.md "Exit codes"). Usage: cli_test.sh PENUMBRA SRCDIR PART
 # with PART inputs (usage errors and bad inputs, all refused before any GL work, and the LUT
 # tool: no GL context needed) or render (rendering, compare, GL limits: exits 77, skipped,
 # without a GL context). One CTest test each (tests/render.cmake).

@@ -66,7 +66,7 @@ cube-maps)
   # Case 1: the depth-test (mvr) and integer-atomic (vwss, reproject) paths, both backends.
   for t in mvr vwss reproject; do OSMESA=1 check $CUBE $t $MAP; done
   # Measured, not asserted: reproject-unsync writes its maps with plain stores (last writer
-  # wins), a race by design; one llvmpipe thread is deterministic, several are not (README
+  # wins), a race by design; one llvmpipe thread is deterministic, several are not (docs/testing.md
   # "Determinism").
   base="$T/unsync"
   render "${base}_t1_r1.exr" egl 1 $CUBE reproject-unsync $MAP &&

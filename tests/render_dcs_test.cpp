@@ -288,7 +288,7 @@ TEST(DcsSemiOpaqueSum, IsThePapersSaturatedSumPerSample) {
 // The paper's approximate covered-sample modes (DCS paper 7.1, 7.3, Fig. 9): the
 // fraction of (pixel, sample) decisions where `naive` (8-bit packed positions) and `lut` (edge
 // LUT) differ from the exact test, and their visibility error against the reference. Gates from
-// the measured values (README "Results") with room.
+// the measured values (docs/results/) with room.
 class DcsCoverageModes : public ::testing::TestWithParam<Case> {};
 
 TEST_P(DcsCoverageModes, DifferFromExactOnFewDecisions) {

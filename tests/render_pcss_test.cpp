@@ -149,7 +149,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DepthBias,
 // large light. Its texels fall between the search's taps at many pixels, so pcss leaves holes and
 // noise where the same-sample reference has the blade's 16 thin hard shadows (measured RMSE 0.019
 // against mvr's 0.008, 2026-12-01; against the converged reference, which has no 16-sample
-// banding either, both are 0.012: README "pcss and vssm").
+// banding either, both are 0.012: docs/results/single-map.md).
 TEST(Pcss, ThinBladeMissedByTheBlockerSearch) {
   Scene scene = loadScene(scenePath("scenes/hard/15-thin-blade.json"));
   double pcss = renderAndCompare(scene, "pcss", settings(128, 16)).errors.visibility.rmse;

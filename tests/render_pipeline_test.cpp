@@ -264,7 +264,7 @@ TEST(Pipeline, SmoothNormalsShadeTessellationsAlike) {
   // Measured with the default shading (ratio: Lambert's formula clipped to both hemispheres, so
   // no sample falls off a facet's horizon) 0.0149; with modulate 0.0232, with face normals 0.110
   // (llvmpipe, 2026-12-02). What is left is the silhouette rim (the 32-gon's outline) and the
-  // terminator, where the horizon rule with the geometric normal (README "Conventions") clips
+  // terminator, where the horizon rule with the geometric normal (docs/architecture.md "Conventions") clips
   // facet by facet. The goal is 0.02.
   EXPECT_LT(rel, 0.02);
 }

@@ -1,7 +1,7 @@
 // The multi-view shadow-map techniques (mvr, vwss, reproject) against the Embree
 // reference with the same light samples, and against each other. Shadow maps are approximate:
 // per-(pixel, sample) decisions are gated outside the 1-pixel edge band with explicit
-// tolerances, measured on this machine at 128 px and N = 16 (README "Multi-view shadow maps").
+// tolerances, measured on this machine at 128 px and N = 16 (docs/techniques/multi-view.md).
 #include "render_test_util.h"
 
 #include <cmath>

@@ -236,7 +236,7 @@ TEST(SceneFiles, HardLightBehindCamera) {
 
 namespace penumbra {
 namespace {
-// README's scene example is scenes/example.json: it must stay loadable.
+// docs/scenes.md's example is scenes/example.json: it must stay loadable.
 TEST(SceneFiles, ReadmeExampleLoads) {
   const Scene s = loadScene(sourcePath("scenes/example.json"));
   EXPECT_EQ(s.lights.size(), 1u);

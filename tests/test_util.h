@@ -14,7 +14,7 @@
 namespace penumbra::test {
 
 // Expects `f` to throw penumbra::Error with a one-line message that names `file` and contains
-// `fragment` (README "Errors": one line naming the file and the problem).
+// `fragment` (CODE_STYLE.md "Errors": one line naming the file and the problem).
 template <class F>
 void expectError(F&& f, const std::string& file, const std::string& fragment = "") {
   try {

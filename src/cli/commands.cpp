@@ -131,8 +131,8 @@ std::string shortNames(const std::vector<std::string>& names) {
   return fmt::format("{}", fmt::join(out, ", "));
 }
 
-// README's table of technique parameters (section "Command line", between the params markers;
-// tests/params_readme_test.sh checks they are equal): one row per parameter declaration (key,
+// docs/cli.md's table of technique parameters (between the technique-params markers;
+// tests/generated_tables_test.sh checks they are equal): one row per parameter declaration (key,
 // values, meaning), the techniques declaring it and their defaults.
 std::string paramsMarkdown() {
   struct Row {

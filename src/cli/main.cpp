@@ -28,15 +28,15 @@ void addOptions(CLI::App* app, cli::CommonOptions& o, int groups) {
   if (groups & int(Options::Samples)) {
     auto* g = app->add_option_group("light samples");
     g->add_option("--samples", o.samples, "light samples per light, for every technique and the reference")->capture_default_str();
-    g->add_option("--strategy", o.strategy, "sample strategy: stratified | poisson | vogel")->capture_default_str();
-    g->add_option("--pattern", o.pattern, "per-pixel sets: correlated | decorrelated | interleaved")->capture_default_str();
+    g->add_option("--strategy", o.strategy, "sample strategy: " + namesOf(kSampleStrategyNames))->capture_default_str();
+    g->add_option("--pattern", o.pattern, "per-pixel sets: " + namesOf(kPixelPatternNames))->capture_default_str();
     g->add_option("--seed", o.seed, "sample seed")->capture_default_str();
     g->add_option("--time", o.time, "animation time in seconds (animated textured lights)")->capture_default_str();
   }
   if (groups & int(Options::Rendering)) {
     auto* g = app->add_option_group("rendering");
     g->add_option("--param", o.params, "technique parameter key=value (repeatable; `penumbra list --params`, e.g. map=512)");
-    g->add_option("--backend", o.backend, "GL backend: egl | osmesa")->capture_default_str();
+    g->add_option("--backend", o.backend, "GL backend: " + namesOf(gl::kBackendNames))->capture_default_str();
     g->add_option("-W,--width", o.width, "image width (default: the scene's)");
     g->add_option("-H,--height", o.height, "image height (default: the scene's)");
     g->add_option("--shading", o.shading, "ratio (unshadowed term x shadow ratio, Heitz et al. 2018) | ratio-exact (the unshadowed term integrated on the CPU, not the LTC) | modulate (DCS eq. 3) | per-sample (eq. 6)")->capture_default_str();
@@ -102,10 +102,10 @@ int main(int argc, char** argv) {
 
   cli::BenchOptions benchOptions;
   auto* bench = app.add_subcommand("bench", "run the benchmark studies; tables, reports and plots into bench/results/<machine>/");
-  bench->add_option("--studies", benchOptions.studies, "comma-separated studies (default: all; see README)")->delimiter(',');
+  bench->add_option("--studies", benchOptions.studies, "comma-separated studies (default: all; docs/benchmarks.md)")->delimiter(',');
   bench->add_flag("--quick", benchOptions.quick, "smaller images, maps and frame counts (a smoke run)");
   bench->add_option("-o,--output", benchOptions.outDir, "output folder (default: bench/results/<machine>)");
-  bench->add_option("--backend", benchOptions.backend, "GL backend: egl | osmesa")->capture_default_str();
+  bench->add_option("--backend", benchOptions.backend, "GL backend: " + namesOf(gl::kBackendNames))->capture_default_str();
 
   cli::LutOptions lutOptions;
   auto* lut = app.add_subcommand("lut", "write the dcs edge LUT of a sample pattern (and textured lights' luminance tables), or the LTC GGX table");

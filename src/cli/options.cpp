@@ -9,33 +9,24 @@
 
 namespace penumbra::cli {
 
-gl::Backend parseBackend(const std::string& name) {
-  if (name == "egl") return gl::Backend::Egl;
-  if (name == "osmesa") return gl::Backend::OSMesa;
-  throw Error("--backend", "unknown backend '" + name + "' (egl, osmesa)", ExitCode::Usage);
+namespace {
+// The value of `text` in `table`, else a usage error naming `flag`, `what` and the choices.
+template <class E, std::size_t N>
+E parseNamed(const Named<E> (&table)[N], const std::string& text, const char* flag, const char* what) {
+  if (const std::optional<E> value = valueNamed(table, text)) return *value;
+  throw Error(flag, fmt::format("unknown {} '{}' ({})", what, abbreviate(text), namesOf(table, ", ")), ExitCode::Usage);
 }
+}  // namespace
 
-ShadingMode parseShadingMode(const std::string& s) {
-  if (s == "modulate") return ShadingMode::Modulate;
-  if (s == "per-sample") return ShadingMode::PerSample;
-  if (s == "ratio") return ShadingMode::Ratio;
-  if (s == "ratio-exact") return ShadingMode::RatioExact;
-  throw Error("--shading", "unknown shading mode '" + s + "' (modulate, per-sample, ratio, ratio-exact)", ExitCode::Usage);
-}
+gl::Backend parseBackend(const std::string& name) { return parseNamed(gl::kBackendNames, name, "--backend", "backend"); }
+
+ShadingMode parseShadingMode(const std::string& s) { return parseNamed(kShadingModeNames, s, "--shading", "shading mode"); }
 
 SampleStrategy parseSampleStrategy(const std::string& s) {
-  if (s == "stratified") return SampleStrategy::Stratified;
-  if (s == "poisson") return SampleStrategy::Poisson;
-  if (s == "vogel") return SampleStrategy::Vogel;
-  throw Error("--strategy", "unknown sampling strategy '" + s + "' (stratified|poisson|vogel)", ExitCode::Usage);
+  return parseNamed(kSampleStrategyNames, s, "--strategy", "sampling strategy");
 }
 
-PixelPattern parsePixelPattern(const std::string& s) {
-  if (s == "correlated") return PixelPattern::Correlated;
-  if (s == "decorrelated") return PixelPattern::Decorrelated;
-  if (s == "interleaved") return PixelPattern::Interleaved;
-  throw Error("--pattern", "unknown pixel pattern '" + s + "' (correlated|decorrelated|interleaved)", ExitCode::Usage);
-}
+PixelPattern parsePixelPattern(const std::string& s) { return parseNamed(kPixelPatternNames, s, "--pattern", "pixel pattern"); }
 
 std::string flagFor(const std::string& field, const std::string& subcommand) {
   if (field == "technique") return subcommand == "compare" ? "--techniques" : "--technique";

@@ -1,4 +1,4 @@
-// One error style for the whole code base (see README "Errors").
+// One error style for the whole code base (see CODE_STYLE.md "Errors").
 //
 // * User errors (bad file, bad parameter) throw penumbra::Error carrying the file or
 //   parameter they concern; main() prints exactly one line "penumbra: <where>: <what>" and

@@ -166,7 +166,6 @@ class OSMesaBackend final : public Context {
 
 }  // namespace
 
-const char* toString(Backend b) { return b == Backend::Egl ? "egl" : "osmesa"; }
 
 std::unique_ptr<Context> Context::create(Backend backend) {
   std::unique_ptr<Context> c;
@@ -206,7 +205,7 @@ void Context::loadEntryPoints(void* (*getProc)(const char*)) {
   glEnable(GL_DEBUG_OUTPUT);
   glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
   glDebugMessageCallback(debugCallback, nullptr);
-  // Conventions used everywhere (see README "Conventions"): window row 0 is the top image row,
+  // Conventions used everywhere (see docs/architecture.md "Conventions"): window row 0 is the top image row,
   // so readbacks need no flip and gl_FragCoord.xy is the image pixel; depth in [0,1] with
   // reversed Z (near = 1, infinity = 0) for precision.
   glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);

@@ -6,10 +6,13 @@
 #include <memory>
 #include <string>
 
+#include "core/names.h"
+
 namespace penumbra::gl {
 
 enum class Backend { Egl, OSMesa };
-const char* toString(Backend b);
+inline constexpr Named<Backend> kBackendNames[] = {{Backend::Egl, "egl"}, {Backend::OSMesa, "osmesa"}};
+inline const char* toString(Backend b) { return nameOf(kBackendNames, b); }
 
 class Context {
  public:

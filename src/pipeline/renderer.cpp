@@ -17,16 +17,6 @@
 
 namespace penumbra {
 
-const char* toString(ShadingMode m) {
-  switch (m) {
-    case ShadingMode::Modulate: return "modulate";
-    case ShadingMode::PerSample: return "per-sample";
-    case ShadingMode::Ratio: return "ratio";
-    case ShadingMode::RatioExact: return "ratio-exact";
-  }
-  return "?";
-}
-
 glm::mat4 viewFromWorld(const Camera& camera) {
   return glm::lookAt(camera.position, camera.target, camera.up);
 }

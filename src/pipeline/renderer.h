@@ -29,6 +29,7 @@
 #include <glm/glm.hpp>
 
 #include "core/image.h"
+#include "core/names.h"
 #include "core/timer.h"
 #include "gl/context.h"
 #include "gl/objects.h"
@@ -45,14 +46,18 @@ class Enclosures;
 // MIS of light and BRDF samples, transmittance 1, to a 1e-3 relative standard error) in place
 // of the closed forms and the LTC: slow, but no measurement then depends on the LTC's fit.
 enum class ShadingMode { Modulate, PerSample, Ratio, RatioExact };
-const char* toString(ShadingMode m);
+inline constexpr Named<ShadingMode> kShadingModeNames[] = {{ShadingMode::Ratio, "ratio"},
+                                                            {ShadingMode::RatioExact, "ratio-exact"},
+                                                            {ShadingMode::Modulate, "modulate"},
+                                                            {ShadingMode::PerSample, "per-sample"}};
+inline const char* toString(ShadingMode m) { return nameOf(kShadingModeNames, m); }
 
 struct RenderSettings {
   int width = 256, height = 256;
   SamplingParams sampling;
   float time = 0.0f;
   // Ratio (Heitz, Hill and McGuire 2018) by default: the lowest shaded error against the converged
-  // reference of the three on the shipped scenes (README "Shading modes").
+  // reference of the three on the shipped scenes (docs/results/shading-modes.md).
   ShadingMode shading = ShadingMode::Ratio;
   // Per-sample visibility of techniques that have it, read back into LightResult::perSample for
   // comparisons. Off (benchmarks), it is produced only when per-sample shading needs it.

@@ -100,7 +100,7 @@ class Technique {
 
 // One technique parameter, declared once beside the technique (pbrt-v4's Create(dict) model):
 // the declaration gives the factory its value (default, range or choices checked), `--param`
-// its checking, `penumbra list --params` its line and README its table row (tests/
+// its checking, `penumbra list --params` its line and docs/cli.md its table row (tests/
 // generated_tables_test.sh compares docs/cli.md with `penumbra list --params --format markdown`).
 struct ParamSpec {
   enum class Type { Integer, Number, Boolean, Choice, Text };
@@ -121,7 +121,7 @@ struct ParamSpec {
   // The same parameter with another default (a preset: pcss-ultra's samples).
   ParamSpec withDefault(double value) const;
   ParamSpec withDefault(std::string value) const;
-  // The default as a rule, for lists and README ("auto", "eq. 3").
+  // The default as a rule, for lists and docs/cli.md ("auto", "eq. 3").
   ParamSpec shown(std::string rule) const;
   std::string defaultText() const;  // the shown rule or the value
   std::string rangeText() const;    // "[16, 16384]", "0/1", "exact|naive|lut", "path"

@@ -309,29 +309,6 @@ const Image* lightEmissionTexture(const Scene& scene, const Light& light, float 
   return makeLightMap(scene, light, time).texture;
 }
 
-const char* toString(SampleStrategy s) {
-  switch (s) {
-    case SampleStrategy::Stratified:
-      return "stratified";
-    case SampleStrategy::Poisson:
-      return "poisson";
-    case SampleStrategy::Vogel:
-      return "vogel";
-  }
-  return "?";
-}
-
-const char* toString(PixelPattern p) {
-  switch (p) {
-    case PixelPattern::Correlated:
-      return "correlated";
-    case PixelPattern::Decorrelated:
-      return "decorrelated";
-    case PixelPattern::Interleaved:
-      return "interleaved";
-  }
-  return "?";
-}
 
 int LightSampleSet::setForPixel(int x, int y) const {
   return int(shared::penumbraSetForPixel(std::uint32_t(x), std::uint32_t(y), std::uint32_t(pattern),

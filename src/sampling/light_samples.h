@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/names.h"
 #include "scene/scene.h"
 
 namespace penumbra {
@@ -30,10 +31,15 @@ struct SamplingParams {
   std::uint32_t seed = 1;
 };
 
-const char* toString(SampleStrategy s);
-const char* toString(PixelPattern p);
+inline constexpr Named<SampleStrategy> kSampleStrategyNames[] = {
+    {SampleStrategy::Stratified, "stratified"}, {SampleStrategy::Poisson, "poisson"}, {SampleStrategy::Vogel, "vogel"}};
+inline constexpr Named<PixelPattern> kPixelPatternNames[] = {{PixelPattern::Correlated, "correlated"},
+                                                             {PixelPattern::Decorrelated, "decorrelated"},
+                                                             {PixelPattern::Interleaved, "interleaved"}};
+inline const char* toString(SampleStrategy s) { return nameOf(kSampleStrategyNames, s); }
+inline const char* toString(PixelPattern p) { return nameOf(kPixelPatternNames, p); }
 
-// Radiometry of a sample (see README "Lighting"): a rect/disk sample is a one-sided Lambertian
+// Radiometry of a sample (see docs/architecture.md "Lighting pipeline"): a rect/disk sample is a one-sided Lambertian
 // patch of area A/N emitting along the light normal; a sphere light is a uniformly emitting
 // ball sampled in its volume, each sample an isotropic point of intensity L * pi R^2 / N
 // (diverges from a surface-sampled sphere so that eq. 1 needs no per-point weighting); a point

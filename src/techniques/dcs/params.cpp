@@ -1,5 +1,5 @@
 // dcs's parameters (dcs.h): their one declaration (ParamSpec, the `--param` keys, defaults,
-// ranges and meanings that `penumbra list --params` and README's table show) and their reading
+// ranges and meanings that `penumbra list --params` and docs/cli.md's table show) and their reading
 // into DcsOptions.
 #include <algorithm>
 #include <filesystem>
