@@ -54,6 +54,14 @@ ImageHeader readImageHeader(const std::string& path);
 ImageHeader readExrHeader(const std::string& path);
 ImageHeader readPngHeader(const std::string& path);
 
+// A PNG's IHDR read from its first bytes (the signature, then the IHDR chunk): false when `bytes`
+// do not start so. Shared by the file reader and glTF's embedded images.
+struct PngIhdr {
+  std::uint32_t width = 0, height = 0;
+  int bitDepth = 0, colourType = 0;
+};
+bool readPngIhdr(const unsigned char* bytes, std::size_t n, PngIhdr& out);
+
 // Non-empty (the reason) when `bytes` bytes of PNG cannot hold the `width` x `height` image of
 // `bitDepth` and `colourType` its header declares: deflate compresses at most 1032:1 (RFC 1951's
 // longest match, 258 bytes, in a code of at least 2 bits), so the rows' smallest raw size (a

@@ -84,6 +84,12 @@ std::uint32_t bigEndian32(const unsigned char* b) {
 
 }  // namespace
 
+bool readPngIhdr(const unsigned char* b, std::size_t n, PngIhdr& out) {
+  if (n < 26 || png_sig_cmp(b, 0, 8) != 0 || std::memcmp(b + 12, "IHDR", 4) != 0) return false;
+  out = {bigEndian32(b + 16), bigEndian32(b + 20), b[24], b[25]};
+  return true;
+}
+
 std::string pngSizeProblem(std::int64_t width, std::int64_t height, int bitDepth, int colourType,
                            std::uint64_t bytes) {
   const int channels = colourType == PNG_COLOR_TYPE_RGB ? 3 : colourType == PNG_COLOR_TYPE_RGB_ALPHA ? 4
@@ -102,12 +108,11 @@ ImageHeader readPngHeader(const std::string& path) {
   const std::size_t got = std::fread(b, 1, sizeof b, file.get());
   if (got == 0) throw Error(path, "empty file, not a PNG image");
   if (got < 8 || png_sig_cmp(b, 0, 8) != 0) throw Error(path, "not a PNG file");
-  if (got < sizeof b || std::memcmp(b + 12, "IHDR", 4) != 0)
-    throw Error(path, "invalid PNG file: no IHDR chunk first");
-  const std::uint32_t width = bigEndian32(b + 16), height = bigEndian32(b + 20);
-  if (width == 0 || height == 0) throw Error(path, "invalid PNG file: image of size " + sizeText(width, height));
-  checkPngSize(path, width, height, b[24], b[25]);
-  return {int(width), int(height)};
+  PngIhdr h;
+  if (!readPngIhdr(b, got, h)) throw Error(path, "invalid PNG file: no IHDR chunk first");
+  if (h.width == 0 || h.height == 0) throw Error(path, "invalid PNG file: image of size " + sizeText(h.width, h.height));
+  checkPngSize(path, h.width, h.height, h.bitDepth, h.colourType);
+  return {int(h.width), int(h.height)};
 }
 
 void writePng(const std::string& path, const Image& linear, float exposure) {

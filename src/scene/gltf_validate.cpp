@@ -587,10 +587,9 @@ bool encodedImageSize(const std::vector<unsigned char>& encoded, int& width, int
   long long w = -1, h = -1;
   const auto* b = encoded.data();
   const std::size_t n = encoded.size();
-  if (n >= 26 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0) {
-    w = (long long)b[16] << 24 | b[17] << 16 | b[18] << 8 | b[19];
-    h = (long long)b[20] << 24 | b[21] << 16 | b[22] << 8 | b[23];
-    if (w > 0 && h > 0) why = pngSizeProblem(w, h, b[24], b[25], n);
+  if (PngIhdr ihdr; readPngIhdr(b, n, ihdr)) {
+    w = ihdr.width, h = ihdr.height;
+    if (w > 0 && h > 0) why = pngSizeProblem(w, h, ihdr.bitDepth, ihdr.colourType, n);
     if (!why.empty()) return false;
   } else if (n >= 4 && b[0] == 0xFF && b[1] == 0xD8) {
     for (std::size_t i = 2; i + 9 < n;) {

@@ -393,10 +393,11 @@ std::string resolveSceneReference(const std::string& reference, const std::strin
 Texture readTextureFile(const std::string& path, std::vector<std::string>& warnings, const LoadOptions& options) {
   Texture t;
   t.source = path;
-  const ImageHeader header = readImageHeader(path);
-  t.width = header.width;
-  t.height = header.height;
-  if (!options.decodeTextures) return t;
+  if (!options.decodeTextures) {
+    const ImageHeader header = readImageHeader(path);
+    t.width = header.width, t.height = header.height;
+    return t;
+  }
   if (lowerExtension(path) == ".exr") {
     // NaN/Inf texels are replaced by 0; the scene's warnings say how many, as `penumbra info`
     // prints them (hard-cases.md, bad inputs: EXR textures "sanitised with a warning").
@@ -408,6 +409,7 @@ Texture readTextureFile(const std::string& path, std::vector<std::string>& warni
   } else {
     t.image = readTexture(path, /*srgb=*/true);
   }
+  t.width = t.image.width, t.height = t.image.height;
   return t;
 }
 
