@@ -25,7 +25,7 @@
 #include "compare/compare.h"
 #include "pipeline/renderer.h"
 #include "scene/scene.h"
-#include "techniques/pcss/pcss.h"
+#include "techniques/registry.h"
 
 using namespace penumbra;
 
@@ -52,27 +52,27 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
     std::fprintf(out, "1. Sterna Table 1 shape: shadow-mask passes, 16 PCF samples, 32 blocker-search samples\n");
     std::fprintf(out, "%-40s %9s %9s %9s %9s %9s %8s %8s\n", "configuration", "min filt", "pen mask", "shadow", "upsample",
                 "passes", "x CHSS", "RMSE");
+    // Rows of the table of techniques (src/techniques/pcss/rows.cpp) and their parameters.
     struct Row {
       const char* name;
-      PcssMode mode;
+      const char* technique;
       bool checker;
     };
-    const Row rows[] = {{"regular shadow mask (fixed kernel)", PcssMode::Fixed, false},
-                        {"regular CHSS", PcssMode::Regular, false},
-                        {"penumbra mask + shadow mask", PcssMode::PenumbraMask, false},
-                        {"min filter + shadow mask", PcssMode::MinFilter, false},
-                        {"regular CHSS + checkerboard", PcssMode::Regular, true},
-                        {"penumbra mask + shadow mask + checker", PcssMode::PenumbraMask, true}};
+    const Row rows[] = {{"regular shadow mask (fixed kernel)", "pcss-fixed", false},
+                        {"regular CHSS", "pcss", false},
+                        {"penumbra mask + shadow mask", "pcss-mask", false},
+                        {"min filter + shadow mask", "pcss-minfilter", false},
+                        {"regular CHSS + checkerboard", "pcss", true},
+                        {"penumbra mask + shadow mask + checker", "pcss-mask", true}};
     double chss = 0.0;
     for (const Row& row : rows) {
-      const PcssOptions preset = pcssPreset(row.mode, false, row.checker);
-      const TechniqueParams given({"map=" + std::to_string(map)});
-      const std::vector<ParamSpec> declared = pcssParams(preset);
-      auto tech = makePercentageCloserSoftShadows(TechniqueArgs(given, declared, "pcss"), preset);
+      TechniqueParams given({"map=" + std::to_string(map), std::string("checkerboard=") + (row.checker ? "1" : "0")});
+      auto tech = makeTechnique(row.technique, given);
+      given.checkConsumed();
       bench::Timing t = bench::timeFrames(renderer, *tech, frames, warmup);
       double passes = t.stage("pcss min filter") + t.stage("pcss penumbra mask") + t.stage("pcss shadow mask") +
                       t.stage("pcss checkerboard upsample");
-      if (row.mode == PcssMode::Regular && !row.checker) chss = passes;
+      if (std::string(row.technique) == "pcss" && !row.checker) chss = passes;
       double rmse = measureErrors(t.last, ref).visibility.rmse;
       std::fprintf(out, "%-40s %9.2f %9.2f %9.2f %9.2f %9.2f %8s %8.4f\n", row.name, t.stage("pcss min filter"),
                   t.stage("pcss penumbra mask"), t.stage("pcss shadow mask"), t.stage("pcss checkerboard upsample"),

@@ -182,7 +182,7 @@ PENUMBRA_FN int penumbraSideOfEdgePlane(vec3 v0, vec3 v1, vec3 c, vec3 x) {
   return penumbraEdgePlaneDistance(v0, v1, c, x, ne) >= 0.0f ? 1 : -1;
 }
 
-// Which faces of the shadow volumes the view ray meets (shaders/hardsv_volume.frag). The count at
+// Which faces of the shadow volumes the view ray meets (src/techniques/common/shadow_volume/shaders/hardsv_volume.frag). The count at
 // a visible point o is the sum, over the volume faces the ray from the eye through o meets beyond
 // o, of -w where the face is seen from its front and +w from its back (z-fail, Everitt and
 // Kilgard 2002). Whether the ray meets a face is decided exactly here, not by the rasteriser:

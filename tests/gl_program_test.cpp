@@ -39,6 +39,26 @@ std::string compileError(const std::vector<std::string>& files) {
   return "";
 }
 
+// $PENUMBRA_SHADER_DIR lists folders (':'-separated, as shaders live beside the code that runs
+// them): a file is read from the first that holds it, empty entries are skipped, and a file none
+// holds is an error naming the list.
+TEST(ShaderLoader, SearchPathReadsTheFirstFolderHoldingTheFile) {
+  ShaderDir first, second;
+  first.write("a.glsl", "// a from the first\n");
+  second.write("a.glsl", "// a from the second\n");
+  second.write("b.glsl", "// b from the second\n");
+  const std::string path = std::string(first.path) + "::" + second.path;
+  setenv("PENUMBRA_SHADER_DIR", path.c_str(), 1);
+  EXPECT_EQ(gl::shaderSource("a.glsl"), "// a from the first\n");
+  EXPECT_EQ(gl::shaderSource("b.glsl"), "// b from the second\n");
+  try {
+    gl::shaderSource("c.glsl");
+    ADD_FAILURE() << "no error for a shader no folder holds";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "c.glsl: no such shader in PENUMBRA_SHADER_DIR (" + path + ")");
+  }
+}
+
 TEST(ShaderLoader, ErrorInAnIncludedFileNamesThatFileAndLine) {
   context();
   ShaderDir dir;

@@ -13,7 +13,7 @@
 #include "analytic_oracle.h"
 #include "sampling/light_samples.h"
 #include "sampling/shared.hpp"
-#include "techniques/raytrace/embree_reference.h"
+#include "reference/embree_reference.h"
 
 using namespace penumbra;
 

@@ -15,7 +15,7 @@
 
 #include "floor_quadrature.h"
 #include "sampling/shared.hpp"
-#include "techniques/raytrace/embree_reference.h"
+#include "reference/embree_reference.h"
 
 namespace penumbra {
 namespace {

@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "sampling/light_samples.h"
 #include "sampling/shared.hpp"
-#include "techniques/raytrace/embree_reference.h"
+#include "reference/embree_reference.h"
 
 using namespace penumbra;
 

@@ -171,7 +171,7 @@ TEST(RenderResources, FreshRenderersLeakNothing) {
 // The bound holds on zink too: there dcs grew by 1.2 MiB a frame (19.9 MiB over the 16, CI
 // 2026-12-03) while its GL objects stayed put, because Mesa 22.3's lavapipe compiled a new
 // shader, never freed, at each draw of a program whose loops are bounded by uniforms. Those
-// bounds are read from buffers now (shaders/common_dcs_pass.glsl, common_light.glsl): measured
+// bounds are read from buffers now (src/techniques/dcs/shaders/common_dcs_pass.glsl, common_light.glsl): measured
 // on zink over 16 frames with a warm shader cache, dcs +2.0-2.9 MiB (was +19.9 MiB); hard-sv
 // +1.8-2.1 MiB, as before (a smaller growth, source not found); llvmpipe 0-64 KiB.
 TEST(RenderResources, ReusedRendererIsStable) {

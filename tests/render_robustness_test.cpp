@@ -10,7 +10,7 @@
 
 #include "analytic_oracle.h"
 #include "core/metrics.h"
-#include "techniques/raytrace/embree_reference.h"
+#include "reference/embree_reference.h"
 
 namespace penumbra::test {
 namespace {

@@ -81,7 +81,7 @@ INSTANTIATE_TEST_SUITE_P(
         ShippedCase{"scenes/dcs-silhouettes.json",
                     {{"pcss", 0.226, 0.353}, {"pcss-ultra", 0.223, 0.349}, {"vssm", 0.247, 0.346}, {"msm-soft", 0.235, 0.346}, {"evsm", 0.252, 0.360}, {"raytrace-denoised", 0.049, 0.166}},
                     0.070},
-        // the single-map family treats semi-opaque occluders as opaque (shadow_map/maps.h: their one map holds them as opaque)
+        // the single-map family treats semi-opaque occluders as opaque (common/shadow_map/maps.h: their one map holds them as opaque)
         // measured (visibility/shaded): pcss 0.1489/0.0939, pcss-ultra 0.1474/0.0933, vssm 0.1397/0.0875, msm-soft 0.1407/0.0899, evsm 0.1399/0.0889, raytrace-denoised 0.0547/0.0378; msm vs hard-sv 0.0496
         ShippedCase{"scenes/semi-opaque.json",
                     {{"pcss", 0.187, 0.118}, {"pcss-ultra", 0.185, 0.117}, {"vssm", 0.175, 0.110}, {"msm-soft", 0.176, 0.113}, {"evsm", 0.175, 0.112}, {"raytrace-denoised", 0.069, 0.048}},

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <initializer_list>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -17,6 +20,15 @@
 namespace penumbra::test {
 
 inline std::string scenePath(const std::string& rel) { return std::string(PENUMBRA_SOURCE_DIR) + "/" + rel; }
+
+// A $PENUMBRA_SHADER_DIR that reads `first` before the source tree's shader folders (shaders/ and
+// every src/techniques/**/shaders/): a test's replacement of one file, the others as built.
+inline std::string shaderSearchPath(const std::string& first) {
+  std::string path = first + ":" + scenePath("shaders");
+  for (const auto& e : std::filesystem::recursive_directory_iterator(scenePath("src/techniques")))
+    if (e.is_directory() && e.path().filename() == "shaders") path += ":" + e.path().string();
+  return path;
+}
 
 inline gl::Context& context() {
   static std::unique_ptr<gl::Context> c = gl::Context::create(gl::Backend::Egl);
@@ -81,6 +93,24 @@ inline double misclassifiedFraction(const TechniqueErrors& e) {
   return e.visibilityOutsideBand.pixelsCounted
              ? double(e.misclassifiedPixels) / double(e.visibilityOutsideBand.pixelsCounted)
              : 0.0;
+}
+
+// Light bleeding against vssm on a scene (the moment techniques, msm and evsm): `technique`'s RMSE against the same-sample reference at
+// most `gate` and below `factor` x vssm's (printed and recorded).
+struct BleedCase {
+  const char* path;
+  double gate;
+};
+inline void expectBleedsLessThanVssm(const char* technique, std::initializer_list<BleedCase> cases, double factor) {
+  for (const BleedCase& c : cases) {
+    Scene scene = loadScene(scenePath(c.path));
+    const double rmse = renderAndCompare(scene, technique, settings(128, 16)).errors.visibility.rmse;
+    const double vssm = renderAndCompare(scene, "vssm", settings(128, 16)).errors.visibility.rmse;
+    std::printf("%s: %s %.4f, vssm %.4f\n", c.path, technique, rmse, vssm);
+    ::testing::Test::RecordProperty(sceneTestName(c.path) + "_" + technique, std::to_string(rmse));
+    EXPECT_LE(rmse, c.gate) << c.path;
+    EXPECT_LE(rmse, factor * vssm) << c.path;
+  }
 }
 
 }  // namespace penumbra::test

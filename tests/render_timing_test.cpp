@@ -7,7 +7,7 @@
 #include "render_test_util.h"
 #include "gl/statistics.h"
 #include "sampling/light_samples.h"
-#include "techniques/shadow_map/maps.h"
+#include "techniques/common/shadow_map/maps.h"
 
 namespace penumbra::test {
 namespace {
@@ -52,7 +52,7 @@ TEST(Timing, HarnessStagesApartAndMapsNeedNoGBufferReadback) {
 
 // Pixels whose receiver plane has the whole light above it (every sample above the horizon):
 // there a single-view technique's visibility is its shadow factor alone (elsewhere it is scaled
-// by the fraction of samples above the horizon, shaders/pcss_common.glsl horizonLuminance, which
+// by the fraction of samples above the horizon, src/techniques/common/shadow_map/shaders/pcss_common.glsl horizonLuminance, which
 // depends on the samples as the reference's integral does).
 std::vector<std::uint8_t> wholeLightAbove(const FrameResult& f, const Light& light, const glm::dvec3& origin) {
   std::vector<std::uint8_t> out(f.gbuffer.valid.size(), 0);

@@ -134,14 +134,14 @@ std::string shortNames(const std::vector<std::string>& names) {
 // docs/cli.md's table of technique parameters (between the technique-params markers;
 // tests/generated_tables_test.sh checks they are equal): one row per parameter declaration (key,
 // values, meaning), the techniques declaring it and their defaults.
-std::string paramsMarkdown() {
+std::string paramsMarkdown(const std::vector<TechniqueInfo>& techniques) {
   struct Row {
     const ParamSpec* spec;
     std::vector<std::string> techniques;
     std::vector<std::pair<std::string, std::vector<std::string>>> defaults;  // default -> techniques
   };
   std::vector<Row> rows;
-  for (auto& t : techniqueTable())
+  for (auto& t : techniques)
     for (auto& p : t.params) {
       auto row = std::find_if(rows.begin(), rows.end(), [&](const Row& r) {
         return r.spec->key == p.key && r.spec->meaning == p.meaning && r.spec->rangeText() == p.rangeText();
@@ -152,6 +152,7 @@ std::string paramsMarkdown() {
       if (d == row->defaults.end()) d = row->defaults.insert(row->defaults.end(), {p.defaultText(), {}});
       d->second.push_back(t.name);
     }
+  if (rows.empty()) return "(no parameters)\n";
   std::string out = "| key | techniques | default | values | meaning |\n|---|---|---|---|---|\n";
   for (auto& r : rows) {
     std::string defaults;
@@ -168,12 +169,13 @@ std::string paramsMarkdown() {
 }
 }  // namespace
 
-int listTechniques(bool asJson, bool withParams, const std::string& format) {
+int listTechniques(bool asJson, bool withParams, const std::string& format, const std::vector<std::string>& names) {
   if (format != "text" && format != "markdown" && format != "json")
     throw Error("--format", "expected text, markdown or json, got '" + format + "'", ExitCode::Usage);
+  const std::vector<TechniqueInfo> techniques = names.empty() ? techniqueTable() : findTechniques(names);
   if (asJson || format == "json") {
     json j = json::array();
-    for (auto& t : techniqueTable()) {
+    for (auto& t : techniques) {
       json e = {{"name", t.name}, {"family", toString(t.family)}, {"description", t.description}};
       if (withParams) {
         e["params"] = json::array();
@@ -187,15 +189,15 @@ int listTechniques(bool asJson, bool withParams, const std::string& format) {
   }
   if (format == "markdown") {  // README's technique table; with --params, docs/cli.md's parameter table
     if (withParams) {
-      std::printf("%s", paramsMarkdown().c_str());
+      std::printf("%s", paramsMarkdown(techniques).c_str());
       return 0;
     }
     std::printf("| name | family | what |\n|---|---|---|\n");
-    for (auto& t : techniqueTable())
+    for (auto& t : techniques)
       std::printf("| `%s` | %s | %s |\n", t.name.c_str(), toString(t.family), t.description.c_str());
     return 0;
   }
-  for (auto& t : techniqueTable()) {
+  for (auto& t : techniques) {
     std::printf("%-20s %s\n", t.name.c_str(), t.description.c_str());
     if (!withParams) continue;
     for (auto& p : t.params)

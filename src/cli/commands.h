@@ -28,7 +28,7 @@ struct CommonOptions {
 
 // `penumbra list [--params] [--format text|markdown|json]`: the techniques, with --params every
 // parameter each declares (default, values, meaning); markdown is docs/cli.md's parameter table (without --params, README's technique table).
-int listTechniques(bool json, bool withParams, const std::string& format);
+int listTechniques(bool json, bool withParams, const std::string& format, const std::vector<std::string>& names);
 int info(const CommonOptions& o);
 int render(const CommonOptions& o, const std::string& technique, const std::string& output);
 struct CompareCliOptions {

@@ -71,6 +71,8 @@ int main(int argc, char** argv) {
   list->add_flag("--params", listParams, "every technique's parameters (--param key=value): default, values, meaning");
   list->add_option("--format", listFormat, "text, markdown (README's technique table; with --params docs/cli.md's parameter table) or json")
       ->capture_default_str();
+  std::vector<std::string> listNames;
+  list->add_option("techniques", listNames, "only these techniques (a technique folder's README.md lists its own)");
 
   auto* info = app.add_subcommand("info", "print a scene's triangle and light counts and mesh reports");
   addOptions(info, o, int(Options::Scene));
@@ -131,7 +133,7 @@ int main(int argc, char** argv) {
 
   try {
     if (!memoryBudget.empty()) setMemoryBudget(cli::parseByteSize("--memory-budget", memoryBudget));
-    if (*list) return cli::listTechniques(listJson, listParams, listFormat);
+    if (*list) return cli::listTechniques(listJson, listParams, listFormat, listNames);
     if (*info) return cli::info(o);
     if (*render) return cli::render(o, technique, output);
     if (*lut) return cli::lut(o, lutOptions);

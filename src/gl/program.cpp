@@ -16,18 +16,24 @@
 
 namespace penumbra::gl {
 
-// Generated at build time from shaders/ (see shaders/CMakeLists.txt).
+// Generated at build time from every shader folder (cmake/shaders.cmake).
 const std::map<std::string, std::string>& embeddedShaders();
 
 std::string shaderSource(const std::string& file) {
   // Set and empty is a mistake (`PENUMBRA_SHADER_DIR= penumbra ...`), not the root folder.
-  if (const char* dir = std::getenv("PENUMBRA_SHADER_DIR")) {
-    if (!*dir) throw Error("PENUMBRA_SHADER_DIR", "is set but empty: unset it for the built-in shaders, or name a folder");
-    std::ifstream in(std::string(dir) + "/" + file);
-    if (!in) throw Error(std::string(dir) + "/" + file, "cannot read shader");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
+  if (const char* dirs = std::getenv("PENUMBRA_SHADER_DIR")) {
+    if (!*dirs) throw Error("PENUMBRA_SHADER_DIR", "is set but empty: unset it for the built-in shaders, or name a folder");
+    // Folders separated by ':', searched in order (shaders live beside the code that runs them).
+    std::stringstream list(dirs);
+    for (std::string dir; std::getline(list, dir, ':');) {
+      if (dir.empty()) continue;
+      std::ifstream in(dir + "/" + file);
+      if (!in) continue;
+      std::stringstream ss;
+      ss << in.rdbuf();
+      return ss.str();
+    }
+    throw Error(file, std::string("no such shader in PENUMBRA_SHADER_DIR (") + dirs + ")");
   }
   auto& m = embeddedShaders();
   auto it = m.find(file);

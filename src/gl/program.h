@@ -10,8 +10,9 @@
 
 namespace penumbra::gl {
 
-// A program from shader files under shaders/ (embedded at build time; read from
-// $PENUMBRA_SHADER_DIR instead when set, for iterating). Each source gets "#version 450 core",
+// A program from shader files, named by file name: the pipeline's under shaders/, a
+// technique's under its folder's shaders/ (all embedded at build time; read from the folders
+// $PENUMBRA_SHADER_DIR lists, ':'-separated, instead when set, for iterating). Each source gets "#version 450 core",
 // the given defines ("NAME" or "NAME VALUE"), shaders/shared.h and its #include "file" lines
 // resolved. Compile/link errors throw penumbra::Error naming the shader file.
 class Program : public Object<Kind::Program> {
@@ -30,7 +31,7 @@ class Program : public Object<Kind::Program> {
   void set(const char* name, const glm::mat4& v) const;
 };
 
-// Source text of a shader file (embedded or from $PENUMBRA_SHADER_DIR).
+// Source text of a shader file (embedded, or the first of $PENUMBRA_SHADER_DIR's folders holding it).
 std::string shaderSource(const std::string& file);
 
 }  // namespace penumbra::gl

@@ -1,6 +1,6 @@
 // The G-buffer on the CPU: per pixel, the surface point the camera sees. The pipeline
 // (pipeline/renderer.h) reads it back from the GPU; the Embree reference
-// (techniques/raytrace/embree_reference.h) and the shadow-map frustum fits take it as input.
+// (reference/embree_reference.h) and the shadow-map frustum fits take it as input.
 // Scene-level data, GL-free, so that both use it downward.
 #pragma once
 

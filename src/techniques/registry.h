@@ -1,6 +1,9 @@
-// The explicit name -> factory table of techniques (registry.cpp). No static registration: a
-// technique is added there and nowhere else. Above the pipeline (pipeline/technique.h), which
-// does not know the table; compare and the CLI are handed TechniqueInfo entries from it.
+// The explicit name -> factory table of techniques. No static registration: each technique
+// folder exports its rows (<folder>Rows() in its rows.cpp: its techniques and presets, their
+// parameters and family), and the table is those rows in the order of the one list of folders
+// in src/techniques/CMakeLists.txt (which also builds them: registry.cpp includes the list).
+// Above the pipeline (pipeline/technique.h), which does not know the table; compare and the
+// CLI are handed TechniqueInfo entries from it.
 #pragma once
 
 #include <memory>
@@ -18,5 +21,15 @@ const TechniqueInfo& findTechnique(const std::string& name);
 std::vector<TechniqueInfo> findTechniques(const std::vector<std::string>& names);
 // findTechnique(name).create(params).
 std::unique_ptr<Technique> makeTechnique(const std::string& name, const TechniqueParams& params = {});
+
+// A row that is a preset of its folder's options: `params` declared with the preset's values as
+// defaults, `make` given the arguments read through them and the preset.
+template <class Preset>
+TechniqueInfo presetRow(std::string name, std::string description, TechniqueFamily family,
+                        std::vector<ParamSpec> params, Preset preset,
+                        std::unique_ptr<Technique> (*make)(const TechniqueArgs&, Preset)) {
+  return {std::move(name), std::move(description), std::move(params),
+          [preset, make](const TechniqueArgs& a) { return make(a, preset); }, family};
+}
 
 }  // namespace penumbra

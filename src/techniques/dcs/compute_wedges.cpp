@@ -6,12 +6,12 @@
 #include <glm/glm.hpp>
 
 #include "core/error.h"
-#include "dcs_bindings.h"  // NOLINT: shared with GLSL
+#include "techniques/dcs/shaders/dcs_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra::dcs {
 
 namespace {
-// shaders/dcs_solid.glsl DcsSolidPlanes.
+// src/techniques/dcs/shaders/dcs_solid.glsl DcsSolidPlanes.
 struct GpuSolid {
   glm::vec4 plane[5];
   glm::ivec4 meta;

@@ -1,9 +1,9 @@
 // The compute path of dcs's wedge pass (`path=compute`): the solids of the selected
-// edges (shaders/dcs_solids.comp), then per screen tile the edges whose solid meets the bounding
+// edges (src/techniques/dcs/shaders/dcs_solids.comp), then per screen tile the edges whose solid meets the bounding
 // box of the tile's visible points, evaluated per pixel inside the solid with the raster path's
-// update function (shaders/dcs_wedge.comp); the counts are added to the initialised counters
+// update function (src/techniques/dcs/shaders/dcs_wedge.comp); the counts are added to the initialised counters
 // once, at the end of the pass. Also the buffer both paths read a pass's sample range from
-// (shaders/common_dcs_pass.glsl).
+// (src/techniques/dcs/shaders/common_dcs_pass.glsl).
 #pragma once
 
 #include <cstddef>
@@ -15,7 +15,7 @@
 
 namespace penumbra::dcs {
 
-// shaders/common_dcs_pass.glsl DcsPass: a counter pass's sample range and, for the compute
+// src/techniques/dcs/shaders/common_dcs_pass.glsl DcsPass: a counter pass's sample range and, for the compute
 // path, one dispatch's solids.
 struct GpuPass {
   std::uint32_t first = 0, count = 0, solidFirst = 0, solidEnd = 0;
@@ -46,7 +46,7 @@ class ComputeWedges {
   std::size_t memoryBytes() const { return solids_.size() + counts_.size(); }
 
  private:
-  gl::Buffer solids_;  // the selected edges' wedge solids (shaders/dcs_solid.glsl DcsSolidPlanes)
+  gl::Buffer solids_;  // the selected edges' wedge solids (src/techniques/dcs/shaders/dcs_solid.glsl DcsSolidPlanes)
   gl::Buffer counts_;  // the pass's running counts between dispatches and the completed chunks
 };
 

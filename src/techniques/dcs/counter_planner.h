@@ -28,7 +28,7 @@ struct CountBound {
   Reach reach;
 };
 
-// What a counter pass measured (shaders/dcs_resolve.frag), with the bias.
+// What a counter pass measured (src/techniques/dcs/shaders/dcs_resolve.frag), with the bias.
 struct MeasuredCounts {
   std::int64_t reach = 0;         // largest D(c) + bias + positive updates of a pixel
   std::int64_t maxCount = 0;      // largest final count decoded where no digit was passed

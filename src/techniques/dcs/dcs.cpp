@@ -10,17 +10,17 @@
 // and every frame checks its own counts after the pass and renders again with a wider base if
 // a digit could have overflowed; (4) per pass over a subset of the
 // samples: counters initialised to D(c) in every digit, then each edge's wedge rasterised
-// (shaders/dcs_wedge.geom) and its exact per-sample update (shaders/common_dcs.glsl) blended
+// (src/techniques/dcs/shaders/dcs_wedge.geom) and its exact per-sample update (src/techniques/dcs/shaders/common_dcs.glsl) blended
 // into float-packed counters (eq. 7-10), positive and negative updates in one pass (exact in
-// float, see shaders/dcs_wedge.frag); (5) a resolve that decodes the counters into per-sample
+// float, see src/techniques/dcs/shaders/dcs_wedge.frag); (5) a resolve that decodes the counters into per-sample
 // visibility (count <= 0) and the visibility buffer, and checks each pixel's digit sum against a
 // checksum of all updates; where the pixel's bound fits the base a mismatch cannot be an
 // overflow and is reported (see below), elsewhere it is a carry and the pass is redone.
 //
 // The compute path (`path=compute`) replaces step (4)'s rasterised wedges: the solids
-// of the selected edges (shaders/dcs_solids.comp), then per 8x8 tile the edges whose solid
+// of the selected edges (src/techniques/dcs/shaders/dcs_solids.comp), then per 8x8 tile the edges whose solid
 // meets the bounding box of the tile's visible points, evaluated per pixel inside the solid with
-// the raster path's update function (shaders/dcs_wedge.comp). It adds each pixel's counts once,
+// the raster path's update function (src/techniques/dcs/shaders/dcs_wedge.comp). It adds each pixel's counts once,
 // so the packing holds the final counts only, and its bound is the true maximum count,
 // measured exactly (a count past its digit is seen and rendered again).
 //
@@ -31,7 +31,7 @@
 // light centre to each sample in 3D (no projection onto a light plane, no clipping), the sign
 // of each update comes from the incident triangles at the pixel rather than from outer/inner
 // half-wedges, and each edge has one convex wedge solid instead of two half-wedges (see
-// shaders/dcs_wedge.geom).
+// src/techniques/dcs/shaders/dcs_wedge.geom).
 #include "techniques/dcs/dcs.h"
 
 #include <algorithm>
@@ -52,13 +52,13 @@
 #include "techniques/dcs/edge_lut_gpu.h"
 #include "techniques/dcs/gpu_silhouette.h"
 #include "techniques/dcs/packing.h"
-#include "techniques/shadow_volume/shadow_volume.h"
-#include "dcs_bindings.h"  // NOLINT: shared with GLSL
+#include "techniques/common/shadow_volume/shadow_volume.h"
+#include "techniques/dcs/shaders/dcs_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra {
 namespace {
 
-// std430 layouts of shaders/common_dcs.glsl.
+// std430 layouts of src/techniques/dcs/shaders/common_dcs.glsl.
 struct GpuEdge {
   glm::vec4 v0, v1;
   glm::ivec4 meta;  // first incidence, incidence count, closed rule, units of the mesh
@@ -67,7 +67,7 @@ struct GpuIncidence {
   glm::vec4 third;  // xyz third vertex, w the triangle's orientation along the edge (+-1)
   glm::vec4 normal;  // the triangle's plane: n (its winding), w = d with n . x + d = 0
 };
-// A triangle the path from the light centre to a sample passes through (shaders/dcs_init.frag).
+// A triangle the path from the light centre to a sample passes through (src/techniques/dcs/shaders/dcs_init.frag).
 struct GpuPathCrossing {
   glm::vec4 plane;  // the triangle's plane as in GpuIncidence::normal
   glm::ivec4 meta;  // x the centre's side, y the sample's side (+-1, 0 on it), z 1 for the closed rule, w units
@@ -86,7 +86,7 @@ struct GpuStatus {
   std::uint32_t carryPixels = 0;  // a digit sum off where a count may pass its digit (dcs_resolve.frag)
 };
 
-// Bias of every counter digit (shaders/dcs_init.frag).
+// Bias of every counter digit (src/techniques/dcs/shaders/dcs_init.frag).
 constexpr int kBias = 2;
 // The counts the compute path's first frame of a light plans for (base 64 with the bias).
 constexpr int kComputeFirstCount = 61;
@@ -244,7 +244,7 @@ class DepthComplexitySampling final : public Technique {
     f.lut = f.coverage != PENUMBRA_DCS_COVERAGE_EXACT ? &lutFor(pass) : nullptr;
     f.corners = lightCorners(lightPass.light, f.radius);
     f.radius += glm::length(f.light.position - lightPass.light.position);  // around the origin
-    // The eye's largest distance to the near-plane window (shaders/dcs_wedge.geom), with room.
+    // The eye's largest distance to the near-plane window (src/techniques/dcs/shaders/dcs_wedge.geom), with room.
     const Camera& cam = pass.scene.camera;
     const float tanY = std::tan(glm::radians(0.5f * cam.fovY)), aspect = float(pass.gpu.width()) / float(pass.gpu.height());
     f.nearRadius = 2.0f * cam.zNear * std::sqrt(1.0f + tanY * tanY * (1.0f + aspect * aspect));
@@ -299,8 +299,8 @@ class DepthComplexitySampling final : public Technique {
  private:
   struct Programs {
     const gl::Program &init, &resolve, &resolvePerSample;
-    const gl::Program* wedge;  // the raster path's (shaders/dcs_wedge.*), else null
-    const gl::Program* tiles;  // the compute path's (shaders/dcs_wedge.comp), else null
+    const gl::Program* wedge;  // the raster path's (src/techniques/dcs/shaders/dcs_wedge.*), else null
+    const gl::Program* tiles;  // the compute path's (src/techniques/dcs/shaders/dcs_wedge.comp), else null
   };
 
   using GpuLut = dcs::GpuEdgeLut;
@@ -406,7 +406,7 @@ class DepthComplexitySampling final : public Technique {
     incidenceBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
   }
 
-  // Every selected edge's wedge (shaders/dcs_wedge.*) with `prog`.
+  // Every selected edge's wedge (src/techniques/dcs/shaders/dcs_wedge.*) with `prog`.
   void drawWedges(const gl::Program& prog, const LightPass& pass, const LightFrame& f) {
     if (f.light.shape == LightShape::Point) return;  // every sample is the centre: D(s) = D(c)
     setWedgeUniforms(prog, pass, f);
@@ -414,7 +414,7 @@ class DepthComplexitySampling final : public Technique {
     glDrawArrays(GL_POINTS, 0, GLsizei(f.edgeIds.size()));
   }
 
-  // The compute path's wedges (shaders/dcs_wedge.comp) for one pass's samples, after the init
+  // The compute path's wedges (src/techniques/dcs/shaders/dcs_wedge.comp) for one pass's samples, after the init
   // pass: their updates added into the counters and the checksum (compute_wedges.h).
   void computeWedges(const gl::Program& prog, const LightPass& pass, const LightFrame& f, const dcs::PackingPlan& plan,
                      const dcs::GpuPass& range) {
@@ -424,7 +424,7 @@ class DepthComplexitySampling final : public Technique {
                  checksum_, f.light.name);
   }
 
-  // The compute path's solids of the selected edges (shaders/dcs_solids.comp), once a light.
+  // The compute path's solids of the selected edges (src/techniques/dcs/shaders/dcs_solids.comp), once a light.
   void buildSolids(LightPass& pass, const LightFrame& f) {
     if (f.light.shape == LightShape::Point || f.edgeIds.empty()) return;
     pass.timer.time("dcs solids", [&] {
@@ -472,7 +472,7 @@ class DepthComplexitySampling final : public Technique {
       return {final, dcs::Reach::any(std::max(final, options_.firstFrameReach + kBias + f.maxPathGain))};
     }
     // The compute path adds each count once: the packing must hold the final counts only, and
-    // its pass measures their maximum exactly (shaders/dcs_wedge.comp). Its first frame plans
+    // its pass measures their maximum exactly (src/techniques/dcs/shaders/dcs_wedge.comp). Its first frame plans
     // for counts up to kComputeFirstCount and renders again, with the base the measured
     // maximum needs, when they go higher.
     if (options_.computePath) return both(kComputeFirstCount + kBias + f.maxPathGain);
@@ -578,7 +578,7 @@ class DepthComplexitySampling final : public Technique {
           return;
         }
         beginWedgeState();
-        drawWedges(*progs.wedge, pass, f);  // outer and inner updates together (shaders/dcs_wedge.frag)
+        drawWedges(*progs.wedge, pass, f);  // outer and inner updates together (src/techniques/dcs/shaders/dcs_wedge.frag)
         endWedgeState();
       });
       pass.timer.time("resolve", [&] {
@@ -603,7 +603,7 @@ class DepthComplexitySampling final : public Technique {
     }
     statusBuffer_.read(&status, sizeof status);
     if (options_.profile) {
-      const std::vector<std::uint32_t> c = profileImage_.readUint();  // shaders/common_dcs.glsl prof*
+      const std::vector<std::uint32_t> c = profileImage_.readUint();  // src/techniques/dcs/shaders/common_dcs.glsl prof*
       stats_.profile = {c[0], c[1], c[2], c[3], c[4], c[5], c[6]};
     }
     return status;
@@ -651,7 +651,7 @@ class DepthComplexitySampling final : public Technique {
                                    "(opaque surfaces are {} units each: {})",
                                    light.name, count, kMaxExactCount, coding_.opaqueUnits, coding_.describe()));
   }
-  // shaders/common_dcs.glsl, dcsProfile (texel k: prof* = k).
+  // src/techniques/dcs/shaders/common_dcs.glsl, dcsProfile (texel k: prof* = k).
   struct Profile {
     std::uint32_t rectangleEdges = 0, wedgeEdges = 0, fragments = 0, inPlane = 0, weighted = 0, updating = 0;
     std::uint32_t candidates = 0;  // compute path: (pixel, edge) pairs its tiles kept
@@ -764,11 +764,11 @@ class DepthComplexitySampling final : public Technique {
   std::vector<std::uint32_t> edgeOffset_;
   float wedgeMargin_ = 0.0f;
   gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_;
-  dcs::PassRange passRange_;  // the pass's sample range (shaders/common_dcs_pass.glsl)
+  dcs::PassRange passRange_;  // the pass's sample range (src/techniques/dcs/shaders/common_dcs_pass.glsl)
   gl::Texture profileImage_;
   std::vector<GpuEdge> edges_;             // edgeBuffer_'s contents
   std::vector<geo::VolumeRule> edgeRules_;  // the rule per mesh edgeBuffer_ holds
-  gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (shaders/dcs_init.frag)
+  gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (src/techniques/dcs/shaders/dcs_init.frag)
   dcs::ComputeWedges compute_;  // the compute path's solids and counts (path=compute)
   gl::Texture checksum_, counters_;
   gl::Framebuffer counterFbo_;

@@ -19,10 +19,10 @@ struct DcsOptions {
   int maxTargets = 4;  // packed RGBA32F counter targets per pass (paper: 4; up to 7 here)
   std::uint32_t minBase = 8;  // narrowest counter base allowed (dcs::kLayouts)
   bool gpuSilhouettes = false;  // accurate silhouettes by a compute shader instead of the CPU
-  // The counter pass's wedges: rasterised (their solids' front faces, shaders/dcs_wedge.geom) or
-  // binned into screen tiles by a compute shader and evaluated per pixel (shaders/dcs_wedge.comp).
+  // The counter pass's wedges: rasterised (their solids' front faces, src/techniques/dcs/shaders/dcs_wedge.geom) or
+  // binned into screen tiles by a compute shader and evaluated per pixel (src/techniques/dcs/shaders/dcs_wedge.comp).
   bool computePath = false;
-  // Wedge solids cut by their end cones' planes (shaders/dcs_wedge.geom, dcsSidePlanes): the raster
+  // Wedge solids cut by their end cones' planes (src/techniques/dcs/shaders/dcs_wedge.geom, dcsSidePlanes): the raster
   // path draws the tighter solid (the compute path always tests those planes).
   bool endPlanes = true;
   // Count where the wedge pass's fragments go (statistics "profile*"); atomics slow it down.

@@ -2,7 +2,7 @@
 // (section 7.1), for the `lut` and `naive` covered-sample modes of dcs. No GL here.
 //
 // Seen from a point p, an edge projects onto the light's plane as a segment (v0, v1) (clipped to
-// the slab between p and the light, shaders/dcs_wedge.frag). The samples whose path from the
+// the slab between p and the light, src/techniques/dcs/shaders/dcs_wedge.frag). The samples whose path from the
 // light centre c crosses it are those in the sector from c between the directions to v0 and v1
 // and beyond the segment's line. Two tables give them as bit fields (bit k: sample k of a set):
 //  * the sector table, a cube map (default 64x64x6) looked up with the direction (x, y, 0):

@@ -1,4 +1,4 @@
-// The edge LUT of dcs/edge_lut.h on the GPU, as shaders/common_dcs.glsl reads it: the sector
+// The edge LUT of dcs/edge_lut.h on the GPU, as src/techniques/dcs/shaders/common_dcs.glsl reads it: the sector
 // table as an RGBA32UI cube-map array and the line table as an RGBA32UI 2D array (one layer per
 // sample set; bit fields widened to four words, words beyond EdgeLut::words 0), the packed
 // sample positions (paper 7.1) as a storage buffer.

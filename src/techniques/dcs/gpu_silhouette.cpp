@@ -4,7 +4,7 @@
 
 #include <glm/glm.hpp>
 
-#include "dcs_bindings.h"  // NOLINT: shared with GLSL
+#include "techniques/dcs/shaders/dcs_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra::dcs {
 

@@ -1,4 +1,4 @@
-// dcs's accurate silhouette on the GPU (`gpu-silhouettes`, shaders/dcs_silhouette.comp): the
+// dcs's accurate silhouette on the GPU (`gpu-silhouettes`, src/techniques/dcs/shaders/dcs_silhouette.comp): the
 // same edge set as geo::extractAccurateSilhouette, computed over dcs's edge buffers.
 #pragma once
 
@@ -11,7 +11,7 @@
 
 namespace penumbra::dcs {
 
-// The ids of the `total` edges of `edges` (with their `incidences`, shaders/common_dcs.glsl)
+// The ids of the `total` edges of `edges` (with their `incidences`, src/techniques/dcs/shaders/common_dcs.glsl)
 // that are silhouettes for some point of the light `l`, by `prog` (dcs_silhouette.comp),
 // sorted to compare with the CPU path (the order does not matter to the rendering).
 std::vector<int> gpuAccurateSilhouette(const gl::Program& prog, const gl::Buffer& edges, const gl::Buffer& incidences,

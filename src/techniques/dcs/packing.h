@@ -12,7 +12,7 @@
 // A complex scene's partial counts reach ten times its final ones (engine,
 // 16 samples: 263 against 29 with the bias), which the paper's rule pays for in base 4096.
 // A final count past its digit changes the plain digit sum by -(B - 1) and an index-weighted
-// one as well (shaders/dcs_resolve.frag); dcs.cpp renders again with the paper's rule then.
+// one as well (src/techniques/dcs/shaders/dcs_resolve.frag); dcs.cpp renders again with the paper's rule then.
 #pragma once
 
 #include <cstdint>
@@ -35,7 +35,7 @@ inline constexpr int kLayoutCount = 7;
 // partial sum of their channel exact: reach * (1 + B + ... + B^(digits-1)) < 2^24.
 bool exactWhileCounting(std::uint32_t base, int digits, std::int64_t reach);
 
-// Whether the index-weighted digit sum (weights 1..samplesPerPass, shaders/dcs_resolve.frag)
+// Whether the index-weighted digit sum (weights 1..samplesPerPass, src/techniques/dcs/shaders/dcs_resolve.frag)
 // stays exact for partial counts up to `reach`: it is checked where a count may pass its digit.
 bool weightedChecksumExact(int samplesPerPass, std::int64_t reach);
 

@@ -32,7 +32,7 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
                         "potential silhouette edges: accurate (a silhouette from some point of the light, exact) or "
                         "standard (from the light centre, DCS paper Fig. 4; misses edges)"),
       ParamSpec::boolean("gpu-silhouettes", o.gpuSilhouettes,
-                         "accurate silhouettes by a compute shader (shaders/dcs_silhouette.comp) instead of the CPU"),
+                         "accurate silhouettes by a compute shader (src/techniques/dcs/shaders/dcs_silhouette.comp) instead of the CPU"),
       ParamSpec::choice("path", kPathChoices[o.computePath ? 1 : 0], kPathChoices,
                         "the wedge pass: raster (each edge's wedge solid rasterised, its front faces depth-tested) or "
                         "compute (wedges binned into 8x8 tiles by the bounds of their visible points and evaluated "

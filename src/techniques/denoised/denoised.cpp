@@ -11,7 +11,7 @@
 #include "core/log.h"
 #include "gl/objects.h"
 #include "pipeline/renderer.h"
-#include "techniques/raytrace/embree_reference.h"
+#include "reference/embree_reference.h"
 
 namespace penumbra {
 namespace {

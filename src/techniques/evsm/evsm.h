@@ -3,7 +3,7 @@
 // e- = -exp(-c- u) of the depth u in [-1, 1], the lit share the smaller of the two warps'
 // Chebyshev bounds) with the PCSS framework and summed-area penumbra of vssm: the engines' fix for
 // variance maps' light bleeding under area lights (Unity HDRP's area-light shadows, Filament's VSM
-// option). On the single-view framework and the four-moment tables of msm (shaders/vssm_sat.comp
+// option). On the single-view framework and the four-moment tables of msm (src/techniques/common/shadow_map/shaders/vssm_sat.comp
 // EVSM, evsm_resolve.frag, moment_soft.glsl).
 //
 // The exponents and their overflow limits: a table of N texels holds sums of e+^2 up to

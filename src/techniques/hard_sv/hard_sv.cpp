@@ -1,12 +1,12 @@
 // `hard-sv`: hard shadows from the light centre: the z-fail shadow-volume count of
-// techniques/shadow_volume/ resolved to visibility (0 volumes around the point: lit).
+// techniques/common/shadow_volume/ resolved to visibility (0 volumes around the point: lit).
 #include "techniques/hard_sv/hard_sv.h"
 
 #include "core/log.h"
 #include "gl/objects.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
-#include "techniques/shadow_volume/shadow_volume.h"
+#include "techniques/common/shadow_volume/shadow_volume.h"
 
 namespace penumbra {
 namespace {

@@ -4,7 +4,7 @@
 // (Peters, Muenstermann, Wetzstein and Klein 2016, "Beyond hard shadows: moment shadow maps for
 // single scattering, soft shadows and translucent occluders", section 5: the PCSS framework with
 // the blocker search and the filtering both from the moments, through summed-area tables). On
-// the single-view framework and summed-area machinery vssm uses (shaders/vssm_sat.comp
+// the single-view framework and summed-area machinery vssm uses (src/techniques/common/shadow_map/shaders/vssm_sat.comp
 // MOMENTS4, msm_resolve.frag; the reconstruction is shared.h penumbraMsm4).
 //
 // Divergences, each measured in tests/render_msm_test.cpp: the table holds the moments

@@ -1,7 +1,7 @@
 #include "techniques/mvr/mvr.h"
 
 #include "pipeline/renderer.h"
-#include "techniques/shadow_map/maps.h"
+#include "techniques/common/shadow_map/maps.h"
 
 namespace penumbra {
 namespace {

@@ -1,6 +1,6 @@
 // `mvr`: multi-view rasterisation (Heckbert & Herf 1997; the VWSS paper's MVR reference): the
 // occluders rasterised into one 32-bit depth map per light sample, then per-sample shadow
-// mapping with PCF (techniques/shadow_map/maps.h).
+// mapping with PCF (techniques/common/shadow_map/maps.h).
 #pragma once
 
 #include <memory>

@@ -3,7 +3,7 @@
 // interleaved gradient noise, hardware comparison PCF, and the cheaper penumbra estimates: the
 // quarter-resolution blurred penumbra mask (2.2), the min filter (2.3), and checkerboard
 // rendering (3). One depth map from the light centre; a single view, so one shadow factor for
-// every light sample (shaders/pcss_*.frag).
+// every light sample (src/techniques/pcss/shaders/pcss_*.frag).
 #pragma once
 
 #include <memory>
@@ -34,7 +34,7 @@ struct PcssOptions {
 // VWSS paper compares with (64 and 96).
 PcssOptions pcssPreset(PcssMode mode, bool ultra, bool checkerboard);
 
-// The parameters of a preset, its values their defaults: the map ones of shadow_map/maps.h,
+// The parameters of a preset, its values their defaults: the map ones of common/shadow_map/maps.h,
 // blocker-samples, pcf-samples, checkerboard; kernel-scale, no-blocker-one (mask), blur (mask,
 // min filter), min-radius (min filter). Semi-opaque occluders are drawn into the map as opaque
 // (statistic "semi-opaque triangles as opaque").

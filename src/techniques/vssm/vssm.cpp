@@ -6,8 +6,8 @@
 #include "core/error.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
-#include "techniques/shadow_map/single_view.h"
-#include "single_view_bindings.h"  // NOLINT: shared with GLSL
+#include "techniques/common/shadow_map/single_view.h"
+#include "techniques/common/shadow_map/shaders/single_view_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra {
 namespace {

@@ -13,8 +13,8 @@
 #include "gl/objects.h"
 #include "pipeline/renderer.h"
 #include "sampling/shared.hpp"
-#include "techniques/shadow_map/maps.h"
-#include "shadow_map_bindings.h"  // NOLINT: shared with GLSL
+#include "techniques/common/shadow_map/maps.h"
+#include "techniques/common/shadow_map/shaders/shadow_map_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra {
 namespace {

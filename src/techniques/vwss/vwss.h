@@ -5,7 +5,7 @@
 // splats each into several sample maps per thread with atomicMax (Listing 2); unbuffered: the
 // point-generation fragment shader splats directly (Figure 3); graphics: the buffered points
 // drawn as GL_POINTS, one draw per map, z-buffered by the depth test (Figure 13, bottom).
-// Lighting: shadow_map/maps.h. Depth bias is applied there, after reprojection.
+// Lighting: common/shadow_map/maps.h. Depth bias is applied there, after reprojection.
 #pragma once
 
 #include <memory>
@@ -16,7 +16,7 @@ namespace penumbra {
 
 enum class VwssMode { Buffered, Unbuffered, Graphics };
 
-// Parameters: those of shadow_map/maps.h, k (buffered), backfaces, scale, pass-points (buffered,
+// Parameters: those of common/shadow_map/maps.h, k (buffered), backfaces, scale, pass-points (buffered,
 // graphics); vwss.cpp declares them.
 std::vector<ParamSpec> vwssParams(VwssMode mode);
 std::unique_ptr<Technique> makeViewWarpedSoftShadows(const TechniqueArgs& args, VwssMode mode);

@@ -1,0 +1,3 @@
+# evsm's renders against the reference (in test_render; included by tests/render.cmake).
+list(APPEND PENUMBRA_RENDER_TESTS ${CMAKE_CURRENT_LIST_DIR}/render_evsm_test.cpp)
+list(APPEND PENUMBRA_RENDER_SANITIZE Evsm.ParallelPlanesAndBleedingAgainstVssm)

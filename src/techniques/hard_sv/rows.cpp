@@ -1,0 +1,12 @@
+// The hard_sv folder's row in the table of techniques (registry.h).
+#include "techniques/hard_sv/hard_sv.h"
+#include "techniques/registry.h"
+
+namespace penumbra {
+
+std::vector<TechniqueInfo> hardSvRows() {
+  return {{"hard-sv", "hard shadows from the light centre, z-fail shadow volumes (float counter)", {},
+           [](const TechniqueArgs&) { return makeHardShadowVolumes(); }, TechniqueFamily::Hard}};
+}
+
+}  // namespace penumbra

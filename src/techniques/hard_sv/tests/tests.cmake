@@ -1,0 +1,3 @@
+# hard-sv's renders against the reference (in test_render; included by tests/render.cmake).
+list(APPEND PENUMBRA_RENDER_TESTS ${CMAKE_CURRENT_LIST_DIR}/render_hard_sv_test.cpp)
+list(APPEND PENUMBRA_RENDER_SANITIZE Scenes/HardSvVsRaytrace.*/01_cube_on_plane)

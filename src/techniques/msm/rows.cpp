@@ -1,0 +1,25 @@
+// The msm folder's rows in the table of techniques (registry.h).
+#include "techniques/msm/msm.h"
+#include "techniques/registry.h"
+
+namespace penumbra {
+
+namespace {
+TechniqueInfo msmRow(std::string name, std::string description, bool soft) {
+  MsmOptions preset;
+  preset.soft = soft;
+  return presetRow(std::move(name), std::move(description), TechniqueFamily::SingleMap, msmParams(preset), preset,
+                   makeMomentShadowMapping);
+}
+}  // namespace
+
+std::vector<TechniqueInfo> msmRows() {
+  return {
+      msmRow("msm", "moment shadow mapping: hard shadows from the light centre, Hamburger 4MSM over a filter box of a four-moment summed-area table",
+             false),
+      msmRow("msm-soft", "moment soft shadows: PCSS blocker search and filtering from four-moment summed-area tables (4MSM)",
+             true),
+  };
+}
+
+}  // namespace penumbra
