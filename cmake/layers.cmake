@@ -10,10 +10,11 @@
 #
 # target                     may link (directly)
 set(PENUMBRA_LAYERS
+  "penumbra_shared:"
   "penumbra_core:"
   "penumbra_geometry:penumbra_core"
-  "penumbra_scene:penumbra_core,penumbra_geometry"
-  "penumbra_sampling:penumbra_core,penumbra_scene"
+  "penumbra_scene:penumbra_shared,penumbra_core,penumbra_geometry"
+  "penumbra_sampling:penumbra_shared,penumbra_core,penumbra_scene"
   "penumbra_shading:penumbra_core,penumbra_sampling"
   "penumbra_shaders:"
   "penumbra_gl:penumbra_core,penumbra_shaders"
@@ -34,7 +35,12 @@ function(penumbra_include_root target folder source_dir)
   if(NOT IS_SYMLINK ${root}/${folder})
     file(CREATE_LINK ${source_dir} ${root}/${folder} SYMBOLIC)
   endif()
-  target_include_directories(${target} PUBLIC ${root})
+  get_target_property(type ${target} TYPE)
+  if(type STREQUAL "INTERFACE_LIBRARY")
+    target_include_directories(${target} INTERFACE ${root})
+  else()
+    target_include_directories(${target} PUBLIC ${root})
+  endif()
 endfunction()
 
 # Called once every target exists (top-level CMakeLists.txt).

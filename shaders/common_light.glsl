@@ -1,4 +1,5 @@
 // The light and its sample sets, as the pipeline binds them for visibility resolves and shading.
+#include "sampling/shaders/sample_sets.h"
 uniform int lightShape;         // PENUMBRA_LIGHT_*
 uniform vec3 lightPosition;     // centre
 uniform vec3 lightNormal;       // emission normal of one-sided lights, 0 for isotropic ones

@@ -4,13 +4,15 @@
 // interpolated vertex normal, normalised, turned to the geometric normal's side: a back face
 // seen by the camera is shaded as its own front (two-sided, as the geometric normal), and a
 // file whose normals point against its winding is shaded as if they did not. The material
-// target holds the BRDF's parameters (shared.h penumbraBrdf).
+// target holds the BRDF's parameters (shading/shaders/shading.h penumbraBrdf).
 // The position is where the ray through the pixel centre meets the triangle's plane, not the
 // interpolated vertex positions: interpolation errs by a few ULPs of the triangle's vertices
 // (0.01 units near the camera on a 1e5-unit floor, off its own plane too when it is tilted),
 // the intersection by a few ULPs of the point itself, which is what the evaluation point's
-// epsilon (shared.h penumbraSurfaceEpsilon) assumes. Rays nearly in the plane keep the
+// epsilon (shared/numerics.h penumbraSurfaceEpsilon) assumes. Rays nearly in the plane keep the
 // interpolated point.
+#include "shared/numerics.h"
+#include "shading/shaders/shading.h"
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;

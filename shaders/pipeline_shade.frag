@@ -2,20 +2,21 @@
 // MODULATE: eq. 3, the light as a point at its centre carrying the whole light's power, times
 // the RGB visibility of eq. 2. PER_SAMPLE: eq. 6, the sum over the pixel's light samples.
 // RATIO: Heitz, Hill and McGuire 2018: the unshadowed term (in closed form for untextured rect,
-// disk and sphere lights, shared.h penumbraLightPolygon (Lambert's formula on the light's
+// disk and sphere lights, shading/shaders/shading.h penumbraLightPolygon (Lambert's formula on the light's
 // polygon), penumbraBallIrradiance; else the unshadowed sample sum) times the shadow ratio
 // sum_k w_k T_k / sum_k w_k from the per-sample results, or V over its unshadowed value for a
 // technique with V only. A pixel whose samples all miss (sum_k w_k = 0) gets ratio 0, as eq. 6.
-// BRDF: shared.h penumbraBrdf (Lambertian or the glTF metallic-roughness BRDF, from the
+// BRDF: shading/shaders/shading.h penumbraBrdf (Lambertian or the glTF metallic-roughness BRDF, from the
 // G-buffer's material target), its cosine with the shading normal (the G-buffer's interpolated
 // vertex normal), the horizon rule with the geometric one (docs/architecture.md "Conventions"). In the ratio
 // mode the diffuse part's unshadowed term is Lambert's formula times the samples' mean of the
 // diffuse BRDF (1 - F varies over the light; exact for LAMBERT); the specular part's is the LTC
-// integral (shared.h penumbraLightPolygon, the table of src/shading/ltc.h) times norm and Schlick's
-// Fresnel at shared.h penumbraLtcFresnelDirection for rect and disk lights, else the sample sum (sphere
+// integral (shading/shaders/shading.h penumbraLightPolygon, the table of src/shading/ltc.h) times norm and Schlick's
+// Fresnel at shading/shaders/shading.h penumbraLtcFresnelDirection for rect and disk lights, else the sample sum (sphere
 // lights: no polygon). A textured rect or disk light's two integrals are each times its emission
-// prefiltered for that lobe (Heitz et al. 2016 section 5.3: shared.h penumbraPrefilterFootprint,
+// prefiltered for that lobe (Heitz et al. 2016 section 5.3: shading/shaders/shading.h penumbraPrefilterFootprint,
 // src/shading/prefiltered_light.h); a textured sphere keeps the sample sum (docs/architecture.md "Lighting pipeline").
+#include "shading/shaders/shading.h"
 #include "common_light.glsl"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;

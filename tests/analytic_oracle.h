@@ -45,7 +45,7 @@ inline double discHiddenFraction(double x, double z, double occluderHeight, doub
 // height h above it, parallel to it (Howell's catalogue of configuration factors, B-1: a
 // differential area and a parallel rectangle with one corner above it, here summed with signs
 // over the four corners). The receiver's irradiance from a Lambertian emitter of radiance L is
-// pi L F, its outgoing radiance albedo L F. An oracle independent of shared.h's polygon formula.
+// pi L F, its outgoing radiance albedo L F. An oracle independent of shading/shaders/shading.h's polygon formula.
 inline double parallelRectFormFactor(double x0, double x1, double z0, double z1, double h) {
   const auto corner = [h](double a, double b) {
     const double A = std::abs(a) / h, B = std::abs(b) / h;

@@ -1,6 +1,6 @@
 // An independent quadrature of a rect light's direct illumination on a floor (no occluder): the
 // BRDF (glTF 2.0 Appendix B: GGX, separable Smith, Schlick) written out again, not taken from
-// shaders/shared.h, and a deterministic Gauss-Legendre product rule on a grid graded around the
+// shading/shaders/shading.h, and a deterministic Gauss-Legendre product rule on a grid graded around the
 // mirror point. The truth the converged reference (raytrace_converged_test.cpp) and the LTC
 // table's unshadowed term (shading_ltc_test.cpp) are held to. Test-only; header so that each
 // test executable compiles its own copy without a library between them.

@@ -31,6 +31,17 @@ penumbra_layer_probe(refused penumbra_pipeline compare/compare.h)
 penumbra_layer_probe(refused penumbra_techniques compare/compare.h)
 penumbra_layer_probe(refused penumbra_compare techniques/registry.h)
 penumbra_layer_probe(refused penumbra_compare cli/options.h)
+# A technique's binding header (beside its shaders) is its own: neither the pipeline nor compare
+# sees it, by its path or by its bare name (no layer exports a shader folder wholesale), and the
+# ground floor is the bottom: it sees no layer.
+penumbra_layer_probe(refused penumbra_pipeline techniques/dcs/shaders/dcs_bindings.h)
+penumbra_layer_probe(refused penumbra_pipeline dcs_bindings.h)
+penumbra_layer_probe(refused penumbra_compare techniques/common/shadow_map/shaders/shadow_map_bindings.h)
+penumbra_layer_probe(refused penumbra_compare shadow_map_bindings.h)
+penumbra_layer_probe(refused penumbra_pipeline shared.h)
+penumbra_layer_probe(refused penumbra_shared core/error.h)
 penumbra_layer_probe(allowed penumbra_pipeline scene/gbuffer.h)
+penumbra_layer_probe(allowed penumbra_scene shared/shared.h)
+penumbra_layer_probe(allowed penumbra_techniques techniques/dcs/shaders/dcs_bindings.h)
 penumbra_layer_probe(allowed penumbra_techniques pipeline/renderer.h)
 penumbra_layer_probe(allowed penumbra_compare pipeline/technique.h)

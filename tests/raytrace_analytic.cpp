@@ -12,7 +12,7 @@
 
 #include "analytic_oracle.h"
 #include "sampling/light_samples.h"
-#include "sampling/shared.hpp"
+#include "shading/shading_shared.hpp"
 #include "reference/embree_reference.h"
 
 using namespace penumbra;
@@ -117,7 +117,7 @@ void checkSameSamples(bool disc, SampleStrategy strategy, PixelPattern pattern) 
   for (int y = 0; y < g.height; ++y)
     for (int x = 0; x < g.width; ++x) {
       const std::size_t i = std::size_t(y) * g.width + x;
-      // No camera in a CPU G-buffer: the origin is p + n * penumbraSurfaceEpsilon(p) (shared.h).
+      // No camera in a CPU G-buffer: the origin is p + n * penumbraSurfaceEpsilon(p) (shared/numerics.h).
       const glm::dvec3 o = glm::dvec3(g.position[i]) +
                            glm::dvec3(g.normal[i]) * double(shared::penumbraSurfaceEpsilon(g.position[i]));
       const int set = samples.setForPixel(x, y);
@@ -219,7 +219,7 @@ double ballIrradianceDense(double cosBeta, double d, double R, int n) {
 
 }  // namespace
 
-// Snyder's closed form for a cap crossing the horizon (shared.h
+// Snyder's closed form for a cap crossing the horizon (shading/shaders/shading.h
 // penumbraCapCosine) against a 400 x 400 quadrature over the cap, wholly above, crossing and
 // wholly below the horizon.
 TEST(ClosedForms, CapCosineIsTheClippedIntegral) {
@@ -257,7 +257,7 @@ TEST(ClosedForms, BallIrradianceAcrossTheHorizon) {
   EXPECT_EQ(shared::penumbraBallIrradiance(glm::vec3(0.0f), n, n, glm::vec3(0.0f, 0.5f, 0.0f), 1.0f), -1.0f);
 }
 
-// The disk light's unshadowed term (shared.h penumbraDiskIrradiance, the equal-area 32-gon):
+// The disk light's unshadowed term (shading/shaders/shading.h penumbraDiskIrradiance, the equal-area 32-gon):
 // against the closed form for a parallel disk (analytic_oracle.h), and for tilted disks that
 // cross the receiver's horizon against a polar quadrature over the disk in double. Measured:
 // 1.4e-4 at worst, where the horizon cuts a tilted disk (the 32-gon's corners at the cut).
@@ -319,7 +319,7 @@ double clippedLambert(std::vector<glm::dvec3> a, const glm::dvec3& ng, const glm
 }
 }  // namespace
 
-// The streamed clipping of shared.h penumbraLightPolygon (edge by edge, no vertex arrays) against
+// The streamed clipping of shading/shaders/shading.h penumbraLightPolygon (edge by edge, no vertex arrays) against
 // the array clipping in double, on 20000 random rects and disks (as the same 32-gon) around
 // random points, cut by the geometric and shading planes; a third with the two normals equal
 // (every cut point then lies on both planes: a classification that differs between an edge's end

@@ -1,7 +1,7 @@
 // The converged reference's shaded image against an independent quadrature of the direct
 // illumination of a rect light on a floor (no occluder), on metal and dielectric floors across
 // roughness (tests/floor_quadrature.h: the BRDF written out again, not taken from
-// shaders/shared.h, and a deterministic Gauss-Legendre rule), so the MIS estimator
+// shading/shaders/shading.h, and a deterministic Gauss-Legendre rule), so the MIS estimator
 // (shading/light_integral.h), its pdfs and its light-intersection code are checked against
 // nothing they share.
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "floor_quadrature.h"
-#include "sampling/shared.hpp"
+#include "shared/shared.h"  // NOLINT: shared with GLSL
 #include "reference/embree_reference.h"
 
 namespace penumbra {

@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 #include "sampling/light_samples.h"
-#include "sampling/shared.hpp"
+#include "shared/shared.hpp"
 #include "reference/embree_reference.h"
 
 using namespace penumbra;
@@ -299,7 +299,7 @@ TEST(Raytrace, StreamsMatchSingleSegments) {
   for (int y = 0; y < g.height; ++y)
     for (int x = 0; x < g.width; ++x) {
       const std::size_t i = std::size_t(y) * g.width + x;
-      // No camera in a CPU G-buffer: the origin moves along the normal (shared.h).
+      // No camera in a CPU G-buffer: the origin moves along the normal (shared/numerics.h).
       const glm::vec3 o = shared::penumbraShadowOrigin(g.position[i], g.normal[i], g.position[i] + g.normal[i]);
       const int set = samples.setForPixel(x, y);
       for (int k = 0; k < 128; ++k) {
@@ -331,7 +331,7 @@ TEST(Raytrace, ConvergedExtremes) {
 }
 
 TEST(Raytrace, SurfaceEpsilonIsRelativeToThePoint) {
-  // shared.h penumbraSurfaceEpsilon: 2^-15 of the largest coordinate (256 ULPs, Waechter and
+  // shared/numerics.h penumbraSurfaceEpsilon: 2^-15 of the largest coordinate (256 ULPs, Waechter and
   // Binder 2019), never below 2^-115; independent of any scene size.
   using shared::penumbraSurfaceEpsilon;
   EXPECT_EQ(penumbraSurfaceEpsilon(glm::vec3(1.0f, -3.0f, 2.0f)), 3.0f / 32768.0f);

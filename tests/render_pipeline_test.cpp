@@ -7,7 +7,7 @@
 #include "core/image_io.h"
 #include "analytic_oracle.h"
 #include "sampling/light_samples.h"
-#include "sampling/shared.hpp"
+#include "shading/shading_shared.hpp"
 
 namespace penumbra::test {
 namespace {
@@ -358,7 +358,7 @@ void expectRatioShadingIsClosedForm(const Scene& scene, Expected expected, doubl
 // unshadowed term, for untextured rect lights Lambert's polygon irradiance: the shaded image of
 // a floor under a rect light equals the parallel-rectangle configuration factor (an independent
 // closed form, analytic_oracle.h) to 1e-4 relative at every pixel. Measured 3.8e-5 on llvmpipe
-// (3.1e-4 with GLSL's atan, shared.h penumbraAtan2; 6.7e-5 with cross products of the vertices
+// (3.1e-4 with GLSL's atan, shading/shaders/shading.h penumbraAtan2; 6.7e-5 with cross products of the vertices
 // rather than of a vertex and its exact edge vector, penumbraEdgeIntegral).
 TEST(Pipeline, RatioShadingOfAnUnoccludedRectIsLambertsFormula) {
   const Scene scene = floorUnder(LightShape::Rect, {0.5f, 1.0f, 0.25f}, {1.2f, 0.6f});
@@ -371,7 +371,7 @@ TEST(Pipeline, RatioShadingOfAnUnoccludedRectIsLambertsFormula) {
 }
 
 // The same for a sphere light wholly above the floor: Newton's theorem for the ball of isotropic
-// points penumbra samples (shared.h penumbraBallIrradiance), albedo L R^2 cos(theta) / d^2.
+// points penumbra samples (shading/shaders/shading.h penumbraBallIrradiance), albedo L R^2 cos(theta) / d^2.
 // Measured 4.6e-7.
 TEST(Pipeline, RatioShadingOfAnUnoccludedSphereLightIsItsClosedForm) {
   const Scene scene = floorUnder(LightShape::Sphere, {0.5f, 1.2f, 0.25f}, {0.3f, 0.3f});
@@ -384,7 +384,7 @@ TEST(Pipeline, RatioShadingOfAnUnoccludedSphereLightIsItsClosedForm) {
 }
 
 // The sphere light across the floor's plane (the horizon-crossing case, the
-// ball cut into shells, shared.h penumbraBallIrradiance): the GPU's ratio shading equals the
+// ball cut into shells, shading/shaders/shading.h penumbraBallIrradiance): the GPU's ratio shading equals the
 // CPU's evaluation of the same function to 1e-4 (measured 1.9e-5; the floor's normals agree, so
 // one plane clips it; points within 1.1 R of the centre are left out: inside the ball there is
 // no closed form), and the converged reference agrees to its noise, measured below.
@@ -401,7 +401,7 @@ TEST(Pipeline, RatioShadingOfASphereLightAcrossTheHorizonIsItsClosedForm) {
              // ball (0.094 with 1024 light samples alone); its mean relative error (bias) 2e-5
 }
 
-// The same for a disk light (the equal-area 32-gon through Lambert's formula, shared.h
+// The same for a disk light (the equal-area 32-gon through Lambert's formula, shading/shaders/shading.h
 // penumbraDiskIrradiance) against the configuration factor of a parallel disk, to 1e-4
 // (measured 2.3e-5; 1.4e-4 at the far, grazing pixels when the edges' cross products were taken
 // of two vertices, penumbraEdgeIntegral).
@@ -437,7 +437,7 @@ TEST(Pipeline, RatioShadingIsPerSampleWithoutAClosedForm) {
   EXPECT_LE(e.maxAbs, 1e-5 * peak) << "ratio and per-sample differ by more than rounding";
 }
 
-// The glTF metallic-roughness BRDF is one function (shared.h penumbraBrdf)
+// The glTF metallic-roughness BRDF is one function (shading/shaders/shading.h penumbraBrdf)
 // on the GPU and the CPU. A glossy floor (roughness 0.3; a dielectric and a gold-like metal)
 // under a rect light, shaded per sample (eq. 6) with the same samples: every pixel equals the
 // CPU's sum of f L_k G_k over the pixel's samples to 1e-4 relative (nothing occludes: T = 1).
@@ -543,7 +543,7 @@ FloorErrors unshadowedFloorErrors(const Scene& scene) {
 // LTC GGX against the converged shaded reference on a glossy plane. The
 // floor of GlossyShadingIsTheSharedBrdfOnGpuAndCpu (makeGlossy) unoccluded under a rect and a disk
 // light (unshadowedFloorErrors): the ratio image is Lambert's formula for the diffuse part and the
-// LTC integral (shared.h penumbraLtcPolygon, luts/ltc_ggx.lut) for the specular one; its error
+// LTC integral (shading/shaders/shading.h penumbraLtcPolygon, luts/ltc_ggx.lut) for the specular one; its error
 // against the reference is the LTC's approximation (plus the reference's noise); eq. 6's with the
 // same 16 samples is sampling noise: the LTC's is 6-8 times smaller. Gates at the measured
 // values (printed).

@@ -1,6 +1,6 @@
 // Scale and offset invariance (hard cases 25 and 26 of
 // shared/docs/hard-cases.md): the evaluation point's epsilon follows the point's own float
-// magnitude (shared.h penumbraSurfaceEpsilon), so the shadows do not depend on how large the
+// magnitude (shared/numerics.h penumbraSurfaceEpsilon), so the shadows do not depend on how large the
 // floor is; the pipeline renders in camera-relative coordinates (Scene::makeCameraRelative), so
 // a scene translated far from the origin gives the visibility of its untranslated twin.
 #include "render_test_util.h"
@@ -201,7 +201,7 @@ namespace penumbra::test {
 // Hard case 36: the cube scene at every length times 2^k (a world in millimetres is 2^-10 of
 // one in metres, near enough). A power of two moves no float's mantissa, so an exact technique
 // must give bit for bit the same visibility; an offset with an absolute floor near the origin (or
-// any threshold in scene units) does not: with shared.h's old floor (1/32) raytrace and dcs
+// any threshold in scene units) does not: with shared/numerics.h's old floor (1/32) raytrace and dcs
 // differed at 207 / 30 / 3 of 4096 values at 2^-20 / 2^-13 / 2^-10, hard-sv at 111 at 2^-20.
 // One test a technique (each about 8 s on llvmpipe).
 void expectPowerOfTwoScaleInvariance(const char* technique) {

@@ -21,11 +21,12 @@ namespace penumbra::test {
 
 inline std::string scenePath(const std::string& rel) { return std::string(PENUMBRA_SOURCE_DIR) + "/" + rel; }
 
-// A $PENUMBRA_SHADER_DIR that reads `first` before the source tree's shader folders (shaders/ and
-// every src/techniques/**/shaders/): a test's replacement of one file, the others as built.
+// A $PENUMBRA_SHADER_DIR that reads `first` before the source tree's shader folders (shaders/,
+// src/shared/ and every shaders/ under src/): a test's replacement of one file, the others as
+// built.
 inline std::string shaderSearchPath(const std::string& first) {
-  std::string path = first + ":" + scenePath("shaders");
-  for (const auto& e : std::filesystem::recursive_directory_iterator(scenePath("src/techniques")))
+  std::string path = first + ":" + scenePath("shaders") + ":" + scenePath("src/shared");
+  for (const auto& e : std::filesystem::recursive_directory_iterator(scenePath("src")))
     if (e.is_directory() && e.path().filename() == "shaders") path += ":" + e.path().string();
   return path;
 }

@@ -12,13 +12,7 @@
 #include "cli/options.h"
 #include "core/error.h"
 #include "sampling/light_samples.h"
-
-// shared.h defines non-inline functions (GLSL has no `inline`), so a second C++ translation unit
-// including it at namespace scope would break the one-definition rule against light_samples.cpp.
-// The test gets its own copy in a namespace of its own.
-namespace shader {
-#include "sampling/shared.hpp"  // NOLINT
-}
+#include "sampling/sample_sets.hpp"
 
 using namespace penumbra;
 using penumbra::cli::parsePixelPattern;
@@ -348,8 +342,8 @@ TEST(Sampling, SetForPixel) {
       ASSERT_GE(set, 0);
       ASSERT_LT(set, 16);
       ++hist[set];
-      // The same function the shaders use (shaders/shared.h).
-      ASSERT_EQ(set, int(shader::penumbra::shared::penumbraSetForPixel(
+      // The same function the shaders use (sampling/shaders/sample_sets.h).
+      ASSERT_EQ(set, int(penumbra::shared::penumbraSetForPixel(
                          x, y, PENUMBRA_PATTERN_DECORRELATED, 16, 1, p.seed)));
     }
   for (int h : hist) EXPECT_NEAR(h, 4096, 4096 * 0.1);

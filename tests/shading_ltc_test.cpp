@@ -1,4 +1,4 @@
-// The LTC GGX table (src/shading/ltc.h) and the shader's integral over it (shared.h
+// The LTC GGX table (src/shading/ltc.h) and the shader's integral over it (shading/shaders/shading.h
 // penumbraLightPolygon), GL-free: the fit reproduces the checked-in table bit for bit, the
 // shader's transform is the fit's lobe, the polygon integral's error against the true lobe, and
 // the file's bad-input errors.
@@ -14,7 +14,7 @@
 
 #include "core/error.h"
 #include "floor_quadrature.h"
-#include "sampling/shared.hpp"
+#include "shading/shading_shared.hpp"
 #include "shading/ltc.h"
 
 namespace penumbra::test {

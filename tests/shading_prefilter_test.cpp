@@ -1,5 +1,5 @@
 // Textured rect and disk lights' unshadowed term: the
-// prefiltered emission (Heitz et al. 2016 section 5.3; src/shading/prefiltered_light.h, shared.h
+// prefiltered emission (Heitz et al. 2016 section 5.3; src/shading/prefiltered_light.h, shading/shaders/shading.h
 // penumbraPrefilterFootprint) times the closed-form integral of the lobe, against the integral
 // over the texture by quadrature, beside the sum over 16 light samples the renderer would
 // otherwise use. GL-free: the GPU reads the same chain with the same coordinates.
@@ -11,7 +11,7 @@
 
 #include "core/image_io.h"
 #include "sampling/light_samples.h"
-#include "sampling/shared.hpp"
+#include "shading/shading_shared.hpp"
 #include "shading/ltc.h"
 #include "shading/prefiltered_light.h"
 

@@ -28,7 +28,7 @@
 #include "cli/options.h"
 #include "compare/compare.h"
 #include "compare/report.h"
-#include "sampling/shared.hpp"
+#include "shared/shared.h"  // NOLINT: shared with GLSL
 #include "scene/scene.h"
 #include "shading/ltc.h"
 #include "shading/prefiltered_light.h"

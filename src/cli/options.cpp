@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "core/key_values.h"
-#include "sampling/shared.hpp"
+#include "shared/shared.h"  // NOLINT: shared with GLSL
 
 namespace penumbra::cli {
 

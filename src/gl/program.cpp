@@ -52,7 +52,7 @@ GLenum stageOf(const std::string& file) {
   throw Error(file, "unknown shader stage (.vert .frag .geom .comp)");
 }
 
-// shared.h, "shader storage bindings": in a graphics program that writes a storage block, only
+// shared/shared.h, "shader storage bindings": in a graphics program that writes a storage block, only
 // one stage may declare storage blocks (Mesa 22.3 marks the writing stage's block read-only
 // otherwise, and zink then skips the waits and barriers its writes need). Read from the
 // stages' text, since the GL reports neither unused declarations (which trigger it too) nor
@@ -74,8 +74,8 @@ void checkStorageBlockStages(const std::vector<std::string>& files, const std::v
     declaring += any ? 1 : 0;
   }
   if (!writer.empty() && declaring > 1)
-    throw Error("shaders/" + files.front(), "storage block " + writer + " is writable while " + std::to_string(declaring) +
-                                               " stages declare storage blocks (shaders/shared.h, storage bindings)");
+    throw Error(files.front(), "storage block " + writer + " is writable while " + std::to_string(declaring) +
+                                               " stages declare storage blocks (shared/shared.h, storage bindings)");
 }
 
 }  // namespace
@@ -107,7 +107,7 @@ Program::Program(const std::vector<std::string>& files, const std::vector<std::s
       char log[4096];
       glGetShaderInfoLog(sh, sizeof log, nullptr, log);
       detail::deleteObject(Kind::Shader, sh);
-      throw Error("shaders/" + file, "compile error: " + nameLogLocations(log, text.files));
+      throw Error(file, "compile error: " + nameLogLocations(log, text.files));
     }
     glAttachShader(prog, sh);
     shaders.push_back(sh);
@@ -122,7 +122,7 @@ Program::Program(const std::vector<std::string>& files, const std::vector<std::s
     glGetProgramInfoLog(prog, sizeof log, nullptr, log);
     std::string msg(log);
     for (auto& c : msg) if (c == '\n') c = ' ';
-    throw Error("shaders/" + files.front(), "link error: " + msg);
+    throw Error(files.front(), "link error: " + msg);
   }
   checkStorageBlockStages(files, sources);
 }

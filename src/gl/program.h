@@ -13,7 +13,7 @@ namespace penumbra::gl {
 // A program from shader files, named by file name: the pipeline's under shaders/, a
 // technique's under its folder's shaders/ (all embedded at build time; read from the folders
 // $PENUMBRA_SHADER_DIR lists, ':'-separated, instead when set, for iterating). Each source gets "#version 450 core",
-// the given defines ("NAME" or "NAME VALUE"), shaders/shared.h and its #include "file" lines
+// the given defines ("NAME" or "NAME VALUE"), src/shared/shared.h and its #include "file" lines
 // resolved. Compile/link errors throw penumbra::Error naming the shader file.
 class Program : public Object<Kind::Program> {
  public:

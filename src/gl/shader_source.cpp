@@ -28,7 +28,10 @@ void resolveIncludes(const std::string& src, int index, std::vector<std::string>
     ++lineNo;
     auto pos = line.find("#include \"");
     if (pos != std::string::npos && line.find_first_not_of(" \t") == pos) {
+      // By file name: a path (`#include "shading/shaders/shading.h"`, as C++ includes it through
+      // its layer's include root) names the embedded file of its last component.
       std::string name = line.substr(pos + 10, line.find('"', pos + 10) - pos - 10);
+      name = name.substr(name.rfind('/') + 1);
       auto seen = std::find(files.begin(), files.end(), name);
       const bool header = name.size() > 2 && name.compare(name.size() - 2, 2, ".h") == 0;
       if (seen == files.end() || header) {

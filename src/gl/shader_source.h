@@ -1,4 +1,4 @@
-// The text a shader stage is compiled from: "#version 450 core", the defines, shaders/shared.h,
+// The text a shader stage is compiled from: "#version 450 core", the defines, src/shared/shared.h (the ground floor),
 // then the file with each `#include "name"` replaced by the named file (nested includes too,
 // each file once, headers wherever included). `#line` directives number the lines of file k
 // from k * 100000 + 1, so the GL's error log can name the file and line of an error
@@ -12,7 +12,7 @@ namespace penumbra::gl {
 
 struct ShaderText {
   std::string text;
-  std::vector<std::string> files;  // by number: 0 the stage's file, 1 shared.h, then includes
+  std::vector<std::string> files;  // by number: 0 the stage's file, 1 shared.h (the ground floor), then includes
 };
 
 ShaderText assembleShader(const std::string& file, const std::vector<std::string>& defines);

@@ -10,7 +10,7 @@
 #include "core/log.h"
 #include "core/memory.h"
 #include "pipeline/enclosure.h"
-#include "sampling/shared.hpp"
+#include "shared/shared.h"  // NOLINT: shared with GLSL
 #include "shading/light_integral.h"
 #include "shading/ltc.h"
 #include "shading/prefiltered_light.h"
@@ -45,7 +45,6 @@ gl::Buffer lightSampleBuffer(const std::vector<glm::vec3>& positions, int sample
 }
 
 void setLightUniforms(const gl::Program& prog, const Light& light, const LightSampleSet& s) {
-  static_assert(int(LightShape::Point) == PENUMBRA_LIGHT_POINT && int(LightShape::Sphere) == PENUMBRA_LIGHT_SPHERE);
   prog.set("lightShape", int(light.shape));
   prog.set("lightPosition", light.position);
   prog.set("lightNormal", s.lightNormal);

@@ -8,7 +8,7 @@
 //    with each sample's transmittance; needs a technique that provides per-sample results.
 //  * Ratio (Heitz, Hill and McGuire 2018, "Combining analytic direct illumination and
 //    stochastic shadows"), the default: the unshadowed term U, whose diffuse part is in closed
-//    form for untextured rect, disk and sphere lights (shared.h penumbraLightPolygon,
+//    form for untextured rect, disk and sphere lights (shading/shaders/shading.h penumbraLightPolygon,
 //    penumbraBallIrradiance) and whose GGX specular part is the LTC integral for untextured rect
 //    and disk lights (shading/ltc.h, the table built in from luts/ltc_ggx.lut); for textured
 //    rect and disk lights both are those integrals times the emission prefiltered for each lobe
@@ -16,7 +16,7 @@
 //    textured spheres, points) the unshadowed sum over the pixel's samples; times the shadow ratio sum_k w_k T_k / sum_k w_k, w_k = f L_k cos cos / r^2 of
 //    sample k, from the per-sample results, or V / V_unshadowed (eq. 2 over its unshadowed
 //    value) for techniques that give only V.
-// All use the material's BRDF (shared.h penumbraBrdf), the same function the reference uses.
+// All use the material's BRDF (shading/shaders/shading.h penumbraBrdf), the same function the reference uses.
 #pragma once
 
 #include <map>

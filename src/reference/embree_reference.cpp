@@ -17,7 +17,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
-#include "sampling/shared.hpp"
+#include "shading/shading_shared.hpp"
 
 namespace penumbra {
 namespace {

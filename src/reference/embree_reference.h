@@ -12,7 +12,7 @@
 //  * a pixel is shaded only if the G-buffer has a surface there (valid);
 //  * a sample below the surface's horizon, dot(n, x_k - p) <= 0 with n the camera-facing
 //    normal, has visibility 0;
-//  * the ray starts at penumbraShadowOrigin(p, n, camera) (shaders/shared.h: p moved towards
+//  * the ray starts at penumbraShadowOrigin(p, n, camera) (shared/numerics.h: p moved towards
 //    the camera along the view ray until penumbraSurfaceEpsilon(p), 2^-15 of p's largest
 //    coordinate, off its surface; along n when the G-buffer has no camera) and stops at the
 //    sample (t < 1 - 1e-5 relative).

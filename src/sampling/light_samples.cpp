@@ -12,7 +12,7 @@
 
 #include "core/error.h"
 #include "sampling/rng.h"
-#include "sampling/shared.hpp"
+#include "sampling/sample_sets.hpp"
 
 namespace penumbra {
 namespace {

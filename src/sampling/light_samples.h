@@ -3,7 +3,7 @@
 //
 // A set is N points on (rect, disk) or in (sphere) the light, in world space. Several sets can
 // be made (rotations of the base set for decorrelated sampling; K*K independent sets for
-// interleaved sampling); which set a pixel uses is penumbraSetForPixel() of shaders/shared.h,
+// interleaved sampling); which set a pixel uses is penumbraSetForPixel() of shaders/sample_sets.h,
 // identical on CPU and GPU. N == 1 gives the light centre (hard shadows). Fixed seeds: the same
 // parameters always give bit-identical sets.
 #pragma once
@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "shared/shared.h"  // NOLINT: shared with GLSL
 #include "core/names.h"
 #include "scene/scene.h"
 
@@ -21,6 +22,9 @@ namespace penumbra {
 
 enum class SampleStrategy { Stratified, Poisson, Vogel };
 enum class PixelPattern { Correlated = 0, Decorrelated = 1, Interleaved = 2 };
+static_assert(int(PixelPattern::Correlated) == PENUMBRA_PATTERN_CORRELATED &&
+              int(PixelPattern::Decorrelated) == PENUMBRA_PATTERN_DECORRELATED &&
+              int(PixelPattern::Interleaved) == PENUMBRA_PATTERN_INTERLEAVED);
 
 struct SamplingParams {
   int count = 16;  // N light samples per light, 1..PENUMBRA_MAX_SAMPLES

@@ -18,7 +18,7 @@ struct CpuGBuffer {
   std::vector<glm::vec3> position;  // the scene's coordinates: world position minus `origin`
   std::vector<glm::vec3> normal;    // world, unit, facing the camera
   std::vector<std::uint8_t> valid;  // 1 where a surface was hit
-  // The BRDF's inputs (shaders/shared.h penumbraBrdf; empty where a caller gives geometry only):
+  // The BRDF's inputs (shading/shaders/shading.h penumbraBrdf; empty where a caller gives geometry only):
   std::vector<glm::vec3> shadingNormal;  // unit, on the geometric normal's side
   std::vector<glm::vec3> baseColor;      // linear, the texture applied
   std::vector<glm::vec3> material;       // metallic, roughness, BRDF model (PENUMBRA_BRDF_*)

@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "shared/shared.h"  // NOLINT: shared with GLSL
 #include "core/image.h"
 #include "geometry/mesh.h"
 
@@ -25,8 +26,10 @@ struct Texture {
 
 enum class AlphaMode { Opaque, Mask, Blend };
 
-// Values match shaders/shared.h PENUMBRA_BRDF_*.
+// Values match shared/shared/shared.h PENUMBRA_BRDF_* (checked below).
 enum class BrdfModel { Lambert = 0, MetallicRoughness = 1 };
+static_assert(int(BrdfModel::Lambert) == PENUMBRA_BRDF_LAMBERT &&
+              int(BrdfModel::MetallicRoughness) == PENUMBRA_BRDF_METALLIC_ROUGHNESS);
 
 struct Material {
   std::string name;
@@ -38,7 +41,7 @@ struct Material {
   float opacity = 1.0f;
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
-  // The BRDF (shaders/shared.h penumbraBrdf). Lambert: baseColor / pi (scene-file materials
+  // The BRDF (shading/shaders/shading.h penumbraBrdf). Lambert: baseColor / pi (scene-file materials
   // without "metallic" or "roughness"). MetallicRoughness: the glTF 2.0 BRDF (Lambertian diffuse
   // + GGX with Smith masking, Schlick Fresnel) of glTF materials, OBJ materials with Ks and
   // scene-file materials that give "metallic" or "roughness".
@@ -69,6 +72,8 @@ struct SceneMesh {
 };
 
 enum class LightShape { Point, Rect, Disk, Sphere };
+static_assert(int(LightShape::Point) == PENUMBRA_LIGHT_POINT && int(LightShape::Rect) == PENUMBRA_LIGHT_RECT &&
+              int(LightShape::Disk) == PENUMBRA_LIGHT_DISK && int(LightShape::Sphere) == PENUMBRA_LIGHT_SPHERE);
 
 struct Light {
   std::string name;

@@ -1,4 +1,4 @@
-// Sampling the BRDF's lobes (shaders/shared.h penumbraBrdf) in a local frame whose z axis is the
+// Sampling the BRDF's lobes (shading/shaders/shading.h penumbraBrdf) in a local frame whose z axis is the
 // shading normal: what the LTC fit (ltc.h) and the converged reference's BRDF strategy
 // (light_integral.h) draw directions from. Directions are unit; densities are per solid angle.
 #pragma once

@@ -11,7 +11,7 @@
 #include "core/parallel.h"
 #include "sampling/light_samples.h"
 #include "sampling/rng.h"
-#include "sampling/shared.hpp"
+#include "shading/shading_shared.hpp"
 #include "shading/brdf_sampling.h"
 
 namespace penumbra::shading {

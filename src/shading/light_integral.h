@@ -10,7 +10,7 @@
 // light_samples.h, whose radiance along a chord is the emission density 3 L / (4 R) times the
 // chord; a BRDF sample hits it at a point uniform on its chord, density p(w) / (chord r^2)).
 // A point light is its one sample. Both strategies keep the conventions of the renderer: the
-// horizon rule of the geometric normal, the BRDF (shared.h penumbraBrdf) with the shading normal,
+// horizon rule of the geometric normal, the BRDF (shading/shaders/shading.h penumbraBrdf) with the shading normal,
 // a one-sided emitter's cosine, the emission texture read at the light point's uv (emissionAt).
 //
 // Samples come in batches (`batch` of each strategy, a fresh stratified set each, seeded by the
@@ -42,7 +42,7 @@ struct IntegratorOptions {
 // What one pixel's integral needs: the surface (renderer's G-buffer) and its BRDF inputs.
 struct SurfacePoint {
   glm::vec3 p, ng, eye;  // point, geometric normal facing the eye, the eye (or p + ng)
-  glm::vec3 origin;      // the shadow rays' start (shared.h penumbraShadowOrigin)
+  glm::vec3 origin;      // the shadow rays' start (shared/numerics.h penumbraShadowOrigin)
   bool shaded = false;   // false: visibility only (a G-buffer without BRDF inputs)
   glm::vec3 ns{0.0f}, baseColor{0.0f};
   float metallic = 0.0f, roughness = 1.0f;

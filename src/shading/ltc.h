@@ -1,10 +1,10 @@
 // Linearly transformed cosines for the GGX specular lobe (Heitz, Dupuy, Hill and Neubelt 2016,
 // "Real-time polygonal-light shading with linearly transformed cosines", ACM TOG 35(4)): the
-// table the ratio estimator's unshadowed specular term reads (shaders/shared.h
+// table the ratio estimator's unshadowed specular term reads (shading/shaders/shading.h
 // penumbraLtcPolygon, shaders/pipeline_shade.frag), its fit (`penumbra lut --ltc`) and its file.
 // No GL here.
 //
-// The lobe is shared.h penumbraGgxCosine, D V (n.l) with F = 1, the very function the per-sample
+// The lobe is shading/shaders/shading.h penumbraGgxCosine, D V (n.l) with F = 1, the very function the per-sample
 // shading and the reference evaluate; for view elevation theta_v and roughness r (alpha =
 // penumbraAlpha(r)) it is approximated by
 //   norm * D_o(M^-1 l / |M^-1 l|) * |det M^-1| / |M^-1 l|^3,  D_o(w) = max(w.z, 0) / pi,
@@ -15,7 +15,7 @@
 // hemisphere; fresnel = integral of the lobe times (1 - v.h)^5 (the paper's split, f0 (norm -
 // fresnel) + fresnel, of the Schlick-weighted integral over the hemisphere; kept in the table and
 // its report, but the renderer takes Schlick's factor towards a point of the light instead,
-// shared.h penumbraLtcFresnelDirection, which is 4-15 times closer on a dielectric at roughness
+// shading/shaders/shading.h penumbraLtcFresnelDirection, which is 4-15 times closer on a dielectric at roughness
 // 0.3-1.0).
 //
 // Grid (paper): cell (a, t), a, t in 0..N-1: roughness r = a / (N - 1), view x = t / (N - 1) with

@@ -1,7 +1,7 @@
 // The LTC GGX fit (Heitz, Dupuy, Hill and Neubelt 2016, section 4 and the authors' released
 // fitLTC.cpp, which this follows in its order and sampling): per cell, norm, fresnel and the
 // lobe's mean direction by importance sampling the BRDF; then M's free terms by Nelder-Mead, f the
-// true lobe (shared.h penumbraGgxCosine), g the LTC scaled by norm, on a deterministic stratified
+// true lobe (shading/shaders/shading.h penumbraGgxCosine), g the LTC scaled by norm, on a deterministic stratified
 // grid of MIS samples of both. Fit order as the paper's: the t = 0 (normal incidence) cell of each
 // roughness column from the rougher neighbour's, isotropic (m11 = m22, m13 = 0); along the
 // column, each cell warm-started from the previous one. The whole fit takes 3 minutes on 2 cores
@@ -21,7 +21,7 @@
 // - each cell from two starts, kept the better (fitColumn below);
 // - alpha = penumbraAlpha(r), the renderer's clamp at PENUMBRA_MIN_ROUGHNESS, so the table holds
 //   the lobe the renderer evaluates; sample counts are options; the reported error is the L1
-//   error relative to norm of the LTC clipped to n's horizon (shared.h penumbraLtcPolygon).
+//   error relative to norm of the LTC clipped to n's horizon (shading/shaders/shading.h penumbraLtcPolygon).
 #include "shading/ltc.h"
 
 #include <algorithm>
@@ -33,7 +33,7 @@
 
 #include "core/error.h"
 #include "shading/brdf_sampling.h"
-#include "sampling/shared.hpp"
+#include "shading/shading_shared.hpp"
 
 namespace penumbra::shading {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "sampling/light_samples.h"
-#include "sampling/shared.hpp"
+#include "shading/shading_shared.hpp"
 
 namespace penumbra::shading {
 namespace {

@@ -1,6 +1,6 @@
 // The prefiltered emission of a textured rect or disk light, for the unshadowed term of the ratio
 // estimator (Heitz, Dupuy, Hill and Neubelt 2016, "Real-time polygonal-light shading with linearly
-// transformed cosines", section 5.3; the lookup is shared.h penumbraPrefilterFootprint). No GL.
+// transformed cosines", section 5.3; the lookup is shading/shaders/shading.h penumbraPrefilterFootprint). No GL.
 //
 // Level k is the emission convolved with an isotropic Gaussian of sigma_k = sigma_0 2^k (light uv
 // units; sigma_0 one texel) and normalised by the Gaussian's weight on the light:
@@ -9,7 +9,7 @@
 // or beyond the light's border averages only what the light emits there (the paper extends the
 // texture into a margin; this is that margin made exact for a Gaussian weight). Where a level's
 // weight is too small (far outside the light at a small sigma) it blends into the next coarser
-// level. A lookup mixes the levels (shared.h penumbraPrefilterWeight). The chain covers uv in [-m, 1 + m]^2, m = PENUMBRA_PREFILTER_MARGIN; the coarsest level
+// level. A lookup mixes the levels (shading/shaders/shading.h penumbraPrefilterWeight). The chain covers uv in [-m, 1 + m]^2, m = PENUMBRA_PREFILTER_MARGIN; the coarsest level
 // has sigma >= 2 (the whole light's average, nearly, anywhere in the margin).
 #pragma once
 
@@ -39,7 +39,7 @@ PrefilteredLight prefilterLight(const Image& emission, bool disk);
 // penumbraPrefilterCoordinates(uv) through texel centres, clamped to the edge.
 glm::vec4 prefilteredLevel(const PrefilteredLight& chain, glm::vec2 uv, int k);
 
-// L_D at a footprint (u, v, d) of shared.h penumbraPrefilterFootprint, as the GPU computes it: the
+// L_D at a footprint (u, v, d) of shading/shaders/shading.h penumbraPrefilterFootprint, as the GPU computes it: the
 // levels mixed with penumbraPrefilterWeight(d) as a normalised convolution,
 // sum_k w_k den_k L_k / sum_k w_k den_k (den_k the level's weight on the light). For tests and
 // the LUT tool.

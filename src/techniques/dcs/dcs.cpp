@@ -46,7 +46,7 @@
 #include "gl/objects.h"
 #include "gl/program_cache.h"
 #include "pipeline/renderer.h"
-#include "sampling/shared.hpp"
+#include "techniques/dcs/dcs_modes.hpp"
 #include "techniques/dcs/compute_wedges.h"
 #include "techniques/dcs/counter_planner.h"
 #include "techniques/dcs/edge_lut_gpu.h"
@@ -177,7 +177,7 @@ class DepthComplexitySampling final : public Technique {
         PLOG_INFO("dcs: mesh '{}' (opacity {:.3g}) never occludes: within the single-layer tolerance {:.3g} of transparent",
                   scene.meshes[i].name, opacities[i], options_.opacityTolerance);
     volumes_.prepare(scene, gpu, coding_.units, coding_.opaqueUnits);
-    // The wedges' growth covers the float epsilon of every evaluation point (shared.h
+    // The wedges' growth covers the float epsilon of every evaluation point (shared/numerics.h
     // penumbraSurfaceEpsilon), bounded by that of the scene's largest coordinate: more is only
     // slower (the fragment shader decides exactly), less could miss a pixel at a wedge's border.
     const glm::vec3 extent = scene.extent();

@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "pipeline/technique.h"
-#include "sampling/shared.hpp"
+#include "techniques/dcs/dcs_modes.hpp"
 #include "techniques/dcs/edge_lut.h"
 #include "techniques/dcs/opacity.h"
 

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "sampling/shared.hpp"
+#include "techniques/dcs/dcs_modes.hpp"
 
 namespace penumbra::dcs {
 namespace {

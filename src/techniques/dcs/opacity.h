@@ -1,6 +1,6 @@
 // Semi-opaque occluders in depth complexity sampling (DCS paper section 3 "Surface opaqueness",
 // 4.4): counters hold integer units, so a surface's opacity is discretised into units that each
-// crossing of it adds. Two codings (shaders/shared.h penumbraDcsTransmittance decodes them):
+// crossing of it adds. Two codings (dcs/shaders/dcs_modes.h penumbraDcsTransmittance decodes them):
 //  * Sum (the paper's): a surface of opacity a adds round(a * Q) units, an opaque one Q, and
 //    T = 1 - Sat(count / Q). Exact for one layer; several layers add their opacities (two
 //    layers of 0.5 give T = 0 where the light gets 0.25 through), as the paper says.
@@ -28,7 +28,7 @@ enum class OpacityMode { Sum, Product };
 inline constexpr int kMaxOpaqueUnits = 1 << 20;
 
 struct OpacityCoding {
-  int mode = 0;             // PENUMBRA_DCS_OPACITY_* (shaders/shared.h)
+  int mode = 0;             // PENUMBRA_DCS_OPACITY_* (shaders/dcs_modes.h)
   int opaqueUnits = 1;      // Q (sum) or U (product): the units of an opaque surface
   float unitLog = 0.0f;     // product: delta, -ln of the transmittance of one unit
   std::vector<int> units;   // per input opacity: the units one crossing adds (0: no occluder)

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "sampling/shared.hpp"
+#include "techniques/dcs/dcs_modes.hpp"
 #include "techniques/dcs/dcs.h"
 #include "techniques/dcs/packing.h"
 

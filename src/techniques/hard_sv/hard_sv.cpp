@@ -5,7 +5,7 @@
 #include "core/log.h"
 #include "gl/objects.h"
 #include "pipeline/renderer.h"
-#include "sampling/shared.hpp"
+#include "shared/shared.h"  // NOLINT: shared with GLSL
 #include "techniques/common/shadow_volume/shadow_volume.h"
 
 namespace penumbra {

@@ -4,7 +4,7 @@
 
 #include "gl/objects.h"
 #include "pipeline/renderer.h"
-#include "sampling/shared.hpp"
+#include "shared/shared.h"  // NOLINT: shared with GLSL
 
 namespace penumbra {
 namespace {

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "pipeline/renderer.h"
-#include "sampling/shared.hpp"
+#include "shared/shared.h"  // NOLINT: shared with GLSL
 #include "techniques/common/shadow_map/maps.h"
 #include "techniques/common/shadow_map/shaders/shadow_map_bindings.h"  // NOLINT: shared with GLSL
 

@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "gl/context.h"
 #include "pipeline/renderer.h"
-#include "sampling/shared.hpp"
+#include "shared/shared.hpp"
 #include "techniques/common/shadow_map/shaders/shadow_map_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra::shadow_map {
@@ -20,7 +20,7 @@ std::vector<ParamSpec> mapParams() {
   const MapOptions o;
   return {ParamSpec::integer("map", o.size, 16, 16384, "depth-map resolution (square)"),
           ParamSpec::number("bias", o.biasConstant, -1.0, 1e30,
-                            "constant depth bias, world units along the view axis; < 0: per point (eps: `shared.h` "
+                            "constant depth bias, world units along the view axis; < 0: per point (eps: `shared/numerics.h` "
                             "penumbraSurfaceEpsilon, relative to the positions' float magnitude)")
               .shown("per point: 4 x (eps(p) + eps(sample))"),
           ParamSpec::number("slope-bias", o.biasSlope, 0.0, 100.0,
@@ -169,7 +169,7 @@ void setReach(MapFrame& f, const Light& light, const LightSampleSet& samples, Ma
   }
 }
 
-// The largest float epsilon (shared.h penumbraSurfaceEpsilon) of the points the views start from.
+// The largest float epsilon (shared/numerics.h penumbraSurfaceEpsilon) of the points the views start from.
 float viewEpsilon(const Light& light, const LightSampleSet& samples, MapReach reach) {
   const glm::vec3 c = light.position;
   float eps = shared::penumbraSurfaceEpsilon(c);
@@ -200,7 +200,7 @@ MapFrame FrameFit::compute(const GpuScene& gpu, const Light& light, const LightS
   f.size = options.size;
   f.layers = samples.setCount * samples.count;
   const glm::vec3 c = light.position;
-  // The maps' near plane: 16 float epsilons of the views' positions (shared.h
+  // The maps' near plane: 16 float epsilons of the views' positions (shared/numerics.h
   // penumbraSurfaceEpsilon), the distance below which a depth from a sample is rounding, not
   // geometry; it used to be 1e-5 of the scene's radius, which clipped occluders near the light in
   // a large scene. Reversed depth near / d keeps its relative precision at any near.

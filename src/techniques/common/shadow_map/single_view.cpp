@@ -5,7 +5,7 @@
 #include "core/error.h"
 #include "gl/context.h"
 #include "pipeline/renderer.h"
-#include "sampling/shared.hpp"
+#include "shared/shared.h"  // NOLINT: shared with GLSL
 #include "techniques/common/shadow_map/shaders/single_view_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra::shadow_map {

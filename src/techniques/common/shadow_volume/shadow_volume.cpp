@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "pipeline/renderer.h"
-#include "sampling/shared.hpp"
+#include "techniques/common/shadow_volume/volume_count.hpp"
 #include "techniques/common/shadow_volume/volume_cover.h"
 
 namespace penumbra {
@@ -183,7 +183,7 @@ bool ShadowVolumeCounter::onMeshBorder(const glm::dvec3& x) const {
 namespace {
 // A face's corners for its cover (world points, w = 0 at infinity), from its storage-block
 // record (src/techniques/common/shadow_volume/shaders/hardsv_volume.frag): a side's quad b -> a -> a_inf -> b_inf with (a, b) =
-// (v0, v1) turned for a negative weight (shared.h penumbraSideCount), a near cap's triangle, a
+// (v0, v1) turned for a negative weight (common/shadow_volume/shaders/volume_count.h penumbraSideCount), a near cap's triangle, a
 // far cap's triangle at infinity reversed.
 int faceCorners(const glm::vec4* f, glm::dvec4 corners[4]) {
   const glm::dvec3 a(f[0]), b(f[1]), c(f[2]);

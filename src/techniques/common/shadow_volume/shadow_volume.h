@@ -7,9 +7,9 @@
 // edges with multiplicity m_e and the cap sign of each triangle (closed meshes: classic
 // front-face caps; open, non-manifold or inconsistently wound meshes: one volume per triangle,
 // so boundary edges close the volume and the count does not depend on winding). A volume face
-// counts where the view ray meets it behind the evaluation point (shared.h penumbraShadowOrigin:
+// counts where the view ray meets it behind the evaluation point (shared/numerics.h penumbraShadowOrigin:
 // the visible point moved towards the camera, off its surface); both halves are decided exactly
-// in the fragment shader (shared.h, "Which faces of the shadow volumes the view ray meets";
+// in the fragment shader (shaders/volume_count.h, "Which faces of the shadow volumes the view ray meets";
 // src/techniques/common/shadow_volume/shaders/hardsv_volume.frag), not by the rasteriser or the depth buffer: the visible surface's
 // own near cap counts, which gives the winding number on the camera's side of the surface (the
 // lit side whenever the horizon rule passes), the faces sharing an edge or a vertex line decide

@@ -18,6 +18,7 @@
 // open and non-manifold edges need no special case. Divergence from the paper: we integrate in
 // 3D (segment p -> y through e) instead of projecting e onto a light plane, so sphere lights
 // need nothing special and no edge is clipped against the light border.
+#include "techniques/common/shadow_volume/shaders/volume_count.h"
 #include "dcs_bindings.h"
 
 struct DcsEdge {
@@ -41,7 +42,7 @@ uniform int lightCornerCount;  // 1 (point), 4 (a planar light's polygon) or 8 (
 
 #ifdef DCS_PROFILE
 // Where the wedge pass spends its fragments (dcs.cpp reads them into the statistics). An image,
-// not a storage block: written by the geometry and the fragment stage (shared.h, bindings).
+// not a storage block: written by the geometry and the fragment stage (shared/shared.h, bindings).
 layout(binding = PENUMBRA_IMAGE_DCS_PROFILE, r32ui) uniform coherent uimage2D dcsProfile;
 const int profRectangleEdges = 0;  // edges drawn as their screen rectangle (dcs_wedge.geom fallback)
 const int profWedgeEdges = 1;      // edges drawn as their wedge polyhedron
@@ -154,7 +155,7 @@ struct DcsCoverage {
   float k;
 };
 
-// ne and dc are n_e and n_e . (c - p) from penumbraEdgePlaneDistance (shared.h): K = -n_e and k = -dc (equal
+// ne and dc are n_e and n_e . (c - p) from penumbraEdgePlaneDistance (volume_count.h): K = -n_e and k = -dc (equal
 // mathematically, det(a - p, b - a, c - a) = det(a - p, b - a, c - p)); taking them from there
 // makes the flip below the same decision as the update's sign and the shadow-volume count.
 DcsCoverage dcsCoverageSetup(vec3 p, vec3 a, vec3 b, vec3 c, vec3 ne, float dc) {

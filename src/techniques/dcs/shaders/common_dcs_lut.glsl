@@ -1,5 +1,6 @@
 // The DCS paper's 2D covered-sample modes (sections 7.1, 7.3; src/techniques/dcs/edge_lut.h),
 // for dcs_wedge.frag with DCS_COVERAGE naive or lut. Needs common_light.glsl.
+#include "techniques/dcs/shaders/dcs_modes.h"
 #include "dcs_bindings.h"
 #if DCS_COVERAGE != PENUMBRA_DCS_COVERAGE_EXACT
 uniform vec3 lightAxisU;  // tangent / half-width: the light's normalised frame (c at the origin)

@@ -2,6 +2,8 @@
 // wedge fragments (dcs_wedge.frag) and the compute path (dcs_wedge.comp): the sign and weight of
 // the update at the visible point and the light samples it covers. Needs common_light.glsl,
 // common_dcs.glsl and common_dcs_lut.glsl, and MASK_WORDS (32 samples a word) defined.
+#include "techniques/dcs/shaders/dcs_modes.h"
+#include "techniques/common/shadow_volume/shaders/volume_count.h"
 #ifndef DCS_UPDATE_GLSL
 #define DCS_UPDATE_GLSL
 
@@ -15,7 +17,7 @@ int dcsEdgeUpdate(ivec2 px, vec3 p, int edgeId, uint first, uint count, out uint
   DcsEdge e = dcsEdges[edgeId];
   vec3 a = e.v0.xyz, b = e.v1.xyz;
   // n_e and the light centre's side of plane(p, e), bit for bit as the shadow-volume count
-  // decides the point's side of the volume side through e (shared.h).
+  // decides the point's side of the volume side through e (volume_count.h).
   vec3 ne;
   float dc = penumbraEdgePlaneDistance(a, b, lightPosition, p, ne);
   float len = length(ne);

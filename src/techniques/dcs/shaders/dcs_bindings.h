@@ -1,6 +1,6 @@
 // Binding points of dcs (src/techniques/dcs), valid in C++ and GLSL: texture and image units and
 // shader-storage bindings of its passes. Shared ones (G-buffer, light samples, counter) are in
-// shared.h; a technique's own may reuse another technique's numbers (one technique draws at a
+// shared/shared.h; a technique's own may reuse another technique's numbers (one technique draws at a
 // time), never the shared ones.
 #ifndef PENUMBRA_DCS_BINDINGS_H
 #define PENUMBRA_DCS_BINDINGS_H

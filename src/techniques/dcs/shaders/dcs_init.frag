@@ -10,6 +10,7 @@
 // end on t (side 0) counts neither (silhouette.h: a light point on a surface is not occluded by
 // it). ShadowVolumeCounter::place lists them per sample on the CPU, in double; this pass adds
 // them per sample digit.
+#include "shared/numerics.h"
 #include "dcs_bindings.h"
 #include "common_light.glsl"
 #include "common_dcs_pass.glsl"

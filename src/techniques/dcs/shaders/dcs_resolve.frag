@@ -1,6 +1,6 @@
 // Resolve of one pass: decode the packed counters (eq. 7-10), write each sample's visibility
 // (above the horizon and count == 0: the Heaviside of eq. 5-6; with semi-opaque occluders the
-// transmittance the count's units decode to, DCS_OPACITY and shared.h penumbraDcsTransmittance)
+// transmittance the count's units decode to, DCS_OPACITY and dcs/shaders/dcs_modes.h penumbraDcsTransmittance)
 // into the per-sample array, and add this pass's share of the visibility buffer (eq. 1-2).
 // A final count past its digit carries into its neighbour (-B at its digit, +1 at the next),
 // one below zero borrows (+B, -1): either changes the digit sum, so comparing it with the
@@ -12,6 +12,7 @@
 // so the sum weighted by sample index + 1 is compared as well (a carry out of sample j changes
 // it by -(B - 1)(j + 1) + 1, a borrow by +(B - 1)(j + 1) - 1: one carry and one borrow never
 // cancel in both).
+#include "techniques/dcs/shaders/dcs_modes.h"
 #include "dcs_bindings.h"
 #include "common_light.glsl"
 #include "common_dcs_pass.glsl"

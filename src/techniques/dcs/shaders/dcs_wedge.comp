@@ -12,6 +12,7 @@
 // here: one past its digit is clamped and reported through the checksum's bound (the largest
 // count of the pixel, dcs.cpp renders again with the base it needs), one below zero is stored as
 // 0, which the resolve reports as a negative count.
+#include "shared/numerics.h"
 #include "common_light.glsl"
 #include "common_dcs.glsl"
 #include "common_dcs_pass.glsl"

@@ -10,6 +10,7 @@
 // started at D(c) + bias, bounds every counter of the pixel at every step (adaptive sampling,
 // section 5.3; dcs.cpp checks it after the pass and plans the next frame from it), and the sum
 // of the updates weighted by sample index + 1 (the second digit sum, dcs_resolve.frag).
+#include "shared/numerics.h"
 #include "common_light.glsl"
 #include "common_dcs.glsl"
 #include "common_dcs_pass.glsl"
@@ -64,7 +65,7 @@ void main() {
   if (gp.w == 0.0) discard;
   PROFILE_COUNT(profFragments);
   // The point is moved off its surface towards the camera, where the reference's rays start
-  // (shared.h): its own triangle then lies clearly on one side of every plane(p, e).
+  // (volume_count.h): its own triangle then lies clearly on one side of every plane(p, e).
   vec3 p = penumbraShadowOrigin(gp.xyz, texelFetch(gNormal, px, 0).xyz, eyePosition);
   uint mask[MASK_WORDS];
   int delta = coverage * dcsEdgeUpdate(px, p, gEdge, passFirst, passCount, mask);

@@ -5,7 +5,7 @@
 #include <random>
 
 #include "techniques/dcs/opacity.h"
-#include "sampling/shared.hpp"
+#include "techniques/dcs/dcs_modes.hpp"
 
 namespace penumbra::dcs {
 namespace {

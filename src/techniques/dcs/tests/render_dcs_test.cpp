@@ -6,7 +6,7 @@
 #include <map>
 
 #include "core/metrics.h"
-#include "sampling/shared.hpp"
+#include "techniques/dcs/dcs_modes.hpp"
 #include "techniques/dcs/dcs.h"
 
 namespace penumbra::test {
@@ -34,7 +34,7 @@ TEST_P(DcsVsRaytrace, PerSampleVisibilityMatchesOutsideEdgeBand) {
   EXPECT_EQ(e.sampleMismatches, 0) << e.samplePairs << " (pixel, sample) pairs compared";
   EXPECT_LE(e.visibilityOutsideBand.rmse, 1e-3);
   // A negative count means the integration constant and the wedges disagreed about a side of
-  // the centre's shadow volume (they share the plane test, shared.h penumbraSideOfEdgePlane): none anywhere,
+  // the centre's shadow volume (they share the plane test, common/shadow_volume/shaders/volume_count.h penumbraSideOfEdgePlane): none anywhere,
   // edge band included.
   EXPECT_EQ(statistic(r.frame, "negativeCountPixels"), 0.0);
   EXPECT_EQ(statistic(r.frame, "inconsistentPixels"), 0.0);
@@ -762,7 +762,7 @@ TEST(HardCase33, ALightOnAFaceOnlyWithinRoundingIsRefused) {
 // the faces' coverage left to the rasteriser, pixel (102, 78) counted 11 volumes where there are
 // 13 (a side nearly edge-on to the camera given the pixel across a vertex line): dcs refused at
 // 8 and 32 samples and lit one sample silently at 16. Every face's crossing is decided exactly
-// now (shared.h); every (pixel, sample) pair outside the edge band equals the ray tracer's (at 16
+// now (common/shadow_volume/shaders/volume_count.h); every (pixel, sample) pair outside the edge band equals the ray tracer's (at 16
 // samples the engine is a DcsVsRaytrace case, with the same gate).
 TEST(HardCase34, ViewRaysThroughVertexLinesCountEveryVolume) {
   const Scene scene = loadScene(scenePath("scenes/engine.json"));

@@ -2,23 +2,24 @@
 // table of the four depth moments (vssm_sat.comp MOMENTS4), u = 2 x - 1 of vssm's normalised
 // depth x.
 //  * msm (Peters and Klein 2015): the box of filterTexels^2 texels around the receiver, the
-//    Hamburger 4MSM shadow intensity (shared.h penumbraMsm4) of its moments.
+//    Hamburger 4MSM shadow intensity (common/shadow_map/shaders/moments.h penumbraMsm4) of its moments.
 //  * SOFT, msm-soft (Peters, Muenstermann, Wetzstein and Klein 2016, section 5): the blocker
 //    search over pcss's search region, its average blocker depth from the same reconstruction
 //    (the weight and depth of its points nearer than the receiver), the penumbra by parallel
 //    planes (pcss_common.glsl penumbraRadius), then the 4MSM intensity over that kernel.
 // Each box's moments are standardised (mean 0, variance 1) in the table's precision, then biased
-// by momentBias (the paper's alpha, relative to the box's spread: shared.h penumbraMsmBias)
+// by momentBias (the paper's alpha, relative to the box's spread: common/shadow_map/shaders/moments.h penumbraMsmBias)
 // before the float reconstruction. Divergence: the receiver depth of a box is the lowest depth
 // of the receiver's plane over the box's corners (moment_kernel.glsl receiverAt), so that a
 // tilted receiver does not shadow itself across a large kernel (the paper scales a depth bias
 // with the kernel instead).
+#include "techniques/common/shadow_map/shaders/moments.h"
 #include "single_view_bindings.h"
 #include "pcss_common.glsl"
 #include "moment_soft.glsl"
 uniform float momentBias;
 
-// A box's moments, standardised in the table's precision and biased (shared.h penumbraMsmBias):
+// A box's moments, standardised in the table's precision and biased (common/shadow_map/shaders/moments.h penumbraMsmBias):
 // b = (0, 1, skewness, kurtosis) and the mean and standard deviation of u. The table's rounding
 // is an error of about n = unit roundoff x (hi.x + 1)(hi.y + 1) sqrt(hi.x + hi.y + 2) / area in
 // each mean moment (corner sums of that many texels' |u^k| <= 1, summed along rows then

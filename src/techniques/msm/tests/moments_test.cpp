@@ -1,4 +1,4 @@
-// The Hamburger 4MSM reconstruction (shaders/shared.h penumbraMsm4, msm and msm-soft) on depth
+// The Hamburger 4MSM reconstruction (common/shadow_map/shaders/moments.h penumbraMsm4, msm and msm-soft) on depth
 // distributions whose answer is known, GL-free. The moments are biased and standardised in double
 // as src/techniques/msm/shaders/msm_resolve.frag does (boxMoments), then reconstructed in float.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "sampling/shared.hpp"
+#include "techniques/common/shadow_map/moments.hpp"
 
 namespace penumbra::test {
 namespace {
@@ -21,7 +21,7 @@ struct Result {
 };
 
 // msm_resolve.frag boxMoments + momentShadow: raw moments, standardised (the variance at least
-// `floor`), biased by shared.h penumbraMsmBias, reconstructed.
+// `floor`), biased by common/shadow_map/shaders/moments.h penumbraMsmBias, reconstructed.
 Result msm(const Distribution& d, double uf, float alpha, double floor = 0.0) {
   double m[4] = {0, 0, 0, 0};
   for (auto [z, w] : d)

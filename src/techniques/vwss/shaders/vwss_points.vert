@@ -1,7 +1,7 @@
 // vwss point generation (VWSS section 3.1, eq. 1-2): the occluders rasterised once from the
 // central view, the light centre moved back along the light normal so that its frustum holds
 // every sample's (`centralEye`, near plane `centralNear` in the plane of the light). No storage
-// blocks here: the fragment stage writes the point buffer (shared.h, bindings).
+// blocks here: the fragment stage writes the point buffer (shared/shared.h, bindings).
 #include "shadow_map_common.glsl"
 layout(location = 0) in vec3 position;
 uniform vec3 centralEye;

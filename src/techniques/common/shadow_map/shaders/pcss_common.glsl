@@ -1,5 +1,6 @@
 // Shared by the pcss passes (src/techniques/pcss): Fernando 2005's three steps with Sterna 2018's
 // sampling. Reversed depth z = near / d in the light centre's map (shadow_map_common.glsl).
+#include "shared/numerics.h"
 #include "single_view_bindings.h"
 #include "common_light.glsl"
 #include "shadow_map_common.glsl"

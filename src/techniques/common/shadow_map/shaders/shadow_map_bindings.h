@@ -1,5 +1,5 @@
 // Binding points of the multi-view shadow-map techniques (src/techniques/shadow_map/maps.h: mvr,
-// vwss, reproject), valid in C++ and GLSL. Shared ones are in shared.h (see dcs_bindings.h).
+// vwss, reproject), valid in C++ and GLSL. Shared ones are in shared/shared.h (see dcs_bindings.h).
 #ifndef PENUMBRA_SHADOW_MAP_BINDINGS_H
 #define PENUMBRA_SHADOW_MAP_BINDINGS_H
 
@@ -15,5 +15,6 @@
 // The frustum fit of every shadow-map technique, single-view too (src/techniques/common/shadow_map/shaders/shadow_map_fit.comp).
 #define PENUMBRA_IMAGE_MAP_OUTSIDE 6    // R32UI G-buffer size: receivers outside the shadow maps
 #define PENUMBRA_SSBO_MAP_FIT 13        // the fit's results, then a sum a G-buffer row
+#define PENUMBRA_MAP_LOCAL_SIZE 64      // threads per work group of the point reprojection
 
 #endif

@@ -3,6 +3,7 @@
 // (half-angle tangent mapTanHalf), reversed depth z = mapNear / d for view depth d (1 at the near
 // plane, 0 at infinity, as the camera's), so a larger stored value is closer: atomicMax on the
 // uint bits of a positive float depth is a z-buffer (VWSS Listing 2 uses InterlockedMax alike).
+#include "shared/numerics.h"
 uniform vec3 mapAxis;
 uniform vec3 mapRight;
 uniform vec3 mapUp;
@@ -35,7 +36,7 @@ vec2 viewTexelNdc(ivec2 texel, int size) {
 // depth at its own texel, so a planar receiver meets itself exactly in a rasterised map at any
 // slope (no acne) and needs no large offset (no peter-panning). What remains: biasConstant
 // (world units; negative: 4 x the float epsilon of the two positions the depth is computed from,
-// shared.h penumbraSurfaceEpsilon, so the bias follows the numbers' magnitude, not the scene's
+// shared/numerics.h penumbraSurfaceEpsilon, so the bias follows the numbers' magnitude, not the scene's
 // size) plus biasSlope texels of the plane's depth slope, for depths stored off the texel
 // centre (vwss's points, pcss's bilinear taps); the slope is the view depth gained per world unit
 // of lateral image-plane offset, |n_lateral| / |n . ray| with the ray at unit depth, capped at

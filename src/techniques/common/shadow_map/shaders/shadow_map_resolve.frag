@@ -1,11 +1,12 @@
 // Lighting stage of the multi-view shadow-map techniques (mvr, vwss, reproject): per light
 // sample, shadow mapping in that sample's map with PCF (PCF_TAPS: 1, the VWSS paper's 5 (centre
 // and the 4 neighbours) or 3 x 3 = 9 nearest-texel compares, averaged), at the same evaluation
-// point as every technique and the reference (shared.h penumbraShadowOrigin). The per-sample
+// point as every technique and the reference (shared/numerics.h penumbraShadowOrigin). The per-sample
 // results go to the per-sample array and, weighted by the sample luminance L_i, to the
 // visibility buffer of DCS eq. 2 (textured lights are exact per sample).
 // Depth bias (shadow_map_common.glsl: receiver-plane depth per tap, plus depthBias), applied
 // here after the maps are made (fragment reprojection section 3.1.1: bias after reprojection).
+#include "shared/numerics.h"
 #include "shadow_map_bindings.h"
 #include "common_light.glsl"
 #include "shadow_map_common.glsl"

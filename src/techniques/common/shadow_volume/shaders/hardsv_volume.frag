@@ -3,15 +3,17 @@
 // face is seen from its front. The sum is the winding number of the visible point, i.e. the
 // number of volumes containing it.
 // The point is the visible point moved towards the camera along the view ray, off its surface by
-// penumbraSurfaceEpsilon (shared.h penumbraShadowOrigin, where the wedge pass and the reference
+// penumbraSurfaceEpsilon (shared/numerics.h penumbraShadowOrigin, where the wedge pass and the reference
 // evaluate too): a face through the surface (the point's own near cap; a side in the plane of a
 // face edge-on to the light, hard case 9) then lies on the camera's side.
-// Whether the ray meets the face, and where, is decided exactly in shared.h ("Which faces of the
+// Whether the ray meets the face, and where, is decided exactly in volume_count.h ("Which faces of the
 // shadow volumes the view ray meets"): for a side, "beyond the point" is penumbraSideOfEdgePlane,
 // bit for bit the decision dcs's wedges take for the sign of their update, so a point within
 // rounding of a side plane gets the integration constant and the wedge updates from the same
 // decision. Each face is drawn as its cover (techniques/shadow_volume/volume_cover.h: grown on
 // screen, one fragment a pixel) for this test to decide on.
+#include "shared/numerics.h"
+#include "techniques/common/shadow_volume/shaders/volume_count.h"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;

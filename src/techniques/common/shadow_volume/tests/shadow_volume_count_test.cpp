@@ -1,4 +1,4 @@
-// The shadow-volume count's exact face decisions (shared.h, "Which faces of the shadow volumes
+// The shadow-volume count's exact face decisions (shaders/volume_count.h, "Which faces of the shadow volumes
 // the view ray meets", compiled here as C++) and the covers it draws them with
 // (techniques/common/shadow_volume/volume_cover.h). No GL.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 
 #include "geometry/mesh.h"
 #include "geometry/silhouette.h"
-#include "sampling/shared.hpp"
+#include "techniques/common/shadow_volume/volume_count.hpp"
 #include "techniques/common/shadow_volume/volume_cover.h"
 
 namespace penumbra {
@@ -21,7 +21,7 @@ using shared::penumbraFarCapCount;
 using shared::penumbraNearCapCount;
 using shared::penumbraSideCount;
 
-// The count at o seen from `eye` with the light at c, every face decided by shared.h, as the
+// The count at o seen from `eye` with the light at c, every face decided by shaders/volume_count.h, as the
 // fragment shader sums it (hardsv_volume.frag, the faces as shadow_volume.cpp lists them).
 float sharedCount(const geo::EdgeTopology& topo, geo::VolumeRule rule, glm::vec3 c, glm::vec3 o, glm::vec3 eye) {
   const glm::vec3 d = o - eye, n = glm::cross(d, o - c);

@@ -1,0 +1,7 @@
+// C++ side of shading/shaders/shading.h (the shading math the shaders and the CPU reference share), in namespace penumbra::shared.
+#pragma once
+#include "shared/shared.hpp"
+
+namespace penumbra::shared {
+#include "shading/shaders/shading.h"  // NOLINT: shared with GLSL
+}  // namespace penumbra::shared
