@@ -275,31 +275,46 @@ TEST(Ltc, UnshadowedTermAgainstTheQuadratureOnRectLitFloors) {
   }
 }
 
-// Bad table files get one clear error each.
+// Bad table files get one clear error each, naming the file and the cause (the header reader is
+// core/table_file.h's, shared with the edge LUTs).
 TEST(Ltc, BadTableFilesAreRefused) {
   const std::string good = fileBytes(lutPath());
   ASSERT_FALSE(good.empty());
-  auto refuse = [&](const std::string& bytes, const std::string& what) {
+  auto refuse = [&](const std::string& bytes, const std::string& what, const std::string& cause) {
     try {
       shading::parseLtcTable(bytes, "x.lut");
       ADD_FAILURE() << "accepted: " << what;
     } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("x.lut"), std::string::npos) << e.what();
-      std::printf("%s: %s\n", what.c_str(), e.what());
+      EXPECT_EQ(std::string(e.what()).rfind("x.lut: ", 0), 0u) << e.what();
+      EXPECT_NE(std::string(e.what()).find(cause), std::string::npos) << what << ": " << e.what();
     }
   };
-  refuse("", "empty");
-  refuse("penumbra-edge-lut 1\n", "another table");
-  refuse(good.substr(0, good.size() - 7), "truncated");
+  refuse("", "empty", "not a penumbra-ltc-ggx file");
+  refuse("penumbra-edge-lut 2\n", "another table", "not a penumbra-ltc-ggx file");
+  refuse(good.substr(0, good.size() - 7), "truncated", "payload is");
   std::string flipped = good;
   flipped[flipped.size() - 100] ^= 0x10;
-  refuse(flipped, "a flipped payload bit");
+  refuse(flipped, "a flipped payload bit", "checksum mismatch");
   std::string header = good;
   header.replace(header.find("size 64"), 7, "size 65");
-  refuse(header, "a wrong size");
+  refuse(header, "a wrong size", "payload is");
+  // An edited header value that leaves the payload's size alone: the checksum covers the header
+  // (format 2; format 1's covered the payload only and passed it).
+  std::string edited = good;
+  edited.replace(edited.find("iterations 200"), 14, "iterations 201");
+  refuse(edited, "an edited header value", "checksum mismatch");
+  std::string v1 = good;
+  v1.replace(0, v1.find('\n'), "penumbra-ltc-ggx 1");
+  refuse(v1, "format 1", "this build reads 'penumbra-ltc-ggx 2': regenerate it");
   std::string twice = good;
   twice.insert(twice.find("checksum"), "size 64\n");
-  refuse(twice, "a key given twice");
+  refuse(twice, "a key given twice", "header key 'size' given twice");
+  std::string unknown = good;
+  unknown.insert(unknown.find("checksum"), "colour blue\n");
+  refuse(unknown, "an unknown key", "unknown header line 'colour blue'");
+  std::string missing = good;
+  missing.erase(missing.find("iterations 200\n"), 15);
+  refuse(missing, "a missing key", "incomplete header");
   // A round trip through the writer keeps every byte.
   const std::string copy = (std::filesystem::temp_directory_path() / "penumbra_ltc_copy.lut").string();
   shading::writeLtcTable(copy, shading::builtinLtcTable());

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "core/fnv.h"
+#include "core/table_file.h"
 
 namespace penumbra::shading {
 
@@ -22,13 +23,13 @@ extern const std::size_t kEmbeddedLtcGgxSize;
 
 namespace {
 
-constexpr const char* kMagic = "penumbra-ltc-ggx 1";
+// Format 2: the checksum covers the header's lines too (core/table_file.h; format 1's covered
+// the payload only).
+constexpr const char* kMagic = "penumbra-ltc-ggx 2";
 
-std::uint64_t payloadChecksum(const LtcTable& t) {
-  Fnv1a f;
-  f.bytes(t.minv.data(), t.minv.size() * sizeof(glm::vec4));
-  f.bytes(t.terms.data(), t.terms.size() * sizeof(glm::vec4));
-  return f.h;
+// The payload in file order: M^-1, then the terms.
+std::vector<std::pair<const void*, std::size_t>> payloadOf(const LtcTable& t) {
+  return {{t.minv.data(), t.minv.size() * sizeof(glm::vec4)}, {t.terms.data(), t.terms.size() * sizeof(glm::vec4)}};
 }
 
 }  // namespace
@@ -37,13 +38,15 @@ void writeLtcTable(const std::string& path, const LtcTable& t) {
   writeAtomically(path, [&](const std::string& temporary) {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) throw Error(path, std::string("cannot write: ") + std::strerror(errno));
-    out << kMagic << "\nsize " << t.fit.size << "\nfit-samples " << t.fit.fitSamples << "\nmoment-samples "
-        << t.fit.momentSamples << "\nerror-samples " << t.fit.errorSamples << "\niterations " << t.fit.iterations
-        << "\nchecksum " << hex64(payloadChecksum(t)) << "\nend\n";
+    out << tableHeader(tableHeaderLines(kMagic, {{"size", std::to_string(t.fit.size)},
+                                                 {"fit-samples", std::to_string(t.fit.fitSamples)},
+                                                 {"moment-samples", std::to_string(t.fit.momentSamples)},
+                                                 {"error-samples", std::to_string(t.fit.errorSamples)},
+                                                 {"iterations", std::to_string(t.fit.iterations)}}),
+                       payloadOf(t));
     // Little-endian float32 (this code runs on little-endian machines only).
     static_assert(sizeof(glm::vec4) == 16);
-    for (const auto* v : {&t.minv, &t.terms})
-      out.write(reinterpret_cast<const char*>(v->data()), std::streamsize(v->size() * sizeof(glm::vec4)));
+    for (const auto& [data, size] : payloadOf(t)) out.write(static_cast<const char*>(data), std::streamsize(size));
     out.close();
     if (out.fail()) throw Error(path, "cannot write: write failed");
   });
@@ -51,30 +54,14 @@ void writeLtcTable(const std::string& path, const LtcTable& t) {
 
 LtcTable parseLtcTable(const std::string& bytes, const std::string& name) {
   std::istringstream in(bytes);
-  std::string line;
-  if (!std::getline(in, line) || line != kMagic) throw Error(name, std::string("not an LTC table (expected '") + kMagic + "')");
+  const TableHeader h =
+      readTableHeader(in, name, kMagic, {"size", "fit-samples", "moment-samples", "error-samples", "iterations"});
   LtcTable t;
-  std::string checksumHex;
-  std::set<std::string> seen;
-  bool ended = false;
-  while (!ended && std::getline(in, line)) {
-    if (line.size() > 200) throw Error(name, "header line too long");
-    std::istringstream kv(line);
-    std::string key;
-    kv >> key;
-    if (key != "end" && !seen.insert(key).second) throw Error(name, "header key '" + key + "' given twice");
-    bool ok = true;
-    if (key == "end") ended = true;
-    else if (key == "size") ok = bool(kv >> t.fit.size);
-    else if (key == "fit-samples") ok = bool(kv >> t.fit.fitSamples);
-    else if (key == "moment-samples") ok = bool(kv >> t.fit.momentSamples);
-    else if (key == "error-samples") ok = bool(kv >> t.fit.errorSamples);
-    else if (key == "iterations") ok = bool(kv >> t.fit.iterations);
-    else if (key == "checksum") ok = bool(kv >> checksumHex);
-    else throw Error(name, "unknown header line '" + line + "'");
-    if (!ok) throw Error(name, "bad header line '" + line + "'");
-  }
-  if (!ended || seen.size() != 6) throw Error(name, "incomplete header");
+  t.fit.size = h.get<int>("size");
+  t.fit.fitSamples = h.get<int>("fit-samples");
+  t.fit.momentSamples = h.get<int>("moment-samples");
+  t.fit.errorSamples = h.get<int>("error-samples");
+  t.fit.iterations = h.get<int>("iterations");
   if (t.fit.size < 2 || t.fit.size > 256) throw Error(name, "table size outside 2..256");
   t.fit.threads = 0;
   const std::size_t cells = std::size_t(t.fit.size) * std::size_t(t.fit.size);
@@ -85,7 +72,7 @@ LtcTable parseLtcTable(const std::string& bytes, const std::string& name) {
   t.terms.resize(cells);
   std::memcpy(t.minv.data(), bytes.data() + in.tellg(), cells * sizeof(glm::vec4));
   std::memcpy(t.terms.data(), bytes.data() + std::size_t(in.tellg()) + cells * sizeof(glm::vec4), cells * sizeof(glm::vec4));
-  if (hex64(payloadChecksum(t)) != checksumHex) throw Error(name, "checksum mismatch (corrupt file)");
+  h.checkChecksum(payloadOf(t));
   for (const auto* v : {&t.minv, &t.terms})
     for (const glm::vec4& x : *v)
       if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z) || !std::isfinite(x.w))

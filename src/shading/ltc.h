@@ -22,11 +22,12 @@
 // cos(theta_v) = 1 - x^2 (theta_v at most 1.57); looked up at (r, sqrt(1 - cos theta_v)) through
 // texel centres with bilinear filtering.
 //
-// File format (luts/ltc_ggx.lut): a text header of `key value` lines, then the payload as
-// little-endian float32:
-//   penumbra-ltc-ggx 1
+// File format (luts/ltc_ggx.lut; the header is core/table_file.h's, which every table file
+// shares): a text header of `key value` lines, then the payload as little-endian float32:
+//   penumbra-ltc-ggx 2
 //   size N / fit-samples F / moment-samples S / error-samples E / iterations I
-//   checksum <16 hex digits>  FNV-1a 64 of the payload bytes
+//   checksum <16 hex digits>  FNV-1a 64 of the lines above (each with its newline), then the
+//                             payload bytes (format 1 left the header out)
 //   end
 // payload: minv [N][N][4] (rows by t, then a: (a, c, b, d) of M^-1 above, i.e. GLSL's mat3 columns
 // (x, 0, y), (0, 1, 0), (z, 0, w)), then terms [N][N][4]: (norm, fresnel, relative L1 error of the

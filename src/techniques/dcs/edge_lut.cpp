@@ -13,15 +13,15 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "core/fnv.h"
+#include "core/table_file.h"
 
 namespace penumbra::dcs {
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
-// Format 2: the checksum covers the header's lines too (format 1's covered the payload only: an
-// edited `extent` passed it and changed dcs-lut's visibility by up to 0.5).
+// Format 2: the checksum covers the header's lines too (core/table_file.h; format 1's covered
+// the payload only: an edited `extent` passed it and changed dcs-lut's visibility by up to 0.5).
 constexpr const char* kMagic = "penumbra-edge-lut 2";
-constexpr const char* kMagicV1 = "penumbra-edge-lut 1";
 
 // Angle of (x, y) around the origin in [0, 2 pi), from the +x axis.
 double angleOf(double x, double y) {
@@ -41,12 +41,9 @@ glm::dvec3 cubeDirection(int face, double sc, double tc) {
   }
 }
 
-// The header's lines above `checksum` (each with its newline, as in the file), then the payload.
-std::uint64_t fileChecksum(const std::string& header, const EdgeLut& l) {
-  Fnv1a f;
-  f.bytes(header.data(), header.size());
-  for (const auto* v : {&l.sector, &l.line, &l.packed}) f.bytes(v->data(), v->size() * sizeof(std::uint32_t));
-  return f.h;
+// The payload in file order: the sector table, the line table, the packed positions.
+std::vector<std::pair<const void*, std::size_t>> payloadOf(const EdgeLut& l) {
+  return {{l.sector.data(), l.sector.size() * 4}, {l.line.data(), l.line.size() * 4}, {l.packed.data(), l.packed.size() * 4}};
 }
 
 }  // namespace
@@ -149,17 +146,17 @@ std::string edgeLutFileName(const LightSampleSet& s) {
 }
 
 void writeEdgeLut(const std::string& path, const EdgeLut& l) {
-  const std::string header = fmt::format("{}\nsamples {}\nsets {}\nwords {}\ncube {}\nline {}\nextent {:.9g}\npattern {}\n",
-                                         kMagic, l.samples, l.sets, l.words, l.size.cube, l.size.line, l.extent,
-                                         hex64(l.pattern));
+  const std::string covered = tableHeaderLines(
+      kMagic, {{"samples", std::to_string(l.samples)}, {"sets", std::to_string(l.sets)}, {"words", std::to_string(l.words)},
+               {"cube", std::to_string(l.size.cube)}, {"line", std::to_string(l.size.line)},
+               {"extent", fmt::format("{:.9g}", l.extent)}, {"pattern", hex64(l.pattern)}});
   writeAtomically(path, [&](const std::string& temporary) {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) throw Error(path, std::string("cannot write: ") + std::strerror(errno));
-    out << header << "checksum " << hex64(fileChecksum(header, l)) << "\nend\n";
+    out << tableHeader(covered, payloadOf(l));
     // The payload in little-endian order (this code runs on little-endian machines only).
     static_assert(sizeof(std::uint32_t) == 4);
-    for (const auto* v : {&l.sector, &l.line, &l.packed})
-      out.write(reinterpret_cast<const char*>(v->data()), std::streamsize(v->size() * 4));
+    for (const auto& [data, size] : payloadOf(l)) out.write(static_cast<const char*>(data), std::streamsize(size));
     out.close();
     if (out.fail()) throw Error(path, "cannot write: write failed");
   });
@@ -168,42 +165,19 @@ void writeEdgeLut(const std::string& path, const EdgeLut& l) {
 EdgeLut readEdgeLut(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, std::string("cannot open: ") + std::strerror(errno));
-  std::string line;
-  const bool read = bool(std::getline(in, line));
-  if (read && line == kMagicV1)
-    throw Error(path, "an edge LUT of format 1, whose checksum leaves its header out: regenerate it with `penumbra lut`");
-  if (!read || line != kMagic) throw Error(path, std::string("not an edge LUT (expected '") + kMagic + "')");
-  std::string header = line + "\n";  // the lines the checksum covers
+  const TableHeader h = readTableHeader(in, path, kMagic, {"samples", "sets", "words", "cube", "line", "extent", "pattern"});
   EdgeLut l;
-  std::string patternHex, checksumHex;
-  bool ended = false;
-  std::set<std::string> seen;
-  while (!ended && std::getline(in, line)) {
-    std::istringstream kv(line);
-    std::string key;
-    kv >> key;
-    if (key != "end" && !seen.insert(key).second) throw Error(path, "header key '" + key + "' given twice");
-    bool ok = true;
-    if (key == "end") ended = true;
-    else if (key == "samples") ok = bool(kv >> l.samples);
-    else if (key == "sets") ok = bool(kv >> l.sets);
-    else if (key == "words") ok = bool(kv >> l.words);
-    else if (key == "cube") ok = bool(kv >> l.size.cube);
-    else if (key == "line") ok = bool(kv >> l.size.line);
-    else if (key == "extent") ok = bool(kv >> l.extent);
-    else if (key == "pattern") ok = bool(kv >> patternHex);
-    else if (key == "checksum") ok = bool(kv >> checksumHex);
-    else throw Error(path, "unknown header line '" + abbreviate(line) + "'");
-    if (!ok) throw Error(path, "bad header line '" + abbreviate(line) + "'");
-    if (line.size() > 200) throw Error(path, "header line too long");
-    if (key != "end" && key != "checksum") header += line + "\n";
-  }
-  if (!ended || seen.size() != 8) throw Error(path, "incomplete header");
+  l.samples = h.get<int>("samples");
+  l.sets = h.get<int>("sets");
+  l.words = h.get<int>("words");
+  l.size.cube = h.get<int>("cube");
+  l.size.line = h.get<int>("line");
+  l.extent = h.get<float>("extent");
   if (l.samples < 1 || l.samples > 128 || l.sets < 1 || l.sets > 4096 || l.words != (l.samples + 31) / 32 ||
       l.size.cube < 1 || l.size.cube > 1024 || l.size.line < 2 || l.size.line > 4096 || !(l.extent > 0.0f))
     throw Error(path, "header values out of range");
   try {
-    l.pattern = std::stoull(patternHex, nullptr, 16);
+    l.pattern = std::stoull(h.values.at("pattern"), nullptr, 16);
   } catch (const std::exception&) {
     throw Error(path, "bad pattern hash");
   }
@@ -222,7 +196,7 @@ EdgeLut readEdgeLut(const std::string& path) {
   l.packed.resize(S * std::size_t(packedWords(l.samples)));
   for (auto* v : {&l.sector, &l.line, &l.packed}) in.read(reinterpret_cast<char*>(v->data()), std::streamsize(v->size() * 4));
   if (!in) throw Error(path, "truncated payload");
-  if (hex64(fileChecksum(header, l)) != checksumHex) throw Error(path, "checksum mismatch (corrupt or edited file)");
+  h.checkChecksum(payloadOf(l));
   return l;
 }
 
