@@ -128,20 +128,30 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
           FrameResult ref = b.reference(scene, s);
           tris.push_back(double(scene.triangleCount()));
           double mvrMaps = 0, mvrTotal = 0;
-          for (std::string name : {"mvr", "mvr-layered", "vwss", "reproject", "pcss-ultra"}) {
+          // The stages each technique records, by the table's columns: points (or the central
+          // map they are made from), depth maps, lighting (the pipeline's shading included).
+          struct Columns {
+            std::string name;
+            std::vector<std::string> points, maps, lighting;
+          };
+          const Columns columns[] = {
+              {"mvr", {}, {"mvr depth maps"}, {"mvr lighting", "mvr views", "shading"}},
+              {"mvr-layered", {}, {"mvr-layered depth maps"}, {"mvr-layered lighting", "mvr-layered views", "shading"}},
+              {"vwss", {"vwss points"}, {"vwss depth maps"}, {"vwss lighting", "vwss views", "shading"}},
+              {"reproject", {"reproject central map"}, {"reproject depth maps"}, {"reproject lighting", "reproject views", "shading"}},
+              {"pcss-ultra", {}, {"pcss shadow map"}, {"pcss shadow mask", "pcss views", "shading"}}};
+          for (const Columns& c : columns) {
+            const std::string& name = c.name;
             Run r = b.run(scene, s, name, {mapParam}, &ref);
             const auto& t = r.timing;
-            const bool single = name == "pcss-ultra";
-            const std::string stage = single ? "pcss" : name;
-            double points = t.stage(stage + " points") + t.stage(stage + " central map");
-            double maps = points + t.stage(stage + " depth maps") + t.stage(stage + " shadow map");
-            double lighting = t.stage(stage + " lighting") + t.stage(stage + " shadow mask") + t.stage("shading") +
-                              t.stage(stage + " views");
+            double points = t.sumOf(c.points);
+            double maps = points + t.sumOf(c.maps);
+            double lighting = t.sumOf(c.lighting);
             if (name == "mvr") mvrMaps = maps, mvrTotal = t.total.median;
             depthTimes[name].push_back(maps);
             std::fprintf(out, "%-9zu %8.0f %-12s %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %7.2f %7.4f %8.0f %9.1f\n",
                         scene.triangleCount(), frameStatistic(t.last, "points"), name.c_str(), t.stage("gbuffer"), points,
-                        t.stage(stage + " depth maps") + t.stage(stage + " shadow map"), lighting, t.total.median, t.total.max - t.total.min,
+                        t.sumOf(c.maps), lighting, t.total.median, t.total.max - t.total.min,
                         mvrMaps / std::max(maps, 1e-9), mvrTotal / std::max(t.total.median, 1e-9), r.rmse,
                         mib(frameStatistic(t.last, "map bytes")), mib(frameStatistic(t.last, "point buffer bytes")));
             std::fflush(out);
@@ -247,10 +257,15 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
       FrameResult ref = b.reference(base, s);
       for (int m : {512, 1024, 2048}) {
         std::fprintf(out, "%6d |", m);
-        for (std::string name : {"mvr", "vwss", "reproject"}) {
+        // Each technique's depth-map stages: its points or central map, and the maps.
+        const std::pair<std::string, std::vector<std::string>> depthStages[] = {
+            {"mvr", {"mvr depth maps"}},
+            {"vwss", {"vwss points", "vwss depth maps"}},
+            {"reproject", {"reproject central map", "reproject depth maps"}}};
+        for (const auto& [name, stages] : depthStages) {
           Run r = b.run(base, s, name, {"map=" + std::to_string(m)}, &ref);
           const auto& t = r.timing;
-          double ms = t.stage(name + " points") + t.stage(name + " central map") + t.stage(name + " depth maps");
+          double ms = t.sumOf(stages);
           std::fprintf(out, " %9.4f %8.2f %8.0f |", r.rmse, ms, mib(double(t.last.memoryBytes)));
           std::fflush(out);
         }

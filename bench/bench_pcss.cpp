@@ -52,30 +52,35 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
     std::fprintf(out, "1. Sterna Table 1 shape: shadow-mask passes, 16 PCF samples, 32 blocker-search samples\n");
     std::fprintf(out, "%-40s %9s %9s %9s %9s %9s %8s %8s\n", "configuration", "min filt", "pen mask", "shadow", "upsample",
                 "passes", "x CHSS", "RMSE");
-    // Rows of the table of techniques (src/techniques/pcss/rows.cpp) and their parameters.
+    // Rows of the table of techniques (src/techniques/pcss/rows.cpp) and their parameters, with
+    // the passes each runs besides the shadow mask (a column it does not run reads 0).
     struct Row {
       const char* name;
       const char* technique;
       bool checker;
+      std::vector<std::string> passes;
     };
-    const Row rows[] = {{"regular shadow mask (fixed kernel)", "pcss-fixed", false},
-                        {"regular CHSS", "pcss", false},
-                        {"penumbra mask + shadow mask", "pcss-mask", false},
-                        {"min filter + shadow mask", "pcss-minfilter", false},
-                        {"regular CHSS + checkerboard", "pcss", true},
-                        {"penumbra mask + shadow mask + checker", "pcss-mask", true}};
+    const std::string minFilter = "pcss min filter", mask = "pcss penumbra mask", upsample = "pcss checkerboard upsample";
+    const Row rows[] = {{"regular shadow mask (fixed kernel)", "pcss-fixed", false, {}},
+                        {"regular CHSS", "pcss", false, {}},
+                        {"penumbra mask + shadow mask", "pcss-mask", false, {mask}},
+                        {"min filter + shadow mask", "pcss-minfilter", false, {minFilter}},
+                        {"regular CHSS + checkerboard", "pcss", true, {upsample}},
+                        {"penumbra mask + shadow mask + checker", "pcss-mask", true, {mask, upsample}}};
     double chss = 0.0;
     for (const Row& row : rows) {
       TechniqueParams given({"map=" + std::to_string(map), std::string("checkerboard=") + (row.checker ? "1" : "0")});
       auto tech = makeTechnique(row.technique, given);
       given.checkConsumed();
       bench::Timing t = bench::timeFrames(renderer, *tech, frames, warmup);
-      double passes = t.stage("pcss min filter") + t.stage("pcss penumbra mask") + t.stage("pcss shadow mask") +
-                      t.stage("pcss checkerboard upsample");
+      const auto pass = [&](const std::string& stage) {
+        return std::find(row.passes.begin(), row.passes.end(), stage) != row.passes.end() ? t.stage(stage) : 0.0;
+      };
+      double passes = t.sumOf(row.passes) + t.stage("pcss shadow mask");
       if (std::string(row.technique) == "pcss" && !row.checker) chss = passes;
       double rmse = measureErrors(t.last, ref).visibility.rmse;
-      std::fprintf(out, "%-40s %9.2f %9.2f %9.2f %9.2f %9.2f %8s %8.4f\n", row.name, t.stage("pcss min filter"),
-                  t.stage("pcss penumbra mask"), t.stage("pcss shadow mask"), t.stage("pcss checkerboard upsample"),
+      std::fprintf(out, "%-40s %9.2f %9.2f %9.2f %9.2f %9.2f %8s %8.4f\n", row.name, pass(minFilter), pass(mask),
+                  t.stage("pcss shadow mask"), pass(upsample),
                   passes, chss > 0.0 ? fmt::format("{:.2f}", chss / passes).c_str() : "-", rmse);
       std::fflush(out);
     }
@@ -94,27 +99,26 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
       auto rt = makeTechnique("raytrace");
       FrameResult gref = r.render(*rt);
       std::fprintf(out, "%7.0f |", k);
+      // The shadow stages each records (its map excluded).
       struct Col {
         const char* name;
         std::vector<std::string> params;
-        const char* stage;
+        std::vector<std::string> stages;
       };
-      const Col cols[] = {{"pcss", {}, "pcss shadow mask"},
-                          {"pcss-ultra", {}, "pcss shadow mask"},
-                          {"pcss", {"blocker-samples=256", "pcf-samples=256"}, "pcss shadow mask"},
-                          {"pcss-dense", {}, "pcss shadow mask"},
-                          {"vssm", {}, ""},
-                          {"vssm-uniform", {}, ""},
-                          {"msm-soft", {}, ""},
-                          {"evsm", {}, ""}};
+      const Col cols[] = {{"pcss", {}, {"pcss shadow mask"}},
+                          {"pcss-ultra", {}, {"pcss shadow mask"}},
+                          {"pcss", {"blocker-samples=256", "pcf-samples=256"}, {"pcss shadow mask"}},
+                          {"pcss-dense", {}, {"pcss shadow mask"}},
+                          {"vssm", {}, {"vssm hsm", "vssm sat", "vssm shadow pass"}},
+                          {"vssm-uniform", {}, {"vssm-uniform hsm", "vssm-uniform sat", "vssm-uniform shadow pass"}},
+                          {"msm-soft", {}, {"msm-soft sat", "msm-soft shadow pass"}},
+                          {"evsm", {}, {"evsm sat", "evsm shadow pass"}}};
       for (const Col& c : cols) {
         std::vector<std::string> p = c.params;
         p.push_back("map=1024");
         auto t = makeTechnique(c.name, TechniqueParams(p));
         bench::Timing tm = bench::timeFrames(r, *t, frames, warmup);
-        std::string n = c.name;
-        double ms = *c.stage ? tm.stage(c.stage)
-                             : tm.stage(n + " hsm") + tm.stage(n + " sat") + tm.stage(n + " shadow pass");
+        double ms = tm.sumOf(c.stages);
         std::fprintf(out, " %8.2f %8.4f |", ms, measureErrors(tm.last, gref).visibility.rmse);
         std::fflush(out);
       }

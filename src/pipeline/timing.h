@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "pipeline/renderer.h"
 
 namespace penumbra {
@@ -34,9 +35,23 @@ struct Timing {
   Spread harness;                        // of `harnessStages`
   double prepareMs = 0.0;  // the once-per-scene stage (the longest seen)
   FrameResult last;        // the last timed frame
+  // The median of a stage the timed frames recorded. A name they did not record is an error
+  // naming the ones they did (a renamed stage must not read as 0 ms in a benchmark's table); a
+  // caller whose configuration skips a stage leaves it out instead of reading it.
   double stage(const std::string& name) const {
     auto it = stages.find(name);
-    return it == stages.end() ? 0.0 : it->second.median;
+    if (it == stages.end()) {
+      std::string known;
+      for (auto& [k, v] : stages) known += (known.empty() ? "" : ", ") + k;
+      throw Error("timing", "no stage '" + name + "' in the timed frames (they recorded: " + known + ")");
+    }
+    return it->second.median;
+  }
+  // The sum of stage() over `names`.
+  double sumOf(const std::vector<std::string>& names) const {
+    double sum = 0.0;
+    for (auto& n : names) sum += stage(n);
+    return sum;
   }
 };
 
