@@ -12,7 +12,7 @@ PACKAGES="cmake ninja-build g++ pkg-config
   libglm-dev libopenmesh-dev libtinygltf-dev libopenexr-dev libimath-dev libembree-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libpng-dev
   libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels chromium
-  mesa-vulkan-drivers"
+  mesa-vulkan-drivers clang-format"
 missing=""
 for p in $PACKAGES; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

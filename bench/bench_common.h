@@ -7,9 +7,9 @@
 #include "techniques/registry.h"
 
 namespace penumbra::bench {
+using penumbra::frameStatistic;
 using penumbra::Spread;
 using penumbra::spread;
-using penumbra::frameStatistic;
-using penumbra::Timing;
 using penumbra::timeFrames;
+using penumbra::Timing;
 }  // namespace penumbra::bench

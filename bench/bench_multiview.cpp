@@ -106,20 +106,22 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
     const std::string mapParam = "map=" + std::to_string(map);
     std::set<int> studies;
     for (int s : o.studies) studies.insert(s);
-    std::fprintf(out, "Multi-view shadow-map studies: %s, %dx%d image, %d^2 maps, median of %d frames after %d "
-                "warm-up, times in ms (glFinish + steady clock), renderer %s\n\n",
-                scenePath.c_str(), width, height, map, frames, warmup, ctx->renderer().c_str());
+    std::fprintf(out,
+                 "Multi-view shadow-map studies: %s, %dx%d image, %d^2 maps, median of %d frames after %d "
+                 "warm-up, times in ms (glFinish + steady clock), renderer %s\n\n",
+                 scenePath.c_str(), width, height, map, frames, warmup, ctx->renderer().c_str());
 
     if (studies.count(1)) {
-      std::fprintf(out, "1. VWSS Tables 1-2 shape: mvr (a draw per map), mvr-layered, vwss (buffered, compute, k=8), "
-                  "reproject, and the single-map pcss-ultra (64-sample blocker search, 96-sample PCF, as the paper's "
-                  "PCSS rows; its 'maps' column is its one map, 'points' its shadow pass); RMSE of the visibility "
-                  "buffer against raytrace with the same samples\n");
+      std::fprintf(out,
+                   "1. VWSS Tables 1-2 shape: mvr (a draw per map), mvr-layered, vwss (buffered, compute, k=8), "
+                   "reproject, and the single-map pcss-ultra (64-sample blocker search, 96-sample PCF, as the paper's "
+                   "PCSS rows; its 'maps' column is its one map, 'points' its shadow pass); RMSE of the visibility "
+                   "buffer against raytrace with the same samples\n");
       for (int n : o.maps) {
         std::fprintf(out, "\n%d maps of %d^2 (%d PCF taps per map: %d depth samples per pixel)\n", n, map, 5, 5 * n);
-        std::fprintf(out, "%-9s %8s %-12s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s %9s\n", "triangles", "points", "technique",
-                    "G-buffer", "points", "maps", "lighting", "total", "range", "x maps", "x total", "RMSE", "map MiB",
-                    "point MiB");
+        std::fprintf(out, "%-9s %8s %-12s %8s %8s %8s %8s %8s %8s %8s %7s %7s %8s %9s\n", "triangles", "points",
+                     "technique", "G-buffer", "points", "maps", "lighting", "total", "range", "x maps", "x total",
+                     "RMSE", "map MiB", "point MiB");
         std::vector<double> tris;
         std::map<std::string, std::vector<double>> depthTimes;
         for (int copies : o.copies) {
@@ -138,7 +140,10 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
               {"mvr", {}, {"mvr depth maps"}, {"mvr lighting", "mvr views", "shading"}},
               {"mvr-layered", {}, {"mvr-layered depth maps"}, {"mvr-layered lighting", "mvr-layered views", "shading"}},
               {"vwss", {"vwss points"}, {"vwss depth maps"}, {"vwss lighting", "vwss views", "shading"}},
-              {"reproject", {"reproject central map"}, {"reproject depth maps"}, {"reproject lighting", "reproject views", "shading"}},
+              {"reproject",
+               {"reproject central map"},
+               {"reproject depth maps"},
+               {"reproject lighting", "reproject views", "shading"}},
               {"pcss-ultra", {}, {"pcss shadow map"}, {"pcss shadow mask", "pcss views", "shading"}}};
           for (const Columns& c : columns) {
             const std::string& name = c.name;
@@ -150,10 +155,10 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
             if (name == "mvr") mvrMaps = maps, mvrTotal = t.total.median;
             depthTimes[name].push_back(maps);
             std::fprintf(out, "%-9zu %8.0f %-12s %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %7.2f %7.4f %8.0f %9.1f\n",
-                        scene.triangleCount(), frameStatistic(t.last, "points"), name.c_str(), t.stage("gbuffer"), points,
-                        t.sumOf(c.maps), lighting, t.total.median, t.total.max - t.total.min,
-                        mvrMaps / std::max(maps, 1e-9), mvrTotal / std::max(t.total.median, 1e-9), r.rmse,
-                        mib(frameStatistic(t.last, "map bytes")), mib(frameStatistic(t.last, "point buffer bytes")));
+                         scene.triangleCount(), frameStatistic(t.last, "points"), name.c_str(), t.stage("gbuffer"),
+                         points, t.sumOf(c.maps), lighting, t.total.median, t.total.max - t.total.min,
+                         mvrMaps / std::max(maps, 1e-9), mvrTotal / std::max(t.total.median, 1e-9), r.rmse,
+                         mib(frameStatistic(t.last, "map bytes")), mib(frameStatistic(t.last, "point buffer bytes")));
             std::fflush(out);
           }
         }
@@ -161,13 +166,16 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
         for (auto& [name, v] : depthTimes) std::fprintf(out, "  %s %.3f", name.c_str(), 1e5 * slope(tris, v));
         std::fprintf(out, "\n");
       }
-      std::fprintf(out, "(x maps, x total: mvr's time over the row's; range: max - min of the total over the timed frames)\n\n");
+      std::fprintf(
+          out, "(x maps, x total: mvr's time over the row's; range: max - min of the total over the timed frames)\n\n");
     }
 
     Scene two = instanced(base, 2, spacing);
     if (studies.count(2)) {
-      std::fprintf(out, "2. VWSS Figure 13 top: buffered (points, then compute splat k=8) against unbuffered (splat in the "
-                  "point-generation fragment shader); %zu triangles; depth-map generation ms\n", two.triangleCount());
+      std::fprintf(out,
+                   "2. VWSS Figure 13 top: buffered (points, then compute splat k=8) against unbuffered (splat in the "
+                   "point-generation fragment shader); %zu triangles; depth-map generation ms\n",
+                   two.triangleCount());
       std::fprintf(out, "%6s %10s %10s %8s\n", "maps", "buffered", "unbuffered", "ratio");
       for (int n : {8, 16, 32, 64, 128}) {
         RenderSettings s = b.settings(n);
@@ -181,9 +189,10 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
     }
 
     if (studies.count(3)) {
-      std::fprintf(out, "3. VWSS Figure 13 bottom: the same points into the maps by compute (serial k=1, partially parallel "
-                  "k=8, fully parallel k=all) and by the graphics pipeline (GL_POINTS, a draw per map); ms of the "
-                  "depth-map stage only\n");
+      std::fprintf(out,
+                   "3. VWSS Figure 13 bottom: the same points into the maps by compute (serial k=1, partially parallel "
+                   "k=8, fully parallel k=all) and by the graphics pipeline (GL_POINTS, a draw per map); ms of the "
+                   "depth-map stage only\n");
       std::fprintf(out, "%6s %10s %10s %10s %10s %10s\n", "maps", "points", "serial", "partial", "full", "graphics");
       for (int n : {24, 128}) {
         RenderSettings s = b.settings(n);
@@ -192,19 +201,20 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
         Run full = b.run(two, s, "vwss", {mapParam, "k=0"}, nullptr);
         Run graphics = b.run(two, s, "vwss-graphics", {mapParam}, nullptr);
         std::fprintf(out, "%6d %10.0f %10.2f %10.2f %10.2f %10.2f\n", n, frameStatistic(serial.timing.last, "points"),
-                    serial.timing.stage("vwss depth maps"), partial.timing.stage("vwss depth maps"),
-                    full.timing.stage("vwss depth maps"), graphics.timing.stage("vwss-graphics depth maps"));
+                     serial.timing.stage("vwss depth maps"), partial.timing.stage("vwss depth maps"),
+                     full.timing.stage("vwss depth maps"), graphics.timing.stage("vwss-graphics depth maps"));
         std::fflush(out);
       }
       std::fprintf(out, "\n");
     }
 
     if (studies.count(4)) {
-      std::fprintf(out, "4. VWSS Figure 8: the light grows at one sample per 1/8 of its first area; RMSE against raytrace "
-                  "(same samples) and the fraction of per-sample decisions where vwss and mvr differ, by the "
-                  "sample's distance from the centre in units of the first light's half-size\n");
+      std::fprintf(out,
+                   "4. VWSS Figure 8: the light grows at one sample per 1/8 of its first area; RMSE against raytrace "
+                   "(same samples) and the fraction of per-sample decisions where vwss and mvr differ, by the "
+                   "sample's distance from the centre in units of the first light's half-size\n");
       std::fprintf(out, "%6s %7s %9s %9s %9s | %8s %8s %8s %8s %8s\n", "area x", "samples", "mvr RMSE", "vwss RMSE",
-                  "vwss-mvr", "[0,1)", "[1,2)", "[2,3)", "[3,4]", "scale");
+                   "vwss-mvr", "[0,1)", "[1,2)", "[2,3)", "[3,4]", "scale");
       const Light light0 = base.lights.at(0);
       const float half0 = 0.5f * std::max(light0.size.x, light0.size.y);
       for (int f : {1, 2, 4, 8, 16}) {
@@ -225,10 +235,12 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
           for (int k = 0; k < nS; ++k) {
             glm::vec3 r = samples.position(0, k) - scene.lights[0].position;
             float dist = std::max(std::abs(glm::dot(r, scene.lights[0].tangent)),
-                                  std::abs(glm::dot(r, scene.lights[0].bitangent()))) / half0;
+                                  std::abs(glm::dot(r, scene.lights[0].bitangent()))) /
+                         half0;
             int bin = std::min(3, int(dist));
             count[bin] += 1;
-            differ[bin] += std::abs(a[px * std::size_t(nS) + std::size_t(k)] - v[px * std::size_t(nS) + std::size_t(k)]) > 0.5f;
+            differ[bin] +=
+                std::abs(a[px * std::size_t(nS) + std::size_t(k)] - v[px * std::size_t(nS) + std::size_t(k)]) > 0.5f;
           }
         }
         double vsMvr = 0, n = 0;
@@ -236,23 +248,29 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
           double d = mvr.timing.last.lights[0].visibility.data[i] - vwss.timing.last.lights[0].visibility.data[i];
           vsMvr += d * d, n += 1;
         }
-        std::fprintf(out, "%6d %7d %9.4f %9.4f %9.4f |", f, nS, mvr.rmse, vwss.rmse, std::sqrt(vsMvr / std::max(n, 1.0)));
+        std::fprintf(out, "%6d %7d %9.4f %9.4f %9.4f |", f, nS, mvr.rmse, vwss.rmse,
+                     std::sqrt(vsMvr / std::max(n, 1.0)));
         for (int i = 0; i < 4; ++i) {
-          if (count[i] > 0) std::fprintf(out, " %8.4f", differ[i] / count[i]);
-          else std::fprintf(out, " %8s", "-");
+          if (count[i] > 0)
+            std::fprintf(out, " %8.4f", differ[i] / count[i]);
+          else
+            std::fprintf(out, " %8s", "-");
         }
         std::fprintf(out, " %8.2f\n", frameStatistic(vwss.timing.last, "source resolution") / double(map));
         std::fflush(out);
       }
-      std::fprintf(out, "(vwss-mvr: RMSE between the two visibility buffers over all pixels; scale: vwss's eq. 3 factor)\n\n");
+      std::fprintf(
+          out, "(vwss-mvr: RMSE between the two visibility buffers over all pixels; scale: vwss's eq. 3 factor)\n\n");
     }
 
     if (studies.count(5)) {
-      std::fprintf(out, "5. Convergence with map resolution, 24 samples, %zu triangles: RMSE against raytrace (same samples), "
-                  "depth-map ms (points + maps), memory MiB (maps + point buffer / central map)\n",
-                  base.triangleCount());
-      std::fprintf(out, "%6s | %9s %8s %8s | %9s %8s %8s | %9s %8s %8s\n", "map", "mvr RMSE", "ms", "MiB", "vwss RMSE", "ms",
-                  "MiB", "repr RMSE", "ms", "MiB");
+      std::fprintf(
+          out,
+          "5. Convergence with map resolution, 24 samples, %zu triangles: RMSE against raytrace (same samples), "
+          "depth-map ms (points + maps), memory MiB (maps + point buffer / central map)\n",
+          base.triangleCount());
+      std::fprintf(out, "%6s | %9s %8s %8s | %9s %8s %8s | %9s %8s %8s\n", "map", "mvr RMSE", "ms", "MiB", "vwss RMSE",
+                   "ms", "MiB", "repr RMSE", "ms", "MiB");
       RenderSettings s = b.settings(24);
       FrameResult ref = b.reference(base, s);
       for (int m : {512, 1024, 2048}) {

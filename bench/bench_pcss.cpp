@@ -34,8 +34,8 @@ namespace penumbra::bench {
 int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
   setLogLevel("error");
   const std::string& scenePath = o.scene;
-  const int width = o.width, height = o.height, map = o.map, samples = o.samples, frames = o.frames,
-            warmup = o.warmup, errorSize = o.errorSize;
+  const int width = o.width, height = o.height, map = o.map, samples = o.samples, frames = o.frames, warmup = o.warmup,
+            errorSize = o.errorSize;
   try {
     auto ctx = gl::Context::create(o.backend);
     Scene scene = loadScene(scenePath);
@@ -46,12 +46,13 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
     Renderer renderer(*ctx, scene, s);
     auto rayTech = makeTechnique("raytrace");
     FrameResult ref = renderer.render(*rayTech);
-    std::fprintf(out, "pcss studies: %s (%zu triangles), %dx%d image, %d^2 map, median of %d frames after %d "
-                "warm-up, ms (glFinish + steady clock), renderer %s\n\n",
-                scenePath.c_str(), scene.triangleCount(), width, height, map, frames, warmup, ctx->renderer().c_str());
+    std::fprintf(out,
+                 "pcss studies: %s (%zu triangles), %dx%d image, %d^2 map, median of %d frames after %d "
+                 "warm-up, ms (glFinish + steady clock), renderer %s\n\n",
+                 scenePath.c_str(), scene.triangleCount(), width, height, map, frames, warmup, ctx->renderer().c_str());
     std::fprintf(out, "1. Sterna Table 1 shape: shadow-mask passes, 16 PCF samples, 32 blocker-search samples\n");
-    std::fprintf(out, "%-40s %9s %9s %9s %9s %9s %8s %8s\n", "configuration", "min filt", "pen mask", "shadow", "upsample",
-                "passes", "x CHSS", "RMSE");
+    std::fprintf(out, "%-40s %9s %9s %9s %9s %9s %8s %8s\n", "configuration", "min filt", "pen mask", "shadow",
+                 "upsample", "passes", "x CHSS", "RMSE");
     // Rows of the table of techniques (src/techniques/pcss/rows.cpp) and their parameters, with
     // the passes each runs besides the shadow mask (a column it does not run reads 0).
     struct Row {
@@ -60,7 +61,8 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
       bool checker;
       std::vector<std::string> passes;
     };
-    const std::string minFilter = "pcss min filter", mask = "pcss penumbra mask", upsample = "pcss checkerboard upsample";
+    const std::string minFilter = "pcss min filter", mask = "pcss penumbra mask",
+                      upsample = "pcss checkerboard upsample";
     const Row rows[] = {{"regular shadow mask (fixed kernel)", "pcss-fixed", false, {}},
                         {"regular CHSS", "pcss", false, {}},
                         {"penumbra mask + shadow mask", "pcss-mask", false, {mask}},
@@ -80,18 +82,22 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
       if (std::string(row.technique) == "pcss" && !row.checker) chss = passes;
       double rmse = measureErrors(t.last, ref).visibility.rmse;
       std::fprintf(out, "%-40s %9.2f %9.2f %9.2f %9.2f %9.2f %8s %8.4f\n", row.name, pass(minFilter), pass(mask),
-                  t.stage("pcss shadow mask"), pass(upsample),
-                  passes, chss > 0.0 ? fmt::format("{:.2f}", chss / passes).c_str() : "-", rmse);
+                   t.stage("pcss shadow mask"), pass(upsample), passes,
+                   chss > 0.0 ? fmt::format("{:.2f}", chss / passes).c_str() : "-", rmse);
       std::fflush(out);
     }
-    std::fprintf(out, "(x CHSS: regular CHSS's passes over the row's; the shadow map itself, %d^2, is left out as in Sterna's "
-                "table)\n\n",
-                map);
+    std::fprintf(
+        out,
+        "(x CHSS: regular CHSS's passes over the row's; the shadow map itself, %d^2, is left out as in Sterna's "
+        "table)\n\n",
+        map);
 
-    std::fprintf(out, "2. VSSM (and msm-soft, evsm) against PCSS as the light grows (light side x1..x8, 1024^2 map): "
-                "shadow-stage ms (map excluded) and RMSE; 'pcss 256' samples 256 + 256 taps; pcss-dense every texel of both kernels (up to 32 x 32)\n");
+    std::fprintf(out,
+                 "2. VSSM (and msm-soft, evsm) against PCSS as the light grows (light side x1..x8, 1024^2 map): "
+                 "shadow-stage ms (map excluded) and RMSE; 'pcss 256' samples 256 + 256 taps; pcss-dense every texel "
+                 "of both kernels (up to 32 x 32)\n");
     std::fprintf(out, "%7s | %17s | %17s | %17s | %17s | %17s | %17s | %17s | %17s\n", "light x", "pcss 32/16",
-                "pcss-ultra 64/96", "pcss 256/256", "pcss-dense", "vssm", "vssm-uniform", "msm-soft", "evsm");
+                 "pcss-ultra 64/96", "pcss 256/256", "pcss-dense", "vssm", "vssm-uniform", "msm-soft", "evsm");
     for (float k : {1.0f, 2.0f, 4.0f, 8.0f}) {
       Scene grown = scene;
       for (auto& l : grown.lights) l.size *= k;
@@ -126,27 +132,29 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
     }
     std::fprintf(out, "\n3. VSSM stage breakdown (VSSM Tables 1-2 shape), light x1, ms\n");
     std::fprintf(out, "%6s %10s %8s %8s %12s %8s %10s\n", "map", "shadow map", "HSM", "SAT", "shadow pass", "total",
-                "MiB");
+                 "MiB");
     for (int m : {512, 1024, 2048}) {
       auto t = makeTechnique("vssm", TechniqueParams({"map=" + std::to_string(m)}));
       bench::Timing tm = bench::timeFrames(renderer, *t, frames, warmup);
-      double total = tm.stage("vssm shadow map") + tm.stage("vssm hsm") + tm.stage("vssm sat") + tm.stage("vssm shadow pass");
-      std::fprintf(out, "%6d %10.2f %8.2f %8.2f %12.2f %8.2f %10.1f\n", m, tm.stage("vssm shadow map"), tm.stage("vssm hsm"),
-                  tm.stage("vssm sat"), tm.stage("vssm shadow pass"), total,
-                  double(tm.last.memoryBytes) / (1024.0 * 1024.0));
+      double total =
+          tm.stage("vssm shadow map") + tm.stage("vssm hsm") + tm.stage("vssm sat") + tm.stage("vssm shadow pass");
+      std::fprintf(out, "%6d %10.2f %8.2f %8.2f %12.2f %8.2f %10.1f\n", m, tm.stage("vssm shadow map"),
+                   tm.stage("vssm hsm"), tm.stage("vssm sat"), tm.stage("vssm shadow pass"), total,
+                   double(tm.last.memoryBytes) / (1024.0 * 1024.0));
       std::fflush(out);
     }
 
-    std::fprintf(out, "\n4. Visibility RMSE against raytrace with the same %d samples / against raytrace-converged (1024 a "
-                "pixel), %dx%d, 1024^2 maps\n", samples, errorSize, errorSize);
+    std::fprintf(out,
+                 "\n4. Visibility RMSE against raytrace with the same %d samples / against raytrace-converged (1024 a "
+                 "pixel), %dx%d, 1024^2 maps\n",
+                 samples, errorSize, errorSize);
     std::fprintf(out, "%-24s | %15s | %15s | %15s | %15s | %15s | %15s | %15s\n", "scene", "mvr", "pcss", "pcss-ultra",
-                "vssm", "msm", "msm-soft", "evsm");
-    for (const char* path : {"scenes/hard/23-analytic-square.json", "scenes/hard/15-two-plates.json",
-                             "scenes/hard/15-thin-blade.json", "scenes/hard/15-sphere-grid.json",
-                             "scenes/hard/16-contact.json", "scenes/hard/17-far-corner.json",
-                             "scenes/hard/18-grazing-receiver.json", "default", "scenes/stained-glass.json",
-                             "scenes/example.json", "scenes/semi-opaque.json", "scenes/glass-layers.json",
-                             "scenes/dcs-silhouettes.json", "scenes/engine.json"}) {
+                 "vssm", "msm", "msm-soft", "evsm");
+    for (const char* path :
+         {"scenes/hard/23-analytic-square.json", "scenes/hard/15-two-plates.json", "scenes/hard/15-thin-blade.json",
+          "scenes/hard/15-sphere-grid.json", "scenes/hard/16-contact.json", "scenes/hard/17-far-corner.json",
+          "scenes/hard/18-grazing-receiver.json", "default", "scenes/stained-glass.json", "scenes/example.json",
+          "scenes/semi-opaque.json", "scenes/glass-layers.json", "scenes/dcs-silhouettes.json", "scenes/engine.json"}) {
       Scene sc = std::string(path) == "default" ? defaultScene() : loadScene(path);
       RenderSettings es = s;
       es.width = es.height = errorSize;
@@ -162,7 +170,7 @@ int singleMapStudies(const SingleMapOptions& o, std::FILE* out) {
         auto tech = makeTechnique(t);
         FrameResult f = r.render(*tech);
         std::fprintf(out, "  %6.4f / %6.4f |", measureErrors(f, sameRef).visibility.rmse,
-                    measureErrors(f, convRef).visibility.rmse);
+                     measureErrors(f, convRef).visibility.rmse);
         std::fflush(out);
       }
       std::fprintf(out, "\n");

@@ -56,7 +56,8 @@ int shadingStudy(const ShadingStudyOptions& o, std::FILE* out) {
     results["frames"] = o.frames, results["warmup"] = o.warmup, results["date"] = utcNow();
     std::fprintf(out,
                  "Shading modes: %s, N = %d, width %d, median of %d frames after %d warm-up, renderer %s\n"
-                 "shaded RMSE against raytrace-converged (1024 samples, same BRDF) / its mean radiance; ms per frame (shading stage)\n",
+                 "shaded RMSE against raytrace-converged (1024 samples, same BRDF) / its mean radiance; ms per frame "
+                 "(shading stage)\n",
                  o.technique.c_str(), o.samples, o.width, o.frames, o.warmup, ctx->renderer().c_str());
     std::fprintf(out, "  %-32s %10s %10s %10s   %16s %16s %16s\n", "scene", "ratio", "modulate", "per-sample",
                  "ratio ms", "modulate ms", "per-sample ms");
@@ -87,8 +88,9 @@ int shadingStudy(const ShadingStudyOptions& o, std::FILE* out) {
         }
         std::fprintf(out, "  %-32s %10.4f %10.4f %10.4f   %9.1f (%4.1f) %9.1f (%4.1f) %9.1f (%4.1f)\n", path.c_str(),
                      error[modes[0]], error[modes[1]], error[modes[2]], time.at(modes[0]).total.median,
-                     time.at(modes[0]).stage("shading"), time.at(modes[1]).total.median, time.at(modes[1]).stage("shading"),
-                     time.at(modes[2]).total.median, time.at(modes[2]).stage("shading"));
+                     time.at(modes[0]).stage("shading"), time.at(modes[1]).total.median,
+                     time.at(modes[1]).stage("shading"), time.at(modes[2]).total.median,
+                     time.at(modes[2]).stage("shading"));
         nlohmann::json row = {{"scene", path}, {"meanRadiance", mean}};
         for (ShadingMode m : modes) {
           row[toString(m)] = {{"relativeRmse", error[m]},
@@ -113,13 +115,15 @@ int shadingStudy(const ShadingStudyOptions& o, std::FILE* out) {
                    errorSum[modes[1]] / scenes, errorSum[modes[2]] / scenes, msSum[modes[0]] / scenes,
                    shadingSum[modes[0]] / scenes, msSum[modes[1]] / scenes, shadingSum[modes[1]] / scenes,
                    msSum[modes[2]] / scenes, shadingSum[modes[2]] / scenes);
-      const ShadingMode best = *std::min_element(std::begin(modes), std::end(modes),
-                                                 [&](ShadingMode a, ShadingMode b) { return errorSum[a] < errorSum[b]; });
-      std::fprintf(out, "  lowest mean error: %s; ratio / modulate frame time %.3f, shading stage %.2f ms against %.2f ms\n",
+      const ShadingMode best = *std::min_element(
+          std::begin(modes), std::end(modes), [&](ShadingMode a, ShadingMode b) { return errorSum[a] < errorSum[b]; });
+      std::fprintf(out,
+                   "  lowest mean error: %s; ratio / modulate frame time %.3f, shading stage %.2f ms against %.2f ms\n",
                    toString(best), msSum[modes[0]] / msSum[modes[1]], shadingSum[modes[0]] / scenes,
                    shadingSum[modes[1]] / scenes);
       for (ShadingMode m : modes)
-        results["mean"][toString(m)] = {{"relativeRmse", errorSum[m] / scenes}, {"totalMs", msSum[m] / scenes},
+        results["mean"][toString(m)] = {{"relativeRmse", errorSum[m] / scenes},
+                                        {"totalMs", msSum[m] / scenes},
                                         {"shadingMs", shadingSum[m] / scenes}};
       results["lowestMeanError"] = toString(best);
     }

@@ -44,7 +44,8 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
   try {
     auto ctx = gl::Context::create(o.backend);
     fs::create_directories(outDir);
-    std::fprintf(out, "Speed against error: %zu scenes, %d px wide, samples %s, median of %d frames after %d warm-up "
+    std::fprintf(out,
+                 "Speed against error: %zu scenes, %d px wide, samples %s, median of %d frames after %d warm-up "
                  "(glFinish + steady clock), visibility RMSE against raytrace-converged (1024 spp); renderer %s\n\n",
                  scenes.size(), width, samples.c_str(), frames, warmup, ctx->renderer().c_str());
 
@@ -90,7 +91,8 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
       // exits 1.
       for (auto& run : r.runs)
         if (run.failed) {
-          PLOG_ERROR("speed-error: {}: {} @ {} failed: {}", scene.name, run.technique, r.presets[run.preset].label, run.failure);
+          PLOG_ERROR("speed-error: {}: {} @ {} failed: {}", scene.name, run.technique, r.presets[run.preset].label,
+                     run.failure);
           acc[{run.technique, r.presets[run.preset].samples}].failedOn.push_back(scene.name);
           if (std::find(order.begin(), order.end(), run.technique) == order.end()) order.push_back(run.technique);
           ++failures;
@@ -132,9 +134,11 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
       p.samples = n, p.label = fmt::format("samples={}", n), p.values = {{"samples", std::to_string(n)}};
       headline.presets.push_back(p);
     }
-    std::string md = fmt::format("| technique | samples | ms (geo. mean) | x raytrace time | visibility RMSE vs converged (geo. mean) | on the Pareto front | scenes |\n|---|---|---|---|---|---|---|\n");
-    std::fprintf(out, "Headline: geometric mean over %zu scenes (or those named)\n%-14s %7s %12s %12s %14s %8s  %s\n", scenes.size(),
-                 "technique", "samples", "ms", "x raytrace", "RMSE vs conv", "front", "scenes");
+    std::string md = fmt::format(
+        "| technique | samples | ms (geo. mean) | x raytrace time | visibility RMSE vs converged (geo. mean) | on the "
+        "Pareto front | scenes |\n|---|---|---|---|---|---|---|\n");
+    std::fprintf(out, "Headline: geometric mean over %zu scenes (or those named)\n%-14s %7s %12s %12s %14s %8s  %s\n",
+                 scenes.size(), "technique", "samples", "ms", "x raytrace", "RMSE vs conv", "front", "scenes");
     for (auto& t : order)
       for (std::size_t pi = 0; pi < headline.presets.size(); ++pi) {
         int n = headline.presets[pi].samples;
@@ -149,8 +153,10 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
           continue;
         }
         double ms = std::exp(a.logMs / a.n), err = std::exp(a.logErr / a.n), ratio = std::exp(a.logRatio / a.n);
-        std::fprintf(out, "%-14s %7d %12.1f %12.2f %14.4f %5d/%d  %s\n", t.c_str(), n, ms, ratio, err, a.front, a.n, ran.c_str());
-        md += fmt::format("| {} | {} | {:.1f} | {:.2f} | {:.4f} | {}/{} | {} |\n", t, n, ms, ratio, err, a.front, a.n, ran);
+        std::fprintf(out, "%-14s %7d %12.1f %12.2f %14.4f %5d/%d  %s\n", t.c_str(), n, ms, ratio, err, a.front, a.n,
+                     ran.c_str());
+        md += fmt::format("| {} | {} | {:.1f} | {:.2f} | {:.4f} | {}/{} | {} |\n", t, n, ms, ratio, err, a.front, a.n,
+                          ran);
         CompareRun run;
         run.technique = t, run.preset = pi, run.reference = t == "raytrace";
         run.family = findTechnique(t).family;
@@ -167,7 +173,8 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
         CompareRun failed;
         failed.technique = key.first, failed.family = findTechnique(key.first).family, failed.failed = true;
         failed.preset = std::size_t(std::find_if(headline.presets.begin(), headline.presets.end(),
-                                                 [&](auto& p) { return p.samples == key.second; }) - headline.presets.begin());
+                                                 [&](auto& p) { return p.samples == key.second; }) -
+                                    headline.presets.begin());
         failed.failure = fmt::format("on {} (that scene's report says why)", fmt::join(a.failedOn, ", "));
         if (failed.preset < headline.presets.size()) headline.runs.push_back(failed);
       }
@@ -177,7 +184,8 @@ int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out) {
     writeTextFile((fs::path(outDir) / "summary.md").string(), summary);
     writeTextFile((fs::path(outDir) / "headline.md").string(), md);
     writeTextFile((fs::path(outDir) / "headline.svg").string(), speedErrorSvg(headline));
-    if (failures > 0) std::fprintf(out, "\n%d technique runs failed (named above and in their scenes' reports)\n", failures);
+    if (failures > 0)
+      std::fprintf(out, "\n%d technique runs failed (named above and in their scenes' reports)\n", failures);
     return failures > 0 ? 1 : 0;
   } catch (const Error& e) {
     std::fprintf(stderr, "penumbra_bench_speed_error: %s\n", e.what());

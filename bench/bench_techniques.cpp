@@ -40,7 +40,7 @@ int techniqueTimings(const TimingOptions& o, std::FILE* out) {
     Scene scene = loadScene(scenePath);
     auto ctx = gl::Context::create(o.backend);
     std::fprintf(out, "scene %s: %zu triangles, %dx%d, pattern %s, shading %s, renderer %s\n", scenePath.c_str(),
-                scene.triangleCount(), width, height, pattern.c_str(), shading.c_str(), ctx->renderer().c_str());
+                 scene.triangleCount(), width, height, pattern.c_str(), shading.c_str(), ctx->renderer().c_str());
     nlohmann::json results;
     results["scene"] = scenePath;
     results["triangles"] = scene.triangleCount();
@@ -77,8 +77,8 @@ int techniqueTimings(const TimingOptions& o, std::FILE* out) {
         }
         std::string key = name + "@" + std::to_string(samples);
         std::fprintf(out, "\n%s, %d sample(s) (%d frames after %d warm-up)%s\n  %-18s %10s %10s %10s\n", name.c_str(),
-                    samples, frames, warmup, run.profile.empty() ? "" : ", statistics of a profiled frame", "stage",
-                    "median ms", "min", "max");
+                     samples, frames, warmup, run.profile.empty() ? "" : ", statistics of a profiled frame", "stage",
+                     "median ms", "min", "max");
         for (auto& [stage, sp] : timing.stages) {
           std::fprintf(out, "  %-18s %10.2f %10.2f %10.2f\n", stage.c_str(), sp.median, sp.min, sp.max);
           results[key]["stagesMs"][stage] = {{"median", sp.median}, {"min", sp.min}, {"max", sp.max}};

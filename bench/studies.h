@@ -28,13 +28,14 @@ struct SpeedErrorOptions {
                                      "scenes/example.json",
                                      "scenes/glossy.json",
                                      "scenes/engine.json"};  // "default": the built-in scene
-  std::vector<std::string> techniques = {"hard-sv",   "dcs",  "dcs-lut",    "mvr",       "vwss", "reproject",
-                                         "pcss",      "pcss-ultra", "pcss-mask", "vssm", "msm-soft", "evsm", "raytrace-denoised"};
+  std::vector<std::string> techniques = {"hard-sv",   "dcs",  "dcs-lut",          "mvr",       "vwss",
+                                         "reproject", "pcss", "pcss-ultra",       "pcss-mask", "vssm",
+                                         "msm-soft",  "evsm", "raytrace-denoised"};
   std::vector<int> samples = {8, 16, 32, 64};  // the samples sweep
-  int width = 128;                         // image width (height: the scene's aspect)
-  int frames = 3, warmup = 1;              // timed frames per technique and preset
-  bool images = true;                      // each scene's PNG images and insets (false: reports only)
-  std::string outDir;                      // required
+  int width = 128;                             // image width (height: the scene's aspect)
+  int frames = 3, warmup = 1;                  // timed frames per technique and preset
+  bool images = true;                          // each scene's PNG images and insets (false: reports only)
+  std::string outDir;                          // required
   gl::Backend backend = gl::Backend::Egl;
 };
 int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out);
@@ -91,7 +92,7 @@ struct TimingOptions {
   std::vector<TimedVariant> variants;  // timed after `techniques`, before raytrace
   PixelPattern pattern = PixelPattern::Correlated;
   ShadingMode shading = ShadingMode::Modulate;  // eq. 3, as the README's timing tables were measured
-  std::string json;  // results as JSON here, if given
+  std::string json;                             // results as JSON here, if given
   gl::Backend backend = gl::Backend::Egl;
 };
 int techniqueTimings(const TimingOptions& o, std::FILE* out);

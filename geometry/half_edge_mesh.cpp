@@ -69,9 +69,10 @@ std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& we
   }
   for (std::size_t v = 0; v < vertexCount; ++v)
     for (std::uint32_t i = bucket[v] + 1; i < bucket[v + 1]; ++i)
-      for (std::uint32_t j = i; j > bucket[v] && halves[j].hi < halves[j - 1].hi; --j) std::swap(halves[j], halves[j - 1]);
+      for (std::uint32_t j = i; j > bucket[v] && halves[j].hi < halves[j - 1].hi; --j)
+        std::swap(halves[j], halves[j - 1]);
   std::vector<std::uint32_t> groupOf(3 * triangleCount, kNone);  // directed edge 3t + k -> its group
-  std::vector<std::uint32_t> groupStart;                          // group -> first sorted half
+  std::vector<std::uint32_t> groupStart;                         // group -> first sorted half
   for (std::size_t v = 0; v < vertexCount; ++v)
     for (std::uint32_t i = bucket[v]; i < bucket[v + 1]; ++i) {
       if (i == bucket[v] || halves[i].hi != halves[i - 1].hi) groupStart.push_back(i);
@@ -157,8 +158,9 @@ std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& we
       // Label the fans (corners are sorted, so fans come in order of their earliest triangle).
       std::vector<std::uint32_t> label(j - i, kNone);
       const auto slot = [&](std::uint32_t c) {
-        return std::size_t(std::lower_bound(corners.begin() + std::ptrdiff_t(i), corners.begin() + std::ptrdiff_t(j), c) -
-                           (corners.begin() + std::ptrdiff_t(i)));
+        return std::size_t(
+            std::lower_bound(corners.begin() + std::ptrdiff_t(i), corners.begin() + std::ptrdiff_t(j), c) -
+            (corners.begin() + std::ptrdiff_t(i)));
       };
       std::uint32_t keep = kNone, fans = 0;
       for (std::size_t c = i; c < j; ++c) {
@@ -284,7 +286,8 @@ std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& we
     for (std::size_t k = i; k < j; ++k)
       m.set_next_halfedge_handle(OpenMesh::HalfedgeHandle(boundary[k].arriving),
                                  OpenMesh::HalfedgeHandle(boundary[k + 1 < j ? k + 1 : i].leaving));
-    m.set_halfedge_handle(OpenMesh::VertexHandle(int(boundary[i].vertex)), OpenMesh::HalfedgeHandle(boundary[i].leaving));
+    m.set_halfedge_handle(OpenMesh::VertexHandle(int(boundary[i].vertex)),
+                          OpenMesh::HalfedgeHandle(boundary[i].leaving));
   }
   return built;
 }

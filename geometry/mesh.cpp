@@ -41,8 +41,7 @@ struct Welding {
 Welding weldPositions(const std::vector<glm::vec3>& positions) {
   const auto bits = [&](std::size_t v) {
     const glm::vec3& p = positions[v];
-    return std::array<std::uint32_t, 3>{coordinateBits(p.x), coordinateBits(p.y),
-                                        coordinateBits(p.z)};
+    return std::array<std::uint32_t, 3>{coordinateBits(p.x), coordinateBits(p.y), coordinateBits(p.z)};
   };
   constexpr std::uint32_t kEmpty = 0xffffffffu;
   const std::size_t capacity = std::bit_ceil(2 * positions.size() + 2);
@@ -64,9 +63,7 @@ Welding weldPositions(const std::vector<glm::vec3>& positions) {
   return w;
 }
 
-bool isFinite(const glm::vec3& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
+bool isFinite(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
 bool hasZeroArea(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
   const glm::dvec3 n = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
@@ -135,7 +132,8 @@ EdgeTopology buildTopology(const TriangleMesh& mesh, Welding w) {
         const OpenMesh::HalfedgeHandle h = m.halfedge_handle(OpenMesh::EdgeHandle(int(e)), side);
         const OpenMesh::FaceHandle f = m.face_handle(h);
         if (!f.is_valid()) continue;  // the boundary side
-        const std::int8_t orientation = hem.welded(m.from_vertex_handle(h)) < hem.welded(m.to_vertex_handle(h)) ? 1 : -1;
+        const std::int8_t orientation =
+            hem.welded(m.from_vertex_handle(h)) < hem.welded(m.to_vertex_handle(h)) ? 1 : -1;
         topo.incidences.push_back({hem.triangleOf[std::size_t(f.idx())], orientation});
         orientationSum += orientation;
       }
@@ -160,9 +158,7 @@ EdgeTopology buildTopology(const TriangleMesh& mesh, Welding w) {
 
 }  // namespace
 
-EdgeTopology buildEdgeTopology(const TriangleMesh& mesh) {
-  return buildTopology(mesh, weldPositions(mesh.positions));
-}
+EdgeTopology buildEdgeTopology(const TriangleMesh& mesh) { return buildTopology(mesh, weldPositions(mesh.positions)); }
 
 void cleanMesh(TriangleMesh& mesh, MeshReport& report) {
   if (report.inputVertices == 0 && report.inputFaces == 0) {
@@ -180,8 +176,7 @@ void cleanMesh(TriangleMesh& mesh, MeshReport& report) {
       ++report.droppedInvalidIndex;
     } else if (!isFinite(p[tri.x]) || !isFinite(p[tri.y]) || !isFinite(p[tri.z])) {
       ++report.droppedNonFinite;
-    } else if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x ||
-               hasZeroArea(p[tri.x], p[tri.y], p[tri.z])) {
+    } else if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x || hasZeroArea(p[tri.x], p[tri.y], p[tri.z])) {
       ++report.droppedDegenerate;
     } else {
       keep[t] = 1;
@@ -202,8 +197,7 @@ void cleanMesh(TriangleMesh& mesh, MeshReport& report) {
   }
   keys = bucketSort(keys, w.first.size(), [](const auto& k) { return k[0]; });
   for (std::size_t i = 1; i < keys.size(); ++i) {
-    if (keys[i][0] == keys[i - 1][0] && keys[i][1] == keys[i - 1][1] &&
-        keys[i][2] == keys[i - 1][2]) {
+    if (keys[i][0] == keys[i - 1][0] && keys[i][1] == keys[i - 1][1] && keys[i][2] == keys[i - 1][2]) {
       keep[keys[i][3]] = 0;
       ++report.droppedDuplicate;
     }
@@ -232,8 +226,8 @@ void cleanMesh(TriangleMesh& mesh, MeshReport& report) {
   for (const EdgeTopology::Edge& e : topo.edges) {
     if (e.incidenceCount == 1) ++report.openEdges;
     if (e.incidenceCount > 2) ++report.nonManifoldEdges;
-    if (e.incidenceCount == 2 && topo.incidences[e.firstIncidence].orientation ==
-                                     topo.incidences[e.firstIncidence + 1].orientation)
+    if (e.incidenceCount == 2 &&
+        topo.incidences[e.firstIncidence].orientation == topo.incidences[e.firstIncidence + 1].orientation)
       ++report.inconsistentEdges;
     const std::uint32_t root = findRoot(parent, topo.incidences[e.firstIncidence].triangle);
     for (std::uint32_t k = 1; k < e.incidenceCount; ++k)

@@ -40,13 +40,15 @@ struct MeshReport {
   std::size_t components = 0;            // edge-connected components
   bool closed = false;                   // every edge has two oppositely oriented triangles
   std::size_t ignoredElements = 0;       // line and point elements (OBJ `l`, `p`; PLY edges): not surfaces
-  bool vertexColours = false;            // colours per vertex in the file (OBJ `v x y z r g b`, PLY red/green/blue): not shaded
+  bool vertexColours = false;  // colours per vertex in the file (OBJ `v x y z r g b`, PLY red/green/blue): not shaded
 
   std::size_t droppedTotal() const {
     return droppedInvalidIndex + droppedDegenerate + droppedNonFinite + droppedDuplicate;
   }
   // What a loader must say: something dropped, ignored or unusual in the file.
-  bool worthWarning() const { return droppedTotal() > 0 || hugeCoordinates > 0 || ignoredElements > 0 || vertexColours; }
+  bool worthWarning() const {
+    return droppedTotal() > 0 || hugeCoordinates > 0 || ignoredElements > 0 || vertexColours;
+  }
   // One line: "12 triangles, 0 dropped, 4 open edges, ..." (only non-zero counts beyond the first).
   std::string summary() const;
 };
@@ -65,18 +67,18 @@ struct EdgeTopology {
     std::uint32_t v0, v1;  // welded vertex ids, v0 < v1
     std::uint32_t firstIncidence, incidenceCount;
   };
-  std::vector<glm::vec3> weldedPositions;        // one per welded vertex
-  std::vector<std::uint32_t> weldedIndex;        // input vertex -> welded vertex
-  std::vector<glm::uvec3> weldedTriangles;       // triangles over welded vertices
-  std::vector<Edge> edges;                       // sorted by (v0, v1)
-  std::vector<Incidence> incidences;             // per edge sorted by (triangle, orientation)
+  std::vector<glm::vec3> weldedPositions;   // one per welded vertex
+  std::vector<std::uint32_t> weldedIndex;   // input vertex -> welded vertex
+  std::vector<glm::uvec3> weldedTriangles;  // triangles over welded vertices
+  std::vector<Edge> edges;                  // sorted by (v0, v1)
+  std::vector<Incidence> incidences;        // per edge sorted by (triangle, orientation)
   // Per triangle: cross(p1 - p0, p2 - p0) in double over the welded positions (p0 the first
   // corner), unnormalised, read from the face's halfedges; zero for a triangle that collapses
   // under welding. The facing of silhouette.h is the sign of its dot product with l - p0.
   std::vector<glm::dvec3> faceNormals;
   std::shared_ptr<const HalfEdgeMesh> halfEdges;  // the OpenMesh mesh (shared by copies)
-  std::size_t duplicatedVertices = 0;            // vertex copies made for refused faces
-  bool closed = false;  // every edge: exactly 2 incidences with opposite orientation
+  std::size_t duplicatedVertices = 0;             // vertex copies made for refused faces
+  bool closed = false;                            // every edge: exactly 2 incidences with opposite orientation
 };
 
 // Drops invalid, degenerate, non-finite and duplicate triangles (counting each in `report`),

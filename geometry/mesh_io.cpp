@@ -39,9 +39,7 @@ constexpr std::int64_t kInvalid = -2;  // an index that could not be parsed or r
 constexpr std::int64_t kAbsent = -1;   // an optional OBJ index (vt, vn) not given
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-bool isSpace(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
-}
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
 
 bool nextLine(std::string_view& text, std::string_view& line) {
   if (text.empty()) return false;
@@ -68,8 +66,7 @@ T parseReal(std::string_view token) {
   if (!token.empty() && token.front() == '+') token.remove_prefix(1);
   T v = 0;
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
-  if (token.empty() || end != token.data() + token.size())
-    return std::numeric_limits<T>::quiet_NaN();
+  if (token.empty() || end != token.data() + token.size()) return std::numeric_limits<T>::quiet_NaN();
   // Out of range: strtof/strtod give the overflowed infinity or the underflowed (sub)normal.
   if (ec == std::errc::result_out_of_range) {
     const std::string copy(token);
@@ -83,8 +80,7 @@ T parseReal(std::string_view token) {
 double parseFloat(std::string_view token) { return parseReal<float>(token); }
 
 bool equalsLower(std::string_view token, std::string_view lower) {
-  return token.size() == lower.size() &&
-         std::equal(token.begin(), token.end(), lower.begin(), [](char a, char b) {
+  return token.size() == lower.size() && std::equal(token.begin(), token.end(), lower.begin(), [](char a, char b) {
            return std::tolower(static_cast<unsigned char>(a)) == b;
          });
 }
@@ -102,8 +98,7 @@ std::string str(std::uint64_t n) { return std::to_string(n); }
 void checkClaimedSize(const std::string& path, long double minimumBytes, std::size_t available,
                       const std::string& claim) {
   if (minimumBytes > static_cast<long double>(available) + 1.0L)
-    throw Error(path, "header claims " + claim + ", more than the " + str(available) +
-                          " bytes of the file can hold");
+    throw Error(path, "header claims " + claim + ", more than the " + str(available) + " bytes of the file can hold");
 }
 
 // Counts one face as written and says whether it can be used.
@@ -126,8 +121,7 @@ bool acceptFace(std::span<const std::int64_t> face, std::size_t vertexCount, Mes
 // signed areas still add up to the polygon and its boundary edges are kept.
 void fanTriangulate(std::span<const std::int64_t> face, TriangleMesh& mesh, MeshReport& r) {
   if (face.size() > 3) ++r.polygonsTriangulated;
-  for (std::size_t k = 1; k + 1 < face.size(); ++k)
-    mesh.triangles.emplace_back(face[0], face[k], face[k + 1]);
+  for (std::size_t k = 1; k + 1 < face.size(); ++k) mesh.triangles.emplace_back(face[0], face[k], face[k + 1]);
 }
 
 // Flat list of polygons, kept until all vertices are known (OBJ and PLY may refer forward).
@@ -211,14 +205,12 @@ ObjData parseObj(std::string_view text) {
     } else if (key == "f") {
       for (std::string_view corner = nextToken(line); !corner.empty(); corner = nextToken(line)) {
         const std::size_t s1 = corner.find('/');
-        const std::string_view rest =
-            s1 == std::string_view::npos ? std::string_view{} : corner.substr(s1 + 1);
+        const std::string_view rest = s1 == std::string_view::npos ? std::string_view{} : corner.substr(s1 + 1);
         const std::size_t s2 = rest.find('/');
         const std::int64_t iv = objIndex(corner.substr(0, s1), d.v.size());
         d.faces.indices.push_back(iv == kAbsent ? kInvalid : iv);
         d.faces.indices.push_back(objIndex(rest.substr(0, s2), d.vt.size()));
-        d.faces.indices.push_back(
-            s2 == std::string_view::npos ? kAbsent : objIndex(rest.substr(s2 + 1), d.vn.size()));
+        d.faces.indices.push_back(s2 == std::string_view::npos ? kAbsent : objIndex(rest.substr(s2 + 1), d.vn.size()));
       }
       d.faces.close();
       d.faceGroup.push_back(group);
@@ -228,11 +220,10 @@ ObjData parseObj(std::string_view text) {
       group = std::uint32_t(it - d.groups.begin());
       if (it == d.groups.end()) d.groups.push_back(name);
     } else if (key == "mtllib") {
-      if (const std::string_view rest = trimmed(line); !rest.empty())
-        d.libraries.emplace_back(rest);
+      if (const std::string_view rest = trimmed(line); !rest.empty()) d.libraries.emplace_back(rest);
     } else if (key == "l" || key == "p") {
       ++d.linesAndPoints;  // no surface: counted in the report
-    }  // other statements (o, g, s, ...) carry nothing a shadow needs
+    }                      // other statements (o, g, s, ...) carry nothing a shadow needs
   }
   return d;
 }
@@ -285,8 +276,7 @@ TriangleMesh buildObjMesh(const ObjData& d, std::int64_t group, MeshReport& repo
         face.push_back(corners[k]);
         continue;
       }
-      const Key key{corners[k], allUv ? corners[k + 1] : kAbsent,
-                    allNormal ? corners[k + 2] : kAbsent};
+      const Key key{corners[k], allUv ? corners[k + 1] : kAbsent, allNormal ? corners[k + 2] : kAbsent};
       auto [it, added] = vertexOf.try_emplace(key, std::int64_t(mesh.positions.size()));
       if (added) {
         mesh.positions.push_back(v[key[0]]);
@@ -300,9 +290,7 @@ TriangleMesh buildObjMesh(const ObjData& d, std::int64_t group, MeshReport& repo
   return mesh;
 }
 
-TriangleMesh loadObj(std::string_view text, MeshReport& report) {
-  return buildObjMesh(parseObj(text), -1, report);
-}
+TriangleMesh loadObj(std::string_view text, MeshReport& report) { return buildObjMesh(parseObj(text), -1, report); }
 
 // ---- OFF ---------------------------------------------------------------------------------
 
@@ -335,24 +323,20 @@ TriangleMesh loadOff(const std::string& path, std::string_view text, MeshReport&
   std::string_view probe = line;
   const std::string_view first = nextToken(probe);
   if (first == "BINARY") throw Error(path, "binary OFF is not supported");
-  if (first.empty() && !nextContentLine(text, counts))
-    throw Error(path, "missing vertex and face counts");
+  if (first.empty() && !nextContentLine(text, counts)) throw Error(path, "missing vertex and face counts");
   std::int64_t nv = 0, nf = 0;
   if (!parseInt(nextToken(counts), nv) || !parseInt(nextToken(counts), nf) || nv < 0 || nf < 0)
     throw Error(path, "bad vertex and face counts in the OFF header");
   // Smallest records: "0 0 0\n" (6 bytes) and "3 0 0 0\n" (8 bytes).
-  checkClaimedSize(path, 6.0L * nv + 8.0L * nf, fileSize,
-                   str(nv) + " vertices and " + str(nf) + " faces");
+  checkClaimedSize(path, 6.0L * nv + 8.0L * nf, fileSize, str(nv) + " vertices and " + str(nf) + " faces");
 
   TriangleMesh mesh;
   mesh.positions.reserve(nv);
   std::vector<double> values;
   for (std::int64_t i = 0; i < nv; ++i) {
-    if (!nextContentLine(text, line))
-      throw Error(path, "truncated: " + str(i) + " of " + str(nv) + " vertices");
+    if (!nextContentLine(text, line)) throw Error(path, "truncated: " + str(i) + " of " + str(nv) + " vertices");
     values.clear();
-    for (std::string_view t = nextToken(line); !t.empty(); t = nextToken(line))
-      values.push_back(parseFloat(t));
+    for (std::string_view t = nextToken(line); !t.empty(); t = nextToken(line)) values.push_back(parseFloat(t));
     values.resize(std::max<std::size_t>(values.size(), 3), kNaN);
     mesh.positions.push_back(toVec3(values.data()));
     // Vertex line: x y z [nx ny nz] [colour] [s t]; colour has a variable length, so the
@@ -367,8 +351,7 @@ TriangleMesh loadOff(const std::string& path, std::string_view text, MeshReport&
 
   std::vector<std::int64_t> face;
   for (std::int64_t i = 0; i < nf; ++i) {
-    if (!nextContentLine(text, line))
-      throw Error(path, "truncated: " + str(i) + " of " + str(nf) + " faces");
+    if (!nextContentLine(text, line)) throw Error(path, "truncated: " + str(i) + " of " + str(nf) + " faces");
     face.clear();
     std::int64_t n = 0;
     if (!parseInt(nextToken(line), n) || n < 0) {
@@ -449,8 +432,7 @@ class ValueReader {
     rest_.remove_prefix(type.size);
     const unsigned bits = 8 * static_cast<unsigned>(type.size);
     if (type.kind == 'f')
-      value = type.size == 4 ? std::bit_cast<float>(static_cast<std::uint32_t>(u))
-                             : std::bit_cast<double>(u);
+      value = type.size == 4 ? std::bit_cast<float>(static_cast<std::uint32_t>(u)) : std::bit_cast<double>(u);
     else if (type.kind == 'i' && bits < 64 && (u >> (bits - 1)) != 0)
       value = static_cast<double>(static_cast<std::int64_t>(u) - (std::int64_t{1} << bits));
     else
@@ -497,8 +479,7 @@ TriangleMesh loadPly(const std::string& path, std::string_view text, MeshReport&
         if (!plyType(nextToken(line), p.countType)) throw Error(path, "bad PLY list count type");
         type = nextToken(line);
       }
-      if (!plyType(type, p.type))
-        throw Error(path, "unknown PLY property type '" + std::string(type) + "'");
+      if (!plyType(type, p.type)) throw Error(path, "unknown PLY property type '" + std::string(type) + "'");
       p.name = nextToken(line);
       elements.back().properties.push_back(p);
     } else if (key == "end_header") {
@@ -528,14 +509,12 @@ TriangleMesh loadPly(const std::string& path, std::string_view text, MeshReport&
     bool hasNormal = false, hasUv = false;
     for (const PlyProperty& p : e.properties) {
       static const std::pair<std::string_view, Role> kVertexRoles[] = {
-          {"x", X},   {"y", Y}, {"z", Z},         {"nx", NX},       {"ny", NY},
-          {"nz", NZ}, {"u", U}, {"s", U},         {"texture_u", U}, {"texture_s", U},
-          {"v", V},   {"t", V}, {"texture_v", V}, {"texture_t", V}};
+          {"x", X}, {"y", Y},         {"z", Z},         {"nx", NX}, {"ny", NY}, {"nz", NZ},       {"u", U},
+          {"s", U}, {"texture_u", U}, {"texture_s", U}, {"v", V},   {"t", V},   {"texture_v", V}, {"texture_t", V}};
       Role role = Other;
       if (e.name == "vertex" && !p.isList) {
         for (const auto& [n, r] : kVertexRoles) role = n == p.name ? r : role;
-      } else if (e.name == "face" && p.isList &&
-                 (p.name == "vertex_indices" || p.name == "vertex_index")) {
+      } else if (e.name == "face" && p.isList && (p.name == "vertex_indices" || p.name == "vertex_index")) {
         role = Indices;
       }
       hasNormal = hasNormal || role == NX;
@@ -551,8 +530,7 @@ TriangleMesh loadPly(const std::string& path, std::string_view text, MeshReport&
       // uvs (found by fuzzing: tests/fuzz/regressions/ply/); the format has one.
       if (sawVertices) throw Error(path, "PLY file has more than one vertex element");
       const auto once = [&](Role r) { return std::count(roles.begin(), roles.end(), r) == 1; };
-      if (!once(X) || !once(Y) || !once(Z))
-        throw Error(path, "PLY vertices need x, y and z properties");
+      if (!once(X) || !once(Y) || !once(Z)) throw Error(path, "PLY vertices need x, y and z properties");
       sawVertices = true;
       mesh.positions.reserve(e.count);
     }
@@ -561,8 +539,7 @@ TriangleMesh loadPly(const std::string& path, std::string_view text, MeshReport&
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const PlyProperty& p = e.properties[k];
         const auto truncated = [&] {
-          return Error(path, "truncated in PLY element '" + e.name + "' (" + str(i) + " of " +
-                                 str(e.count) + ")");
+          return Error(path, "truncated in PLY element '" + e.name + "' (" + str(i) + " of " + str(e.count) + ")");
         };
         double value = 0.0;
         if (!in.read(p.isList ? p.countType : p.type, value)) throw truncated();
@@ -579,9 +556,8 @@ TriangleMesh loadPly(const std::string& path, std::string_view text, MeshReport&
           double item = 0.0;
           if (!in.read(p.type, item)) throw truncated();
           if (roles[k] == Indices)
-            faces.indices.push_back(item >= 0.0 && item == std::floor(item) && item < 0x1p62
-                                        ? static_cast<std::int64_t>(item)
-                                        : kInvalid);
+            faces.indices.push_back(
+                item >= 0.0 && item == std::floor(item) && item < 0x1p62 ? static_cast<std::int64_t>(item) : kInvalid);
         }
         if (roles[k] == Indices) faces.close();
       }
@@ -616,8 +592,7 @@ TriangleMesh loadStl(const std::string& path, std::string_view text, MeshReport&
   FaceList faces;
   // Binary iff the size matches the facet count exactly: binary files may begin with "solid".
   double count = 0;
-  if (text.size() >= 84)
-    ValueReader(text.substr(80), PlyFormat::BinaryLittle).read({4, 'u'}, count);
+  if (text.size() >= 84) ValueReader(text.substr(80), PlyFormat::BinaryLittle).read({4, 'u'}, count);
   const auto facetCount = static_cast<std::uint64_t>(count);
   const bool binary = text.size() >= 84 && 84 + 50 * facetCount == text.size();
   if (!binary && !looksAsciiStl(text)) {
@@ -629,9 +604,8 @@ TriangleMesh loadStl(const std::string& path, std::string_view text, MeshReport&
                             " bytes, shorter than a binary header (84) and no ascii 'solid' with vertices");
     const std::uint64_t held = (text.size() - 84) / 50, extra = (text.size() - 84) % 50;
     auto triangles = [](std::uint64_t n) { return str(n) + (n == 1 ? " triangle" : " triangles"); };
-    throw Error(path, "binary STL header claims " + triangles(facetCount) + " (" +
-                          str(84 + 50 * facetCount) + " bytes), the file has " + str(text.size()) +
-                          " bytes (" + triangles(held) +
+    throw Error(path, "binary STL header claims " + triangles(facetCount) + " (" + str(84 + 50 * facetCount) +
+                          " bytes), the file has " + str(text.size()) + " bytes (" + triangles(held) +
                           (extra ? " and " + str(extra) + " bytes more" : std::string()) + ")" +
                           (facetCount > held ? ": truncated" : ""));
   }
@@ -721,7 +695,8 @@ ObjFile loadObjFile(const std::string& path) {
   total.ignoredElements = d.linesAndPoints, total.vertexColours = d.colours;
   if (kept == 0) throw Error(path, "no triangles left (" + total.summary() + ")");
   // Said once, with the file's first part.
-  if (!out.parts.empty()) out.parts.front().report.ignoredElements = d.linesAndPoints, out.parts.front().report.vertexColours = d.colours;
+  if (!out.parts.empty())
+    out.parts.front().report.ignoredElements = d.linesAndPoints, out.parts.front().report.vertexColours = d.colours;
   return out;
 }
 

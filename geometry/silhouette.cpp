@@ -38,8 +38,7 @@ std::int32_t edgeMultiplicity(const EdgeTopology& topology, const EdgeTopology::
 
 }  // namespace
 
-PointSilhouette extractPointSilhouette(const EdgeTopology& topology, const glm::dvec3& light,
-                                       VolumeRule rule) {
+PointSilhouette extractPointSilhouette(const EdgeTopology& topology, const glm::dvec3& light, VolumeRule rule) {
   PointSilhouette out;
   out.capSign.resize(topology.weldedTriangles.size());
   // Facing is decided once per triangle and reused by caps and sides alike, so a triangle
@@ -66,7 +65,8 @@ int classifyLight(const LightExtent& light, const glm::dvec3& normal, const glm:
   const double centre = glm::dot(n, light.centre - point);
   double extent = 0.0;
   switch (light.kind) {
-    case LightExtent::Kind::Point: break;
+    case LightExtent::Kind::Point:
+      break;
     case LightExtent::Kind::Rect:
       extent = light.halfWidth * std::abs(glm::dot(n, light.tangent)) +
                light.halfHeight * std::abs(glm::dot(n, light.bitangent));
@@ -76,15 +76,17 @@ int classifyLight(const LightExtent& light, const glm::dvec3& normal, const glm:
       extent = light.radius * std::sqrt(std::max(0.0, 1.0 - c * c));
       break;
     }
-    case LightExtent::Kind::Sphere: extent = light.radius; break;
+    case LightExtent::Kind::Sphere:
+      extent = light.radius;
+      break;
   }
   if (centre > extent) return 1;
   if (centre < -extent) return -1;
   return 0;
 }
 
-std::vector<std::uint32_t> extractAccurateSilhouette(const EdgeTopology& topology,
-                                                     const LightExtent& light, VolumeRule rule) {
+std::vector<std::uint32_t> extractAccurateSilhouette(const EdgeTopology& topology, const LightExtent& light,
+                                                     VolumeRule rule) {
   // Per triangle: the light's side of its plane; 0 marks planes that touch or cut the light.
   std::vector<std::int8_t> side(topology.weldedTriangles.size()), capSign(side.size());
   for (std::size_t t = 0; t < side.size(); ++t) {
@@ -169,7 +171,9 @@ PointLocation locatePoint(const EdgeTopology& topology, const glm::dvec3& x) {
   return out;
 }
 
-int triangleFacing(const EdgeTopology& topology, std::uint32_t t, const glm::dvec3& x) { return facingAt(topology, t, x); }
+int triangleFacing(const EdgeTopology& topology, std::uint32_t t, const glm::dvec3& x) {
+  return facingAt(topology, t, x);
+}
 
 bool onTriangleBorder(const EdgeTopology& topology, const glm::dvec3& x) {
   for (std::uint32_t t : trianglesNearBall(topology, x, 0.0)) {
@@ -240,7 +244,7 @@ std::size_t findEdge(const EdgeTopology& topology, std::uint32_t a, std::uint32_
                                      return std::pair{e.v0, e.v1} < k;
                                    });
   return it != topology.edges.end() && it->v0 == lo && it->v1 == hi ? std::size_t(it - topology.edges.begin())
-                                                                     : topology.edges.size();
+                                                                    : topology.edges.size();
 }
 
 void pathCrossings(const EdgeTopology& topology, const std::vector<std::uint32_t>& candidates, const glm::dvec3& c,

@@ -53,15 +53,14 @@ VolumeRule volumeRuleFor(const EdgeTopology& topology);
 
 struct PointSilhouette {
   struct SideEdge {
-    std::uint32_t edge;      // index into EdgeTopology::edges
+    std::uint32_t edge;         // index into EdgeTopology::edges
     std::int32_t multiplicity;  // m_e != 0; sign relative to the edge's v0 -> v1 direction
   };
   std::vector<SideEdge> sides;
   std::vector<std::int8_t> capSign;  // c_t per triangle (-1, 0, +1)
 };
 
-PointSilhouette extractPointSilhouette(const EdgeTopology& topology, const glm::dvec3& light,
-                                       VolumeRule rule);
+PointSilhouette extractPointSilhouette(const EdgeTopology& topology, const glm::dvec3& light, VolumeRule rule);
 
 }  // namespace penumbra::geo
 
@@ -88,8 +87,8 @@ int classifyLight(const LightExtent& light, const glm::dvec3& normal, const glm:
 // planes and m_e (as in extractPointSilhouette, with those sides as facings) is non-zero. The
 // standard silhouette is extractPointSilhouette from the light centre: it misses the first kind
 // and so underestimates penumbrae (DCS paper Fig. 4). Sorted edge indices.
-std::vector<std::uint32_t> extractAccurateSilhouette(const EdgeTopology& topology,
-                                                     const LightExtent& light, VolumeRule rule);
+std::vector<std::uint32_t> extractAccurateSilhouette(const EdgeTopology& topology, const LightExtent& light,
+                                                     VolumeRule rule);
 
 }  // namespace penumbra::geo
 

@@ -16,9 +16,7 @@ namespace penumbra::test {
 inline double squareHiddenFraction(double x, double z, double occluderHeight, double lightHeight) {
   const double s = lightHeight / occluderHeight;
   const double cx = x * (1.0 - s), cz = z * (1.0 - s), half = 0.5 * s;
-  auto overlap = [](double c, double h) {
-    return std::max(0.0, std::min(0.5, c + h) - std::max(-0.5, c - h));
-  };
+  auto overlap = [](double c, double h) { return std::max(0.0, std::min(0.5, c + h) - std::max(-0.5, c - h)); };
   return overlap(cx, half) * overlap(cz, half);
 }
 

@@ -18,7 +18,8 @@ namespace {
 
 Image uniform(int w, int h, float r, float g, float b) {
   Image img(w, h, 3);
-  for (std::size_t i = 0; i < img.pixelCount(); ++i) img.data[i * 3] = r, img.data[i * 3 + 1] = g, img.data[i * 3 + 2] = b;
+  for (std::size_t i = 0; i < img.pixelCount(); ++i)
+    img.data[i * 3] = r, img.data[i * 3 + 1] = g, img.data[i * 3 + 2] = b;
   return img;
 }
 
@@ -56,7 +57,9 @@ TEST(Flip, UniformGreysFollowThePapersRemap) {
   const double gL = 87.735, ga = -86.183 * 0.87735, gb = 83.179 * 0.87735;
   const double bL = 32.297, ba = 79.188 * 0.32297, bb = -107.860 * 0.32297;
   const double cmax = std::pow(std::abs(gL - bL) + std::hypot(ga - ba, gb - bb), 0.7);
-  auto remap = [&](double e) { return e < 0.4 * cmax ? e * 0.95 / (0.4 * cmax) : 0.95 + (e - 0.4 * cmax) / (0.6 * cmax) * 0.05; };
+  auto remap = [&](double e) {
+    return e < 0.4 * cmax ? e * 0.95 / (0.4 * cmax) : 0.95 + (e - 0.4 * cmax) / (0.6 * cmax) * 0.05;
+  };
   // Black against white: L* 0 and 100.
   EXPECT_NEAR(centre(ldrFlip(uniform(16, 16, 0, 0, 0), uniform(16, 16, 1, 1, 1))), remap(std::pow(100.0, 0.7)), 2e-3);
   // Linear 0.2 against 0.18: L* = 116 Y^(1/3) - 16.
@@ -78,8 +81,8 @@ TEST(Flip, FinePatternsFadeWithViewingDistance) {
   const double fine67 = meanOf(ldrFlip(stripes(96, 64, 1, red, green), mean));
   const double fine17 = meanOf(ldrFlip(stripes(96, 64, 1, red, green), mean, 67.02 / 4.0));
   const double coarse67 = meanOf(ldrFlip(stripes(96, 64, 8, red, green), mean));
-  std::printf("red-green stripes against their mean: 1 px at 67 ppd %.4f, at 16.8 ppd %.4f; 8 px at 67 ppd %.4f\n", fine67,
-              fine17, coarse67);
+  std::printf("red-green stripes against their mean: 1 px at 67 ppd %.4f, at 16.8 ppd %.4f; 8 px at 67 ppd %.4f\n",
+              fine67, fine17, coarse67);
   EXPECT_LT(fine67, 0.5 * fine17);
   EXPECT_LT(fine67, 0.5 * coarse67);
   EXPECT_GT(coarse67, 0.5);
@@ -160,9 +163,9 @@ TEST(Flip, HeatMapIsMagma) {
   Image map(3, 1, 1);
   map.data = {0.0f, 0.5f, 1.0f};
   const Image heat = flipHeatMap(map);
-  EXPECT_LT(heat.at(0, 0, 0), 0.01f);                             // near black
-  EXPECT_GT(heat.at(1, 0, 0), heat.at(1, 0, 1));                  // the middle: red-purple
-  EXPECT_GT(heat.at(2, 0, 1), 0.9f);                              // the top: pale yellow
+  EXPECT_LT(heat.at(0, 0, 0), 0.01f);             // near black
+  EXPECT_GT(heat.at(1, 0, 0), heat.at(1, 0, 1));  // the middle: red-purple
+  EXPECT_GT(heat.at(2, 0, 1), 0.9f);              // the top: pale yellow
   EXPECT_GT(heat.at(2, 0, 0), heat.at(2, 0, 2));
 }
 

@@ -95,8 +95,7 @@ TEST_F(ImageIoTest, ExrMultiLayerRoundTripIsBitExact) {
     EXPECT_EQ(it.channel().type, Imf::FLOAT) << it.name();
     names.push_back(it.name());
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "R", "albedo.B", "albedo.G",
-                                             "albedo.R", "vis.Y"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "R", "albedo.B", "albedo.G", "albedo.R", "vis.Y"}));
   expectError([&] { readExrLayer(path, "nope"); }, path, "nope");
 }
 
@@ -140,8 +139,7 @@ TEST_F(ImageIoTest, ExrDataWindowOffsetIsIgnored) {
   Imf::FrameBuffer fb;
   const char* names[] = {"R", "G", "B"};
   for (int c = 0; c < 3; ++c) {
-    fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, src.data.data() + c,
-                                         header.dataWindow(), 12, 48));
+    fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, src.data.data() + c, header.dataWindow(), 12, 48));
   }
   {
     Imf::OutputFile out(path.c_str(), header);
@@ -271,10 +269,9 @@ TEST_F(ImageIoTest, ExrMultiPartAndDeepFilesAreRejected) {
     std::vector<float> samples(4, 0.5f);
     std::vector<float*> pointers = {&samples[0], &samples[1], &samples[2], &samples[3]};
     Imf::DeepFrameBuffer fb;
-    fb.insertSampleCountSlice(
-        Imf::Slice(Imf::UINT, (char*)counts.data(), sizeof(unsigned), 2 * sizeof(unsigned)));
-    fb.insert("R", Imf::DeepSlice(Imf::FLOAT, (char*)pointers.data(), sizeof(float*),
-                                  2 * sizeof(float*), sizeof(float)));
+    fb.insertSampleCountSlice(Imf::Slice(Imf::UINT, (char*)counts.data(), sizeof(unsigned), 2 * sizeof(unsigned)));
+    fb.insert("R",
+              Imf::DeepSlice(Imf::FLOAT, (char*)pointers.data(), sizeof(float*), 2 * sizeof(float*), sizeof(float)));
     Imf::DeepScanLineOutputFile out(deep.c_str(), header);
     out.setFrameBuffer(fb);
     out.writePixels(2);

@@ -133,8 +133,7 @@ TEST(Metrics, EdgeBandOfAHalfPlaneIsTwoColumnsPerRadiusStep) {
   const Image img = halfBlackHalfWhite(w, h, 3);
   EXPECT_EQ(maskedColumns(edgeBandMask(img, 0), w, h), (std::vector<int>{7, 8}));
   EXPECT_EQ(maskedColumns(edgeBandMask(img, 1), w, h), (std::vector<int>{6, 7, 8, 9}));
-  EXPECT_EQ(maskedColumns(edgeBandMask(img, 3), w, h),
-            (std::vector<int>{4, 5, 6, 7, 8, 9, 10, 11}));
+  EXPECT_EQ(maskedColumns(edgeBandMask(img, 3), w, h), (std::vector<int>{4, 5, 6, 7, 8, 9, 10, 11}));
   EXPECT_EQ(maskedColumns(edgeBandMask(img, 100), w, h).size(), std::size_t(w));
 }
 
@@ -177,7 +176,7 @@ TEST(Metrics, HeatMapEndpointsAndExcludedGrey) {
     return 0.2126f * heat.at(x, 0, 0) + 0.7152f * heat.at(x, 0, 1) + 0.0722f * heat.at(x, 0, 2);
   };
   for (int c = 0; c < 3; ++c) EXPECT_LT(heat.at(0, 0, c), 0.01f);  // zero error: black
-  EXPECT_GT(heat.at(2, 0, 0), 0.9f);  // full scale: bright
+  EXPECT_GT(heat.at(2, 0, 0), 0.9f);                               // full scale: bright
   EXPECT_GT(heat.at(2, 0, 1), 0.9f);
   EXPECT_LT(luminance(0), luminance(1));
   EXPECT_LT(luminance(1), luminance(2));
@@ -199,8 +198,7 @@ TEST(Metrics, HeatMapIsMonotoneInLuminance) {
   const Image heat = errorHeatMap(a, b, 0.01f);
   float previous = -1.0f;
   for (int x = 0; x < n; ++x) {
-    const float y = 0.2126f * heat.at(x, 0, 0) + 0.7152f * heat.at(x, 0, 1) +
-                    0.0722f * heat.at(x, 0, 2);
+    const float y = 0.2126f * heat.at(x, 0, 0) + 0.7152f * heat.at(x, 0, 1) + 0.0722f * heat.at(x, 0, 2);
     EXPECT_GT(y, previous) << x;
     previous = y;
   }

@@ -36,13 +36,9 @@ void writeBytes(const std::string& path, const std::vector<unsigned char>& bytes
   out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
-float toSrgb(float v) {
-  return v <= 0.0031308f ? v * 12.92f : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
+float toSrgb(float v) { return v <= 0.0031308f ? v * 12.92f : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f; }
 
-float fromSrgb(float s) {
-  return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f);
-}
+float fromSrgb(float s) { return s <= 0.04045f ? s / 12.92f : std::pow((s + 0.055f) / 1.055f, 2.4f); }
 
 // Writes a PNG exactly as given (colour type, depth, palette, tRNS, interlace) with libpng.
 struct RawPng {
@@ -58,8 +54,7 @@ struct RawPng {
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     png_infop info = png_create_info_struct(png);
     png_init_io(png, f);
-    png_set_IHDR(png, info, width, height, bitDepth, colorType,
-                 interlaced ? PNG_INTERLACE_ADAM7 : PNG_INTERLACE_NONE,
+    png_set_IHDR(png, info, width, height, bitDepth, colorType, interlaced ? PNG_INTERLACE_ADAM7 : PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     if (!palette.empty()) png_set_PLTE(png, info, palette.data(), int(palette.size()));
     if (!paletteAlpha.empty()) {
@@ -84,10 +79,7 @@ std::uint32_t crc32(const unsigned char* p, std::size_t n) {
   return ~crc;
 }
 
-void putBigEndian(unsigned char* p, std::uint32_t v) {
-  p[0] = v >> 24, p[1] = v >> 16, p[2] = v >> 8, p[3] = v;
-}
-
+void putBigEndian(unsigned char* p, std::uint32_t v) { p[0] = v >> 24, p[1] = v >> 16, p[2] = v >> 8, p[3] = v; }
 
 using PngTest = test::TempDirTest;
 
@@ -104,8 +96,7 @@ TEST_F(PngTest, RoundTripIsWithinOneStepAfterSrgb) {
   for (int y = 0; y < 9; ++y) {
     for (int x = 0; x < 17; ++x) {
       for (int c = 0; c < 3; ++c) {
-        EXPECT_NEAR(toSrgb(back.at(x, y, c)), toSrgb(img.at(x, y, c)), 1.0f / 255.0f)
-            << x << "," << y << "," << c;
+        EXPECT_NEAR(toSrgb(back.at(x, y, c)), toSrgb(img.at(x, y, c)), 1.0f / 255.0f) << x << "," << y << "," << c;
       }
       EXPECT_EQ(back.at(x, y, 3), 1.0f);
     }
@@ -225,8 +216,8 @@ TEST_F(PngTest, OversizedHeaderIsRejectedBeforeAllocating) {
   writePng(path, Image(1, 1, 3, 0.5f));
   for (std::uint32_t size : {16385u, 1000000u}) {
     std::vector<unsigned char> bytes = readBytes(path);
-    putBigEndian(&bytes[16], size);      // IHDR width
-    putBigEndian(&bytes[20], size);      // IHDR height
+    putBigEndian(&bytes[16], size);                   // IHDR width
+    putBigEndian(&bytes[20], size);                   // IHDR height
     putBigEndian(&bytes[29], crc32(&bytes[12], 17));  // CRC over type + 13 data bytes
     writeBytes(path, bytes);
     expectError([&] { readPng(path); }, path, "larger than 16384x16384");

@@ -103,10 +103,12 @@ TEST(PassProgress, ReportsALongPassOncePerIntervalFromAnyThread) {
   auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(log);
   spdlog::default_logger()->sinks().push_back(sink);
   PassProgress quiet("quiet pass", 100, "rows", 60.0, 1.0);
-  parallelRows(100, 2, [](int, std::uint64_t&) {}, &quiet);
+  parallelRows(
+      100, 2, [](int, std::uint64_t&) {}, &quiet);
   EXPECT_EQ(quiet.reports(), 0);
   PassProgress slow("slow pass", 40, "rows", 0.0, 0.02);
-  parallelRows(40, 2, [](int, std::uint64_t&) { std::this_thread::sleep_for(std::chrono::milliseconds(5)); }, &slow);
+  parallelRows(
+      40, 2, [](int, std::uint64_t&) { std::this_thread::sleep_for(std::chrono::milliseconds(5)); }, &slow);
   spdlog::default_logger()->sinks().pop_back();
   // 40 rows of 5 ms on 2 threads: ~100 ms, a report due every 20 ms.
   EXPECT_GE(slow.reports(), 2);

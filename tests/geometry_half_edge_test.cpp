@@ -250,7 +250,8 @@ TEST(GeometryHalfEdge, SmoothCornersAgreeAtEachVertex) {
         m.positions.push_back(glm::vec3(0.0f, r == 0 ? 1.0f : -1.0f, 0.0f));
         continue;
       }
-      m.positions.push_back(glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
+      m.positions.push_back(
+          glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
     }
   }
   for (int r = 0; r < rings; ++r) {

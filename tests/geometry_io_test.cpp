@@ -78,8 +78,7 @@ TEST(GeometryIo, ObjQuadsNegativeIndicesAndAttributes) {
   ASSERT_EQ(m.uvs.size(), m.positions.size());
   // Every corner's normal is its face normal, which the winding agrees with.
   for (const glm::uvec3& t : m.triangles) {
-    const glm::vec3 n =
-        glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]);
+    const glm::vec3 n = glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]);
     EXPECT_GT(glm::dot(n, m.normals[t.x]), 0.0f);
   }
   EXPECT_EQ(m.uvs[m.triangles[0].x], glm::vec2(0, 0));
@@ -149,14 +148,16 @@ TEST(GeometryIo, LinesPointsAndVertexColoursAreCounted) {
   EXPECT_EQ(r.ignoredElements, 3u);
   EXPECT_TRUE(r.vertexColours);
   EXPECT_TRUE(r.worthWarning());
-  EXPECT_NE(r.summary().find("3 line/point elements ignored, vertex colours not used"), std::string::npos) << r.summary();
+  EXPECT_NE(r.summary().find("3 line/point elements ignored, vertex colours not used"), std::string::npos)
+      << r.summary();
   writeBytes(obj, "v 0 0 0\nv 1 0 0\nl 1 2\n");
   expectLoadError(obj, "no triangles left (0 triangles, 0 dropped, 1 line/point elements ignored");
   const std::string ply = tempPath("edges.ply");
-  writeBytes(ply, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                  "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\n"
-                  "property list uchar int vertex_indices\nelement edge 2\nproperty int vertex1\nproperty int vertex2\n"
-                  "end_header\n0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n0 1\n1 2\n");
+  writeBytes(ply,
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+             "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\n"
+             "property list uchar int vertex_indices\nelement edge 2\nproperty int vertex1\nproperty int vertex2\n"
+             "end_header\n0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n0 1\n1 2\n");
   MeshReport p;
   loadMeshFile(ply, p);
   EXPECT_EQ(p.ignoredElements, 2u);
@@ -201,8 +202,7 @@ TEST(GeometryIo, BadFilesThrowNamingTheFile) {
 
 TEST(GeometryIo, GeneratedBinaryPlyBothEndiansAndUppercaseExtension) {
   for (bool big : {false, true}) {
-    std::string ply = std::string("ply\nformat ") +
-                      (big ? "binary_big_endian" : "binary_little_endian") +
+    std::string ply = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
                       " 1.0\nelement vertex 4\nproperty double x\nproperty double y\n"
                       "property double z\nproperty uchar red\nelement face 2\n"
                       "property list uchar ushort vertex_indices\nproperty int flags\n"
@@ -232,8 +232,7 @@ TEST(GeometryIo, GeneratedBinaryStlWithNanFacet) {
   std::string stl(80, ' ');
   append(stl, std::uint32_t{3});
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  const float facets[3][9] = {
-      {0, 0, 0, 1, 0, 0, 0, 1, 0}, {1, 0, 0, 1, 1, 0, 0, 1, 0}, {1, 0, 0, nan, 1, 0, 0, 1, 0}};
+  const float facets[3][9] = {{0, 0, 0, 1, 0, 0, 0, 1, 0}, {1, 0, 0, 1, 1, 0, 0, 1, 0}, {1, 0, 0, nan, 1, 0, 0, 1, 0}};
   for (const auto& f : facets) {
     for (int i = 0; i < 3; ++i) append(stl, 0.0f);  // facet normal, ignored
     for (float c : f) append(stl, c);
@@ -255,11 +254,10 @@ TEST(GeometryIo, AssimpModels) {
     std::string file;
     std::size_t faces;
   };
-  const Case cases[] = {
-      {"PLY/Wuson.ply", 3732},        {"PLY/cube_binary.ply", 12},     {"PLY/cube.ply", 6},
-      {"OFF/Wuson.off", 3732},        {"OBJ/WusonOBJ.obj", 3732},      {"OBJ/spider.obj", 1368},
-      {"STL/Spider_ascii.stl", 1368}, {"STL/Spider_binary.stl", 1368}, {"STL/Wuson.stl", 3732},
-      {"STL/3DSMaxExport.STL", 2000}};
+  const Case cases[] = {{"PLY/Wuson.ply", 3732},        {"PLY/cube_binary.ply", 12},     {"PLY/cube.ply", 6},
+                        {"OFF/Wuson.off", 3732},        {"OBJ/WusonOBJ.obj", 3732},      {"OBJ/spider.obj", 1368},
+                        {"STL/Spider_ascii.stl", 1368}, {"STL/Spider_binary.stl", 1368}, {"STL/Wuson.stl", 3732},
+                        {"STL/3DSMaxExport.STL", 2000}};
   int loaded = 0;
   for (const Case& c : cases) {
     const std::string path = kAssimp + c.file;
@@ -314,8 +312,7 @@ TEST(GeometryIo, TruncatedAndCorruptedFilesNeverCrash) {
     for (std::size_t i = 0; i < 40; ++i) tryLoad(original.substr(0, original.size() * i / 40));
     for (int i = 0; i < 40; ++i) {
       std::string bytes = original;
-      for (int k = 0; k < 3 && !bytes.empty(); ++k)
-        bytes[rng() % bytes.size()] = kBytes[rng() % (sizeof(kBytes) - 1)];
+      for (int k = 0; k < 3 && !bytes.empty(); ++k) bytes[rng() % bytes.size()] = kBytes[rng() % (sizeof(kBytes) - 1)];
       tryLoad(bytes);
     }
   }

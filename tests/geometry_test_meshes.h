@@ -9,9 +9,8 @@ namespace penumbra::geo::test {
 // (x, y) at z = -0.5, vertices 4-7 the same at z = +0.5. Counter-clockwise seen from outside.
 inline TriangleMesh cube() {
   TriangleMesh m;
-  m.positions = {{-0.5f, -0.5f, -0.5f}, {0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, -0.5f},
-                 {-0.5f, 0.5f, -0.5f},  {-0.5f, -0.5f, 0.5f}, {0.5f, -0.5f, 0.5f},
-                 {0.5f, 0.5f, 0.5f},    {-0.5f, 0.5f, 0.5f}};
+  m.positions = {{-0.5f, -0.5f, -0.5f}, {0.5f, -0.5f, -0.5f}, {0.5f, 0.5f, -0.5f}, {-0.5f, 0.5f, -0.5f},
+                 {-0.5f, -0.5f, 0.5f},  {0.5f, -0.5f, 0.5f},  {0.5f, 0.5f, 0.5f},  {-0.5f, 0.5f, 0.5f}};
   m.triangles = {{0, 3, 2}, {0, 2, 1},   // -z
                  {4, 5, 6}, {4, 6, 7},   // +z
                  {0, 1, 5}, {0, 5, 4},   // -y

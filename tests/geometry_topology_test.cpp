@@ -38,10 +38,9 @@ TriangleMesh bumpySphere(int subdivisions, std::mt19937& rng) {
   TriangleMesh m;
   m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
                  {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                 {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                 {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                 {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   for (int s = 0; s < subdivisions; ++s) {
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
     auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
@@ -52,8 +51,7 @@ TriangleMesh bumpySphere(int subdivisions, std::mt19937& rng) {
     };
     std::vector<glm::uvec3> next;
     for (const glm::uvec3& tri : m.triangles) {
-      const std::uint32_t ab = midpoint(tri.x, tri.y), bc = midpoint(tri.y, tri.z),
-                          ca = midpoint(tri.z, tri.x);
+      const std::uint32_t ab = midpoint(tri.x, tri.y), bc = midpoint(tri.y, tri.z), ca = midpoint(tri.z, tri.x);
       next.insert(next.end(), {{tri.x, ab, ca}, {tri.y, bc, ab}, {tri.z, ca, bc}, {ab, bc, ca}});
     }
     m.triangles = std::move(next);
@@ -92,8 +90,7 @@ void expectClosedLoops(const EdgeTopology& topo, const PointSilhouette& s) {
 
 // The silhouette of a convex closed mesh, followed in the direction given by the signs, goes
 // counter-clockwise around `inside` as seen from the light.
-void expectCounterClockwise(const EdgeTopology& topo, const PointSilhouette& s, glm::dvec3 light,
-                            glm::dvec3 inside) {
+void expectCounterClockwise(const EdgeTopology& topo, const PointSilhouette& s, glm::dvec3 light, glm::dvec3 inside) {
   for (const auto& side : s.sides) {
     const EdgeTopology::Edge& e = topo.edges[side.edge];
     glm::dvec3 a(topo.weldedPositions[e.v0]), b(topo.weldedPositions[e.v1]);
@@ -120,8 +117,7 @@ TEST(GeometryTopology, CubeIsClosedWithDiagonals) {
     EXPECT_LT(topo.edges[i].v0, topo.edges[i].v1);
     EXPECT_EQ(topo.edges[i].incidenceCount, 2u);
     if (i > 0) {
-      EXPECT_LT(std::pair(topo.edges[i - 1].v0, topo.edges[i - 1].v1),
-                std::pair(topo.edges[i].v0, topo.edges[i].v1));
+      EXPECT_LT(std::pair(topo.edges[i - 1].v0, topo.edges[i - 1].v1), std::pair(topo.edges[i].v0, topo.edges[i].v1));
     }
   }
   EXPECT_NE(r.summary().find("12 triangles, 0 dropped"), std::string::npos) << r.summary();
@@ -142,9 +138,8 @@ TEST(GeometryTopology, WeldsSplitVerticesAndNegativeZero) {
 TEST(GeometryTopology, CleanMeshCountsEachProblemOnce) {
   TriangleMesh m;
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  m.positions = {{0, 0, 0},   {1, 0, 0},   {0, 1, 0},
-                 {1, 1, 0},   {nan, 0, 0}, {0.5f, 0, 0},  // on the segment 0-1
-                 {0, 0, 0},                               // a second copy of vertex 0
+  m.positions = {{0, 0, 0},   {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {nan, 0, 0}, {0.5f, 0, 0},  // on the segment 0-1
+                 {0, 0, 0},                                                                // a second copy of vertex 0
                  {0, 2e6f, 1}};
   m.triangles = {{0, 1, 2},   // kept
                  {0, 1, 99},  // invalid index
@@ -222,8 +217,7 @@ TEST(GeometrySilhouette, CubeFromTheDiagonalIsAHexagon) {
 
 TEST(GeometrySilhouette, LightInsideClosedMeshHasNoSides) {
   const EdgeTopology topo = buildEdgeTopology(cube());
-  const PointSilhouette s =
-      extractPointSilhouette(topo, {0.1, 0.2, -0.1}, VolumeRule::ClosedFrontFaces);
+  const PointSilhouette s = extractPointSilhouette(topo, {0.1, 0.2, -0.1}, VolumeRule::ClosedFrontFaces);
   EXPECT_TRUE(s.sides.empty());
 }
 
@@ -289,7 +283,8 @@ TEST(GeometryInside, PathsInAFacesPlaneMeetItsEdges) {
     ++t;
   ASSERT_LT(t, topo.weldedTriangles.size()) << "a triangle of the +x face";
   auto vertex = [&](const glm::vec3& p) {
-    return std::uint32_t(std::find(topo.weldedPositions.begin(), topo.weldedPositions.end(), p) - topo.weldedPositions.begin());
+    return std::uint32_t(std::find(topo.weldedPositions.begin(), topo.weldedPositions.end(), p) -
+                         topo.weldedPositions.begin());
   };
   const std::uint32_t a = vertex({0.5f, 0.5f, -0.5f}), b = vertex({0.5f, 0.5f, 0.5f});
   EXPECT_LT(findEdge(topo, a, b), topo.edges.size());
@@ -315,10 +310,8 @@ TEST(GeometrySilhouette, OpenQuadPerTriangle) {
   const EdgeTopology topo = buildEdgeTopology(m);
   EXPECT_EQ(volumeRuleFor(topo), VolumeRule::PerTriangle);
   const EdgeSet boundary = edgesOf({{0, 1}, {1, 2}, {2, 3}, {3, 0}});
-  const PointSilhouette above =
-      extractPointSilhouette(topo, {0.3, 2, 0.6}, VolumeRule::PerTriangle);
-  const PointSilhouette below =
-      extractPointSilhouette(topo, {0.3, -2, 0.6}, VolumeRule::PerTriangle);
+  const PointSilhouette above = extractPointSilhouette(topo, {0.3, 2, 0.6}, VolumeRule::PerTriangle);
+  const PointSilhouette below = extractPointSilhouette(topo, {0.3, -2, 0.6}, VolumeRule::PerTriangle);
   EXPECT_EQ(sideEdges(topo, above), boundary);
   EXPECT_EQ(sideEdges(topo, below), boundary);
   EXPECT_EQ(above.capSign, std::vector<std::int8_t>({1, 1}));
@@ -341,16 +334,15 @@ TEST(GeometrySilhouette, NonManifoldBook) {
   EXPECT_EQ(r.components, 1u);
   const EdgeTopology topo = buildEdgeTopology(m);
   EXPECT_EQ(topo.edges.size(), 13u);
-  const auto spine = std::find_if(topo.edges.begin(), topo.edges.end(),
-                                  [](const auto& e) { return e.incidenceCount == 3; });
+  const auto spine =
+      std::find_if(topo.edges.begin(), topo.edges.end(), [](const auto& e) { return e.incidenceCount == 3; });
   ASSERT_NE(spine, topo.edges.end());
   EXPECT_EQ(std::pair(spine->v0, spine->v1), std::pair(0u, 1u));
   // Spine triangles 1, 3, 4 traverse it 1->0, 1->0, 0->1 and face the light (0.3, 0.5, 2)
   // with normals +z, -x, +z: m = (+1)(-1) + (-1)(-1) + (+1)(+1) = 1.
   const PointSilhouette s = extractPointSilhouette(topo, {0.3, 0.5, 2}, VolumeRule::PerTriangle);
   const std::uint32_t spineIndex = static_cast<std::uint32_t>(spine - topo.edges.begin());
-  const auto side = std::find_if(s.sides.begin(), s.sides.end(),
-                                 [&](const auto& sd) { return sd.edge == spineIndex; });
+  const auto side = std::find_if(s.sides.begin(), s.sides.end(), [&](const auto& sd) { return sd.edge == spineIndex; });
   ASSERT_NE(side, s.sides.end());
   EXPECT_EQ(side->multiplicity, 1);
   int sum = 0;
@@ -374,8 +366,8 @@ TEST(GeometrySilhouette, FlippedTriangle) {
   EXPECT_EQ(r.openEdges, 0u);
   const EdgeTopology a = buildEdgeTopology(cube()), b = buildEdgeTopology(flipped);
   EXPECT_EQ(volumeRuleFor(b), VolumeRule::PerTriangle);
-  for (const glm::dvec3 light : {glm::dvec3(0, 10, 0), glm::dvec3(10, 10, 10),
-                                 glm::dvec3(0.2, -0.3, -4), glm::dvec3(0.1, 0.1, 0.1)}) {
+  for (const glm::dvec3 light :
+       {glm::dvec3(0, 10, 0), glm::dvec3(10, 10, 10), glm::dvec3(0.2, -0.3, -4), glm::dvec3(0.1, 0.1, 0.1)}) {
     const PointSilhouette sa = extractPointSilhouette(a, light, VolumeRule::PerTriangle);
     const PointSilhouette sb = extractPointSilhouette(b, light, VolumeRule::PerTriangle);
     ASSERT_EQ(sa.sides.size(), sb.sides.size());
@@ -408,12 +400,10 @@ TEST(GeometrySilhouette, LightInThePlaneOfAFace) {
   const PointSilhouette s = extractPointSilhouette(topo, light, VolumeRule::ClosedFrontFaces);
   EXPECT_EQ(sideEdges(topo, s), edgesOf({{1, 2}, {2, 6}, {6, 5}, {5, 1}}));
   // Light on a vertex and light on a ground plane: every incident face is edge-on.
-  const PointSilhouette corner =
-      extractPointSilhouette(topo, {0.5, 0.5, 0.5}, VolumeRule::PerTriangle);
+  const PointSilhouette corner = extractPointSilhouette(topo, {0.5, 0.5, 0.5}, VolumeRule::PerTriangle);
   expectClosedLoops(topo, corner);
   const EdgeTopology ground = buildEdgeTopology(openQuad());
-  const PointSilhouette onPlane =
-      extractPointSilhouette(ground, {5, 0, -3}, VolumeRule::PerTriangle);
+  const PointSilhouette onPlane = extractPointSilhouette(ground, {5, 0, -3}, VolumeRule::PerTriangle);
   EXPECT_TRUE(onPlane.sides.empty());
   EXPECT_EQ(onPlane.capSign, std::vector<std::int8_t>({0, 0}));
 }
@@ -433,8 +423,7 @@ TEST(GeometrySilhouette, MatchesBruteForceOnRandomClosedMesh) {
     for (VolumeRule rule : {VolumeRule::ClosedFrontFaces, VolumeRule::PerTriangle}) {
       const PointSilhouette s = extractPointSilhouette(topo, l, rule);
       std::map<std::pair<std::uint32_t, std::uint32_t>, int> fast;
-      for (const auto& side : s.sides)
-        fast[{topo.edges[side.edge].v0, topo.edges[side.edge].v1}] = side.multiplicity;
+      for (const auto& side : s.sides) fast[{topo.edges[side.edge].v0, topo.edges[side.edge].v1}] = side.multiplicity;
       // O(E * T): every edge against every triangle, facing recomputed from scratch.
       std::map<std::pair<std::uint32_t, std::uint32_t>, int> slow;
       for (const auto& e : topo.edges) {
@@ -472,10 +461,8 @@ TEST(GeometrySilhouette, FastOnLargeMeshes) {
   const auto start = std::chrono::steady_clock::now();
   std::size_t sides = 0;
   for (int i = 0; i < 10; ++i)
-    sides +=
-        extractPointSilhouette(topo, {3.0 + i, 2, 1}, VolumeRule::ClosedFrontFaces).sides.size();
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    sides += extractPointSilhouette(topo, {3.0 + i, 2, 1}, VolumeRule::ClosedFrontFaces).sides.size();
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   EXPECT_GT(sides, 0u);
   // A gate against a quadratic extraction (hundreds of times slower here), not a benchmark.
   // Twenty runs each (tests/spread.sh, 2026-12-06, 2 cores, other tests running beside them):

@@ -26,7 +26,9 @@ struct ShaderDir {
     unsetenv("PENUMBRA_SHADER_DIR");
     std::filesystem::remove_all(path);
   }
-  void write(const std::string& name, const std::string& text) { std::ofstream(std::string(path) + "/" + name) << text; }
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(std::string(path) + "/" + name) << text;
+  }
   void use() { setenv("PENUMBRA_SHADER_DIR", path, 1); }
 };
 
@@ -66,8 +68,11 @@ TEST(ShaderLoader, ErrorInAnIncludedFileNamesThatFileAndLine) {
   // from line 2 of the stage; probe2's own error after the includes is on its line 4.
   dir.write("inner.glsl", "// inner\nfloat ok() { return 1.0; }\nfloat bad() { return undefinedInInner; }\n");
   dir.write("outer.glsl", "// outer\n#include \"inner.glsl\"\nfloat two() { return 2.0; }\n");
-  dir.write("probe.frag", "// probe\n#include \"outer.glsl\"\nout vec4 colour;\nvoid main() { colour = vec4(ok() + two()); }\n");
-  dir.write("probe2.frag", "// probe 2\n#include \"outer.glsl\"\nout vec4 colour;\nvoid main() { colour = vec4(undefinedInStage); }\n");
+  dir.write("probe.frag",
+            "// probe\n#include \"outer.glsl\"\nout vec4 colour;\nvoid main() { colour = vec4(ok() + two()); }\n");
+  dir.write(
+      "probe2.frag",
+      "// probe 2\n#include \"outer.glsl\"\nout vec4 colour;\nvoid main() { colour = vec4(undefinedInStage); }\n");
   dir.write("fullscreen.vert", gl::shaderSource("fullscreen.vert"));
   dir.use();
   const std::string e1 = compileError({"fullscreen.vert", "probe.frag"});
@@ -99,7 +104,8 @@ TEST(ShaderLoader, AStageGetsOnlyTheDefinesItNames) {
 
 TEST(ShaderLoader, LogLocationsNameTheirFiles) {
   const std::vector<std::string> files = {"a.frag", "shared.h", "b.glsl"};
-  EXPECT_EQ(gl::nameLogLocations("0:4(12): error: x\n0:200007(1): error: y\n", files), "a.frag:4(12): error: x b.glsl:7(1): error: y");
+  EXPECT_EQ(gl::nameLogLocations("0:4(12): error: x\n0:200007(1): error: y\n", files),
+            "a.frag:4(12): error: x b.glsl:7(1): error: y");
   EXPECT_EQ(gl::nameLogLocations("0(200007) : error C1008: z\n", files), "b.glsl:7 : error C1008: z");
   // A line that encodes no file it knows stays as the driver wrote it.
   EXPECT_EQ(gl::nameLogLocations("0:900001(1): error\n", files), "0:900001(1): error");

@@ -23,18 +23,15 @@ constexpr float kOccluderHeight = 1.0f, kLightHeight = 3.0f;
 
 // Regular polygon in the plane y = h centred at (cx, cz): `sides` triangles around the centre.
 // sides == 4 with radius r*sqrt(2), rotated 45 degrees, is the axis-aligned square of side 2r.
-SceneMesh polygon(const char* name, float cx, float cz, float h, float radius, int sides,
-                  float rotation) {
+SceneMesh polygon(const char* name, float cx, float cz, float h, float radius, int sides, float rotation) {
   SceneMesh m;
   m.name = name;
   m.mesh.positions.push_back({cx, h, cz});
   for (int i = 0; i < sides; ++i) {
     const double a = rotation + 2.0 * std::numbers::pi * i / sides;
-    m.mesh.positions.push_back(
-        {cx + radius * float(std::cos(a)), h, cz + radius * float(std::sin(a))});
+    m.mesh.positions.push_back({cx + radius * float(std::cos(a)), h, cz + radius * float(std::sin(a))});
   }
-  for (int i = 0; i < sides; ++i)
-    m.mesh.triangles.push_back({0u, 1u + unsigned(i), 1u + unsigned((i + 1) % sides)});
+  for (int i = 0; i < sides; ++i) m.mesh.triangles.push_back({0u, 1u + unsigned(i), 1u + unsigned((i + 1) % sides)});
   return m;
 }
 
@@ -42,13 +39,12 @@ SceneMesh polygon(const char* name, float cx, float cz, float h, float radius, i
 Scene plateScene(bool disc) {
   Scene s;
   s.materials.push_back(Material{});
-  s.meshes.push_back(
-      polygon("floor", 0.0f, 0.0f, 0.0f, 10.0f * std::sqrt(2.0f), 4, float(std::numbers::pi / 4)));
+  s.meshes.push_back(polygon("floor", 0.0f, 0.0f, 0.0f, 10.0f * std::sqrt(2.0f), 4, float(std::numbers::pi / 4)));
   if (disc)
     s.meshes.push_back(polygon("disc", 0.0f, 0.0f, kOccluderHeight, 0.5f, 64, 0.0f));
   else
-    s.meshes.push_back(polygon("square", 0.0f, 0.0f, kOccluderHeight, 0.5f * std::sqrt(2.0f), 4,
-                               float(std::numbers::pi / 4)));
+    s.meshes.push_back(
+        polygon("square", 0.0f, 0.0f, kOccluderHeight, 0.5f * std::sqrt(2.0f), 4, float(std::numbers::pi / 4)));
   Light l;
   l.name = "light";
   l.shape = disc ? LightShape::Disk : LightShape::Rect;
@@ -118,8 +114,8 @@ void checkSameSamples(bool disc, SampleStrategy strategy, PixelPattern pattern) 
     for (int x = 0; x < g.width; ++x) {
       const std::size_t i = std::size_t(y) * g.width + x;
       // No camera in a CPU G-buffer: the origin is p + n * penumbraSurfaceEpsilon(p) (shared/numerics.h).
-      const glm::dvec3 o = glm::dvec3(g.position[i]) +
-                           glm::dvec3(g.normal[i]) * double(shared::penumbraSurfaceEpsilon(g.position[i]));
+      const glm::dvec3 o =
+          glm::dvec3(g.position[i]) + glm::dvec3(g.normal[i]) * double(shared::penumbraSurfaceEpsilon(g.position[i]));
       const int set = samples.setForPixel(x, y);
       int visible = 0, excluded = 0;
       for (int k = 0; k < 64; ++k) {
@@ -178,11 +174,9 @@ TEST(RaytraceAnalytic, ConvergedMatchesClosedForm) {
     // The polygonal disc (64 sides) hides slightly less than the circle: cos(pi/64) area ratio.
     for (int i = 0; i < g.width; ++i) {
       const glm::vec3 p = g.position[i];
-      const double want =
-          1.0 - (disc ? test::discHiddenFraction(p.x, p.z, kOccluderHeight, kLightHeight)
-                     : test::squareHiddenFraction(p.x, p.z, kOccluderHeight, kLightHeight));
-      EXPECT_NEAR(r.visibility.at(i, 0, 0), want, 0.02)
-          << (disc ? "disc" : "square") << " x=" << p.x;
+      const double want = 1.0 - (disc ? test::discHiddenFraction(p.x, p.z, kOccluderHeight, kLightHeight)
+                                      : test::squareHiddenFraction(p.x, p.z, kOccluderHeight, kLightHeight));
+      EXPECT_NEAR(r.visibility.at(i, 0, 0), want, 0.02) << (disc ? "disc" : "square") << " x=" << p.x;
     }
   }
 }
@@ -246,8 +240,10 @@ TEST(ClosedForms, BallIrradianceAcrossTheHorizon) {
       const float got = shared::penumbraBallIrradiance(glm::vec3(0.0f), n, n, centre, R);
       const double want = ballIrradianceDense(cosBeta, d, R, 20000);
       ASSERT_GE(got, 0.0f) << "a closed form where the normals agree";
-      if (cosBeta * d > R) EXPECT_NEAR(got, std::numbers::pi * R * R * cosBeta / (d * d), 1e-6);
-      else EXPECT_NEAR(got, want, 3e-5 * want + 1e-7) << "d " << d << ", cos(beta) " << cosBeta;
+      if (cosBeta * d > R)
+        EXPECT_NEAR(got, std::numbers::pi * R * R * cosBeta / (d * d), 1e-6);
+      else
+        EXPECT_NEAR(got, want, 3e-5 * want + 1e-7) << "d " << d << ", cos(beta) " << cosBeta;
       if (want > 0.0) worst = std::max(worst, std::abs(got - want) / want);
     }
   std::printf("ball irradiance: worst relative difference %.3g\n", worst);
@@ -287,8 +283,8 @@ TEST(ClosedForms, DiskIrradianceIsLambertsIntegral) {
         want += q.y / std::sqrt(d2) * std::abs(glm::dot(ln, q)) / std::sqrt(d2) / d2;
       }
     want *= std::numbers::pi * R * R / (double(n) * n);
-    const double got = shared::penumbraDiskIrradiance(glm::vec3(0.0f), up, up, glm::vec3(c), glm::vec3(t),
-                                                      glm::vec3(b), float(R));
+    const double got =
+        shared::penumbraDiskIrradiance(glm::vec3(0.0f), up, up, glm::vec3(c), glm::vec3(t), glm::vec3(b), float(R));
     EXPECT_NEAR(got, want, 2e-4 * want) << "tilt " << tilt;
     worst = std::max(worst, std::abs(got - want) / want);
   }
@@ -355,7 +351,8 @@ TEST(ClosedForms, StreamedPolygonClippingIsArrayClipping) {
     const double got = disk ? shared::penumbraDiskIrradiance(p, ng, ns, c, t, b, half.x)
                             : shared::penumbraRectIrradiance(p, ng, ns, c, t, b, half);
     const double rel = std::abs(got - want) / std::max(want, 1e-3);
-    clipped += std::any_of(poly.begin(), poly.end(), [&](const glm::dvec3& v) { return glm::dot(v, glm::dvec3(ng)) <= 0.0; });
+    clipped +=
+        std::any_of(poly.begin(), poly.end(), [&](const glm::dvec3& v) { return glm::dot(v, glm::dvec3(ng)) <= 0.0; });
     worst = std::max(worst, rel);
     ASSERT_LE(rel, 1e-3) << "case " << it << (disk ? " (disk)" : " (rect)") << ": " << got << " against " << want;
   }

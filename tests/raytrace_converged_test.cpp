@@ -117,8 +117,10 @@ TEST(ConvergedReference, QuadratureOfTheRectLightOnGlossyFloors) {
   for (const Case& c : cases()) {
     double samples = 0.0, noise = 0.0;
     const double e = relativeRmse(c, 16, {}, &samples, &noise);
-    std::printf("%-10s roughness %.2f: relative RMSE %.2e against the quadrature (its own noise %.2e), %.0f light "
-                "samples a pixel\n", c.name, c.brdf.roughness, e, noise, samples);
+    std::printf(
+        "%-10s roughness %.2f: relative RMSE %.2e against the quadrature (its own noise %.2e), %.0f light "
+        "samples a pixel\n",
+        c.name, c.brdf.roughness, e, noise, samples);
     EXPECT_LE(e, 2e-3) << c.name << " roughness " << c.brdf.roughness;
     // The noise it states is its error's size, not a flattering bound.
     EXPECT_GT(noise, e / 3) << c.name << " roughness " << c.brdf.roughness;

@@ -41,8 +41,7 @@ SceneMesh fan(float h, float radius, int sides, int material) {
     const double a = 2.0 * std::numbers::pi * i / sides;
     m.mesh.positions.push_back({radius * float(std::cos(a)), h, radius * float(std::sin(a))});
   }
-  for (int i = 0; i < sides; ++i)
-    m.mesh.triangles.push_back({0u, 1u + unsigned(i), 1u + unsigned((i + 1) % sides)});
+  for (int i = 0; i < sides; ++i) m.mesh.triangles.push_back({0u, 1u + unsigned(i), 1u + unsigned((i + 1) % sides)});
   return m;
 }
 
@@ -75,8 +74,7 @@ CpuGBuffer floorGBuffer(int w, int h, float extent) {
   g.width = w, g.height = h;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      g.position.push_back(
-          {extent * (2.0f * (x + 0.5f) / w - 1.0f), 0.0f, extent * (2.0f * (y + 0.5f) / h - 1.0f)});
+      g.position.push_back({extent * (2.0f * (x + 0.5f) / w - 1.0f), 0.0f, extent * (2.0f * (y + 0.5f) / h - 1.0f)});
       g.normal.push_back({0.0f, 1.0f, 0.0f});
       g.valid.push_back(1);
     }
@@ -97,8 +95,7 @@ Scene clutterScene() {
   for (int i = 0; i < 400; ++i) {
     const float x = -2.0f + 0.2f * (i % 20), z = -2.0f + 0.2f * (i / 20), y = 0.5f + 0.001f * i;
     const unsigned b = unsigned(bits.mesh.positions.size());
-    bits.mesh.positions.insert(bits.mesh.positions.end(),
-                               {{x, y, z}, {x + 0.05f, y, z}, {x, y + 0.05f, z + 0.05f}});
+    bits.mesh.positions.insert(bits.mesh.positions.end(), {{x, y, z}, {x + 0.05f, y, z}, {x, y + 0.05f, z + 0.05f}});
     bits.mesh.triangles.push_back({b, b + 1, b + 2});
   }
   s.meshes.push_back(bits);
@@ -217,8 +214,7 @@ TEST(Raytrace, InvalidPixelsAreZero) {
   const EmbreeReference rt(s, 1);
   CpuGBuffer g = floorGBuffer(2, 2, 1.0f);
   g.valid[3] = 0;
-  const VisibilityResult r =
-      rt.sameSamples(g, makeLightSamples(s, rectLight(2.0f, 1.0f), SamplingParams{4}));
+  const VisibilityResult r = rt.sameSamples(g, makeLightSamples(s, rectLight(2.0f, 1.0f), SamplingParams{4}));
   EXPECT_EQ(r.visibility.at(0, 0, 0), 1.0f);
   EXPECT_EQ(r.visibility.at(1, 1, 0), 0.0f);
   EXPECT_EQ(r.perSample[3 * 4], 0.0f);
@@ -267,9 +263,7 @@ TEST(Raytrace, DeterministicAcrossThreadCounts) {
   ASSERT_EQ(a.perSample.size(), b.perSample.size());
   EXPECT_EQ(std::memcmp(a.perSample.data(), b.perSample.data(), a.perSample.size() * 4), 0);
   EXPECT_EQ(std::memcmp(a.perSample.data(), c.perSample.data(), a.perSample.size() * 4), 0);
-  EXPECT_EQ(
-      std::memcmp(a.visibility.data.data(), b.visibility.data.data(), a.visibility.data.size() * 4),
-      0);
+  EXPECT_EQ(std::memcmp(a.visibility.data.data(), b.visibility.data.data(), a.visibility.data.size() * 4), 0);
   // The scene does produce fractional transmittance, umbra and light.
   int partial = 0, zero = 0, one_ = 0;
   for (float t : a.perSample) partial += t > 0.0f && t < 1.0f, zero += t == 0.0f, one_ += t == 1.0f;
@@ -278,9 +272,7 @@ TEST(Raytrace, DeterministicAcrossThreadCounts) {
   EXPECT_GT(one_, 1000);
   const VisibilityResult ca = one.converged(g, s.lights[0], s, {.minSamples = 64});
   const VisibilityResult cb = two.converged(g, s.lights[0], s, {.minSamples = 64});
-  EXPECT_EQ(std::memcmp(ca.visibility.data.data(), cb.visibility.data.data(),
-                        ca.visibility.data.size() * 4),
-            0);
+  EXPECT_EQ(std::memcmp(ca.visibility.data.data(), cb.visibility.data.data(), ca.visibility.data.size() * 4), 0);
 }
 
 TEST(Raytrace, StreamsMatchSingleSegments) {
@@ -336,9 +328,10 @@ TEST(Raytrace, SurfaceEpsilonIsRelativeToThePoint) {
   using shared::penumbraSurfaceEpsilon;
   EXPECT_EQ(penumbraSurfaceEpsilon(glm::vec3(1.0f, -3.0f, 2.0f)), 3.0f / 32768.0f);
   EXPECT_EQ(penumbraSurfaceEpsilon(glm::vec3(0.0f)), std::ldexp(1.0f, -115));  // the floor keeps it positive
-  for (const glm::vec3 p : {glm::vec3(0.3f, 1.7f, -2.9f), glm::vec3(1e5f, 3.0f, -1e5f), glm::vec3(-7e-2f, 0.0f, 4e-2f)}) {
+  for (const glm::vec3 p :
+       {glm::vec3(0.3f, 1.7f, -2.9f), glm::vec3(1e5f, 3.0f, -1e5f), glm::vec3(-7e-2f, 0.0f, 4e-2f)}) {
     const float e = penumbraSurfaceEpsilon(p);
-    EXPECT_EQ(penumbraSurfaceEpsilon(-p), e);              // mirrored
+    EXPECT_EQ(penumbraSurfaceEpsilon(-p), e);                     // mirrored
     EXPECT_EQ(penumbraSurfaceEpsilon(1024.0f * p), 1024.0f * e);  // scaled (a power of two: exact)
     // The origin leaves its surface by far more than the float spacing at p, at every magnitude.
     const glm::vec3 n(0.0f, 1.0f, 0.0f);
@@ -366,9 +359,8 @@ TEST(Raytrace, Throughput) {
     const auto t0 = std::chrono::steady_clock::now();
     rt.sameSamples(g, samples);
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("[ rays/s   ] %s: %.0f rays in %.3f s = %.2f M rays/s\n",
-                semiOpaque ? "semi-opaque" : "opaque", rt.raysCast(), sec,
-                rt.raysCast() / sec * 1e-6);
+    std::printf("[ rays/s   ] %s: %.0f rays in %.3f s = %.2f M rays/s\n", semiOpaque ? "semi-opaque" : "opaque",
+                rt.raysCast(), sec, rt.raysCast() / sec * 1e-6);
     EXPECT_GT(rt.raysCast(), 128.0 * 128 * 60);
   }
 }

@@ -17,7 +17,8 @@ namespace penumbra::test {
 namespace {
 
 std::size_t runsOf(const CompareResult& r, const std::string& technique) {
-  return std::size_t(std::count_if(r.runs.begin(), r.runs.end(), [&](auto& run) { return run.technique == technique; }));
+  return std::size_t(
+      std::count_if(r.runs.begin(), r.runs.end(), [&](auto& run) { return run.technique == technique; }));
 }
 
 TEST(Compare, SweepPresetsAndDeduplication) {
@@ -87,7 +88,8 @@ TEST_F(CompareFailure, AFailedTechniqueIsItsRowAndTheOthersGoOn) {
     return std::string(std::istreambuf_iterator<char>(in), {});
   };
   std::string table = read("table.txt");
-  EXPECT_NE(table.find("vssm                             FAILED: vssm: map size 1000 is not a power of two"), std::string::npos)
+  EXPECT_NE(table.find("vssm                             FAILED: vssm: map size 1000 is not a power of two"),
+            std::string::npos)
       << table;
   EXPECT_NE(table.find("hard-sv "), std::string::npos);
   nlohmann::json j = nlohmann::json::parse(read("report.json"));
@@ -228,9 +230,15 @@ TEST(Compare, FlickerIsZeroOnAStillAndExactForDcs) {
   for (auto& run : r.runs) {
     if (run.reference) continue;
     EXPECT_GT(run.referenceMotion, 0.01) << "the blades' shadows move";
-    if (run.technique == "dcs") { EXPECT_LT(run.flicker, 1e-4) << "dcs changes exactly as the reference"; }
-    if (run.technique == "mvr") { EXPECT_LT(run.flicker, 0.05); }
-    if (run.technique == "hard-sv") { EXPECT_GT(run.flicker, 0.01) << "hard shadows do not move like soft ones"; }
+    if (run.technique == "dcs") {
+      EXPECT_LT(run.flicker, 1e-4) << "dcs changes exactly as the reference";
+    }
+    if (run.technique == "mvr") {
+      EXPECT_LT(run.flicker, 0.05);
+    }
+    if (run.technique == "hard-sv") {
+      EXPECT_GT(run.flicker, 0.01) << "hard shadows do not move like soft ones";
+    }
     EXPECT_GE(run.meanFrameRmse, 0.0);
   }
   EXPECT_TRUE(r.hasTemporal());
@@ -239,7 +247,7 @@ TEST(Compare, FlickerIsZeroOnAStillAndExactForDcs) {
 
 TEST(Compare, PosedSceneMovesOnlyWhatSpins) {
   Scene fan = loadScene(scenePath("scenes/spinning-fan.json"));
-  Scene later = fan.posedAt(3.0f);  // blades 90 degrees on: the cross looks the same
+  Scene later = fan.posedAt(3.0f);    // blades 90 degrees on: the cross looks the same
   Scene quarter = fan.posedAt(1.5f);  // 45 degrees
   for (std::size_t m = 0; m < fan.meshes.size(); ++m) {
     const auto& a = fan.meshes[m].mesh.positions;
@@ -247,8 +255,11 @@ TEST(Compare, PosedSceneMovesOnlyWhatSpins) {
     ASSERT_EQ(a.size(), b.size());
     float moved = 0.0f;
     for (std::size_t i = 0; i < a.size(); ++i) moved = std::max(moved, glm::length(a[i] - b[i]));
-    if (fan.meshes[m].spin.active()) { EXPECT_GT(moved, 0.1f) << fan.meshes[m].name; }
-    else { EXPECT_EQ(moved, 0.0f) << fan.meshes[m].name; }
+    if (fan.meshes[m].spin.active()) {
+      EXPECT_GT(moved, 0.1f) << fan.meshes[m].name;
+    } else {
+      EXPECT_EQ(moved, 0.0f) << fan.meshes[m].name;
+    }
   }
   // The light turns 6 degrees/s about the vertical through the origin; its height is kept.
   EXPECT_NEAR(later.lights[0].position.y, fan.lights[0].position.y, 1e-5f);

@@ -280,15 +280,18 @@ TEST(Pipeline, ComputedNormalsAreSmoothWithinTheCreaseAngle) {
     ASSERT_EQ(m.normals.size(), m.positions.size()) << shape;
     std::size_t smooth = 0;  // corners whose normal is not their face's
     for (const glm::uvec3& t : m.triangles) {
-      const glm::vec3 f = glm::normalize(glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]));
+      const glm::vec3 f =
+          glm::normalize(glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]));
       for (int k = 0; k < 3; ++k) {
         EXPECT_NEAR(glm::length(m.normals[t[k]]), 1.0f, 1e-5f) << shape;
         EXPECT_GT(glm::dot(m.normals[t[k]], f), 0.7f) << shape << ": within the crease angle of its face";
         smooth += glm::dot(m.normals[t[k]], f) < 1.0f - 1e-5f;
       }
     }
-    if (std::string(shape) == "box") EXPECT_EQ(smooth, 0u) << "a cube's corners keep their faces' normals";
-    else EXPECT_GT(smooth, m.triangles.size()) << "the cylinder's side is smooth";
+    if (std::string(shape) == "box")
+      EXPECT_EQ(smooth, 0u) << "a cube's corners keep their faces' normals";
+    else
+      EXPECT_GT(smooth, m.triangles.size()) << "the cylinder's side is smooth";
   }
 }
 namespace {
@@ -296,10 +299,10 @@ namespace {
 // through the V-only path (none) and the per-sample one (raytrace), and checks every floor pixel
 // against `expected(p)` (the outgoing radiance at world point p; NaN: not checked) to
 // `tolerance` relative; and the converged reference's own shaded image (MIS to a 1e-3 relative
-// standard error per pixel) to `convergedTolerance`, its worst pixel's Monte Carlo error. For all, the mean relative error
-// over the floor (a bias; the noise averages out) stays within 1e-3.
-// The lit floor (albedo 0.5, exact in the G-buffer's half floats) under one light of `shape`
-// at `position` of `size` (rect: width and height; disk and sphere: the radius in x).
+// standard error per pixel) to `convergedTolerance`, its worst pixel's Monte Carlo error. For all, the mean relative
+// error over the floor (a bias; the noise averages out) stays within 1e-3. The lit floor (albedo 0.5, exact in the
+// G-buffer's half floats) under one light of `shape` at `position` of `size` (rect: width and height; disk and sphere:
+// the radius in x).
 Scene floorUnder(LightShape shape, glm::vec3 position, glm::vec2 size) {
   Scene scene = litFloor(1.0f);
   scene.materials[0].baseColor = glm::vec3(0.5f);
@@ -363,11 +366,15 @@ void expectRatioShadingIsClosedForm(const Scene& scene, Expected expected, doubl
 TEST(Pipeline, RatioShadingOfAnUnoccludedRectIsLambertsFormula) {
   const Scene scene = floorUnder(LightShape::Rect, {0.5f, 1.0f, 0.25f}, {1.2f, 0.6f});
   const Light& light = scene.lights[0];
-  expectRatioShadingIsClosedForm(scene, [&](const glm::dvec3& p) {
-    return 0.5 * double(light.intensity) *
-           parallelRectFormFactor(light.position.x - 0.6 - p.x, light.position.x + 0.6 - p.x,
-                                  light.position.z - 0.3 - p.z, light.position.z + 0.3 - p.z, light.position.y - p.y);
-  }, 5e-3);  // the converged reference, 1e-3 standard error a pixel: its worst of 7,286 measured 3.2e-3 (3.2 sigma)
+  expectRatioShadingIsClosedForm(
+      scene,
+      [&](const glm::dvec3& p) {
+        return 0.5 * double(light.intensity) *
+               parallelRectFormFactor(light.position.x - 0.6 - p.x, light.position.x + 0.6 - p.x,
+                                      light.position.z - 0.3 - p.z, light.position.z + 0.3 - p.z,
+                                      light.position.y - p.y);
+      },
+      5e-3);  // the converged reference, 1e-3 standard error a pixel: its worst of 7,286 measured 3.2e-3 (3.2 sigma)
 }
 
 // The same for a sphere light wholly above the floor: Newton's theorem for the ball of isotropic
@@ -376,11 +383,14 @@ TEST(Pipeline, RatioShadingOfAnUnoccludedRectIsLambertsFormula) {
 TEST(Pipeline, RatioShadingOfAnUnoccludedSphereLightIsItsClosedForm) {
   const Scene scene = floorUnder(LightShape::Sphere, {0.5f, 1.2f, 0.25f}, {0.3f, 0.3f});
   const Light& light = scene.lights[0];
-  expectRatioShadingIsClosedForm(scene, [&](const glm::dvec3& p) {
-    const glm::dvec3 d = glm::dvec3(light.position) - p;
-    const double r = glm::length(d), R = light.size.x;
-    return 0.5 * double(light.intensity) * R * R * d.y / (r * r * r);
-  }, 8e-3);  // the converged reference: measured 3.6e-3 (5.4e-3 with 1024 light samples alone)
+  expectRatioShadingIsClosedForm(
+      scene,
+      [&](const glm::dvec3& p) {
+        const glm::dvec3 d = glm::dvec3(light.position) - p;
+        const double r = glm::length(d), R = light.size.x;
+        return 0.5 * double(light.intensity) * R * R * d.y / (r * r * r);
+      },
+      8e-3);  // the converged reference: measured 3.6e-3 (5.4e-3 with 1024 light samples alone)
 }
 
 // The sphere light across the floor's plane (the horizon-crossing case, the
@@ -391,14 +401,17 @@ TEST(Pipeline, RatioShadingOfAnUnoccludedSphereLightIsItsClosedForm) {
 TEST(Pipeline, RatioShadingOfASphereLightAcrossTheHorizonIsItsClosedForm) {
   const Scene scene = floorUnder(LightShape::Sphere, {0.5f, 0.12f, 0.25f}, {0.3f, 0.3f});
   const Light& light = scene.lights[0];
-  expectRatioShadingIsClosedForm(scene, [&](const glm::dvec3& p) {
-    const glm::vec3 up(0.0f, 1.0f, 0.0f);
-    const glm::dvec3 d = glm::dvec3(light.position) - p;
-    if (glm::length(d) < 1.1 * light.size.x) return std::nan("");
-    return 0.5 / std::numbers::pi * double(light.intensity) *
-           double(shared::penumbraBallIrradiance(glm::vec3(p), up, up, light.position, light.size.x));
-  }, 0.03);  // the converged reference (MIS, 8192 samples at most): measured 0.0166 next to the
-             // ball (0.094 with 1024 light samples alone); its mean relative error (bias) 2e-5
+  expectRatioShadingIsClosedForm(
+      scene,
+      [&](const glm::dvec3& p) {
+        const glm::vec3 up(0.0f, 1.0f, 0.0f);
+        const glm::dvec3 d = glm::dvec3(light.position) - p;
+        if (glm::length(d) < 1.1 * light.size.x) return std::nan("");
+        return 0.5 / std::numbers::pi * double(light.intensity) *
+               double(shared::penumbraBallIrradiance(glm::vec3(p), up, up, light.position, light.size.x));
+      },
+      0.03);  // the converged reference (MIS, 8192 samples at most): measured 0.0166 next to the
+              // ball (0.094 with 1024 light samples alone); its mean relative error (bias) 2e-5
 }
 
 // The same for a disk light (the equal-area 32-gon through Lambert's formula, shading/shaders/shading.h
@@ -408,10 +421,13 @@ TEST(Pipeline, RatioShadingOfASphereLightAcrossTheHorizonIsItsClosedForm) {
 TEST(Pipeline, RatioShadingOfAnUnoccludedDiskLightIsItsClosedForm) {
   const Scene scene = floorUnder(LightShape::Disk, {0.5f, 1.0f, 0.25f}, {0.5f, 0.5f});
   const Light& light = scene.lights[0];
-  expectRatioShadingIsClosedForm(scene, [&](const glm::dvec3& p) {
-    const double rho = std::hypot(light.position.x - p.x, light.position.z - p.z);
-    return 0.5 * double(light.intensity) * parallelDiskFormFactor(rho, light.position.y - p.y, light.size.x);
-  }, 5e-3);  // the converged reference, 1e-3 standard error a pixel: its worst of 7,286 measured 3.2e-3 (3.2 sigma)
+  expectRatioShadingIsClosedForm(
+      scene,
+      [&](const glm::dvec3& p) {
+        const double rho = std::hypot(light.position.x - p.x, light.position.z - p.z);
+        return 0.5 * double(light.intensity) * parallelDiskFormFactor(rho, light.position.y - p.y, light.size.x);
+      },
+      5e-3);  // the converged reference, 1e-3 standard error a pixel: its worst of 7,286 measured 3.2e-3 (3.2 sigma)
 }
 
 // Where no closed form is in (here the default scene's textured light made a sphere: neither the
@@ -467,7 +483,8 @@ TEST(Pipeline, GlossyShadingIsTheSharedBrdfOnGpuAndCpu) {
         glm::dvec3 sum(0.0);
         for (int k = 0; k < set.count; ++k) {
           const glm::vec3 xk = set.position(set.setForPixel(x, y), k);
-          const float geometry = shared::penumbraSampleGeometry(p, g.normal[i], g.shadingNormal[i], xk, set.lightNormal);
+          const float geometry =
+              shared::penumbraSampleGeometry(p, g.normal[i], g.shadingNormal[i], xk, set.lightNormal);
           const glm::vec3 brdf = shared::penumbraBrdf(g.shadingNormal[i], v, glm::normalize(xk - p), g.baseColor[i],
                                                       g.material[i].x, g.material[i].y, int(g.material[i].z + 0.5f));
           sum += glm::dvec3(brdf) * double(geometry);
@@ -480,14 +497,15 @@ TEST(Pipeline, GlossyShadingIsTheSharedBrdfOnGpuAndCpu) {
         }
         ++pixels;
       }
-    std::printf("metallic %.0f: %zu pixels, peak radiance %.3g, worst relative difference %.3g\n", metallic, pixels, peak,
-                worst);
+    std::printf("metallic %.0f: %zu pixels, peak radiance %.3g, worst relative difference %.3g\n", metallic, pixels,
+                peak, worst);
     EXPECT_GT(pixels, 4000u);
     EXPECT_EQ(g.material[g.width * (g.height / 2) + g.width / 2].z, float(PENUMBRA_BRDF_METALLIC_ROUGHNESS));
     EXPECT_LE(worst, 1e-4) << "metallic " << metallic;
 
     // 1024 of each strategy a pixel (the sanitizer run's budget): far below 128 samples' noise.
-    auto converged = makeTechnique("raytrace-converged", params({"reference-samples=1024", "reference-max-samples=1024"}));
+    auto converged =
+        makeTechnique("raytrace-converged", params({"reference-samples=1024", "reference-max-samples=1024"}));
     FrameResult c = renderer.render(*converged, "raytrace-converged");
     ErrorStats e = compareImages(f.color, c.color);
     std::printf("metallic %.0f: 128 samples against the converged shaded image: RMSE %.4g (%.3g of the peak)\n",
@@ -550,12 +568,14 @@ FloorErrors unshadowedFloorErrors(const Scene& scene) {
 TEST(Pipeline, LtcSpecularAgainstTheConvergedShadedReference) {
   for (LightShape shape : {LightShape::Rect, LightShape::Disk})
     for (float metallic : {0.0f, 1.0f}) {
-      Scene scene = floorUnder(shape, {0.0f, 1.5f, -1.0f}, shape == LightShape::Rect ? glm::vec2(1.2f, 0.6f) : glm::vec2(0.5f));
+      Scene scene =
+          floorUnder(shape, {0.0f, 1.5f, -1.0f}, shape == LightShape::Rect ? glm::vec2(1.2f, 0.6f) : glm::vec2(0.5f));
       makeGlossy(scene.materials[0], metallic);
       const FloorErrors e = unshadowedFloorErrors(scene);
-      std::printf("%s light, metallic %.0f: floor mean %.3g, peak %.3g; ratio (LTC): relative RMSE %.4f, bias %+.4f; "
-                  "eq. 6 at N = 16: relative RMSE %.4f\n", shape == LightShape::Rect ? "rect" : "disk", metallic, e.mean,
-                  e.peak, e.ratio, e.bias, e.sum);
+      std::printf(
+          "%s light, metallic %.0f: floor mean %.3g, peak %.3g; ratio (LTC): relative RMSE %.4f, bias %+.4f; "
+          "eq. 6 at N = 16: relative RMSE %.4f\n",
+          shape == LightShape::Rect ? "rect" : "disk", metallic, e.mean, e.peak, e.ratio, e.bias, e.sum);
       // Measured on llvmpipe (64 px): rect 0.0039 / 0.047 (dielectric / metal), disk 0.0047 / 0.050; bias
       // -0.0000 / +0.0014 (the fit of 2026-12-03 with the hemisphere's Fresnel split: rect 0.0085 /
       // 0.075, disk 0.0089 / 0.072, bias +0.0006 / -0.0145). Eq. 6 with 16 samples: 0.046 / 0.62-0.64.
@@ -576,14 +596,17 @@ TEST(Pipeline, PrefilteredTexturedLightAgainstTheConvergedShadedReference) {
   const Image glass = readPng(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/textures/stained-glass.png");
   for (LightShape shape : {LightShape::Rect, LightShape::Disk})
     for (bool glossy : {false, true}) {
-      Scene scene = floorUnder(shape, {0.0f, 1.5f, -1.0f}, shape == LightShape::Rect ? glm::vec2(1.2f, 1.2f) : glm::vec2(0.6f));
+      Scene scene =
+          floorUnder(shape, {0.0f, 1.5f, -1.0f}, shape == LightShape::Rect ? glm::vec2(1.2f, 1.2f) : glm::vec2(0.6f));
       if (glossy) makeGlossy(scene.materials[0], 0.0f);
       scene.textures.push_back({"stained-glass.png", glass});
       scene.lights[0].emissionFrames = {0};
       const FloorErrors e = unshadowedFloorErrors(scene);
-      std::printf("textured %s light, %s floor: mean %.3g, peak %.3g; ratio (prefiltered): relative RMSE %.4f, bias "
-                  "%+.4f; eq. 6 at N = 16: relative RMSE %.4f\n", shape == LightShape::Rect ? "rect" : "disk",
-                  glossy ? "glossy" : "Lambertian", e.mean, e.peak, e.ratio, e.bias, e.sum);
+      std::printf(
+          "textured %s light, %s floor: mean %.3g, peak %.3g; ratio (prefiltered): relative RMSE %.4f, bias "
+          "%+.4f; eq. 6 at N = 16: relative RMSE %.4f\n",
+          shape == LightShape::Rect ? "rect" : "disk", glossy ? "glossy" : "Lambertian", e.mean, e.peak, e.ratio,
+          e.bias, e.sum);
       // Measured on llvmpipe (64 px) against the reference capped at 4096 samples: rect 0.0235 /
       // 0.0337 (Lambertian / glossy), disk 0.0192 / 0.0316 (96 px, at 8192: 0.0197 / 0.0297,
       // 0.0165 / 0.0297: part of this is the reference's noise under a textured light); bias
@@ -638,8 +661,10 @@ void expectTheUnshadowedGoal(float metallic) {
       error[mode == ShadingMode::RatioExact] = std::sqrt(se / norm);
     }
     const double noise = referenceNoise(reference)->shaded;
-    std::printf("%s roughness %.1f: none against the converged reference, relative RMSE: ratio (LTC) %.4f, "
-                "ratio-exact %.4f\n", metallic > 0.0f ? "metal" : "dielectric", roughness, error[0], error[1]);
+    std::printf(
+        "%s roughness %.1f: none against the converged reference, relative RMSE: ratio (LTC) %.4f, "
+        "ratio-exact %.4f\n",
+        metallic > 0.0f ? "metal" : "dielectric", roughness, error[0], error[1]);
     EXPECT_LE(error[1], 0.01) << "ratio-exact";
     EXPECT_LE(error[0], metallic > 0.0f ? (roughness > 0.4f ? 0.04 : 0.01) : 0.01) << "the LTC";
     EXPECT_GT(noise, 0.0);

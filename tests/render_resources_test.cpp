@@ -42,7 +42,8 @@ std::vector<long> liveCounts() {
 
 std::string describe(const std::vector<long>& v) {
   std::string s;
-  for (int k = 0; k < int(gl::Kind::Count); ++k) s += std::string(gl::toString(gl::Kind(k))) + " " + std::to_string(v[k]) + ", ";
+  for (int k = 0; k < int(gl::Kind::Count); ++k)
+    s += std::string(gl::toString(gl::Kind(k))) + " " + std::to_string(v[k]) + ", ";
   return s;
 }
 
@@ -55,9 +56,8 @@ struct Case {
   const char* technique;
   std::vector<std::string> params;
 };
-const std::vector<Case> kCases = {{"hard-sv", {}},          {"dcs", {}},
-                                  {"mvr", {"map=128"}},     {"vwss", {"map=128"}},
-                                  {"pcss", {"map=128"}},    {"vssm", {"map=128"}}};
+const std::vector<Case> kCases = {{"hard-sv", {}},       {"dcs", {}},           {"mvr", {"map=128"}},
+                                  {"vwss", {"map=128"}}, {"pcss", {"map=128"}}, {"vssm", {"map=128"}}};
 
 // Two measures of memory growth over the measured renders, after three warm-up rounds that fill
 // the driver's and the allocator's caches. The leak criterion is the heap in use (glibc's
@@ -88,9 +88,9 @@ constexpr long kRssBoundKiB = 24 * 1024;
 // On zink the test bounds the whole growth by one budget, kRssBoundKiB and this much per dcs
 // render: charging the dcs renders what RSS grew across each of them and the rest the remainder
 // left no margin (the driver frees some of a render's memory only later: over twenty runs the
-// remainder spread from -21.7 to +8.1 MiB, 72 KiB under its 8 MiB bound at worst). Twenty runs on zink (2026-12-06): the
-// dcs renders 24.9-27.5 MiB each, the whole growth at most 8.1 + 14 x 27.5 = 394 MiB against a
-// budget of 8 + 14 x 32 = 456 MiB.
+// remainder spread from -21.7 to +8.1 MiB, 72 KiB under its 8 MiB bound at worst). Twenty runs on zink (2026-12-06):
+// the dcs renders 24.9-27.5 MiB each, the whole growth at most 8.1 + 14 x 27.5 = 394 MiB against a budget of 8 + 14 x
+// 32 = 456 MiB.
 constexpr long kZinkDcsRenderBoundKiB = 32 * 1024;
 constexpr int kSize = 128, kSamples = 8;
 constexpr int kWarmupRounds = 3, kRounds = 14;  // 6 x 17 = 102 renders
@@ -147,11 +147,12 @@ TEST(RenderResources, FreshRenderersLeakNothing) {
   const long rss1 = rssKiB(), heap1 = heapInUseKiB();
   // zink: the driver's memory per compiled dcs program set joins both budgets (see above).
   const long zinkAllowance = long(zinkDcsRenders) * kZinkDcsRenderBoundKiB;
-  std::printf("[ resources ] %d renders of %d px: live GL objects %ld before, up to %ld during a render, %ld after; "
-              "over the last %d: heap in use %+ld KiB (bound %ld), VmRSS %ld KiB -> %ld KiB (%+ld KiB, bound %ld)%s\n",
-              renders, kSize, std::accumulate(baseline.begin(), baseline.end(), 0L), during, gl::liveObjectCount(),
-              kRounds * int(kCases.size()), heap1 - heap0, kHeapBoundKiB + zinkAllowance, rss0, rss1, rss1 - rss0,
-              kRssBoundKiB + zinkAllowance, kCheckMemory ? "" : ", not checked under ASan");
+  std::printf(
+      "[ resources ] %d renders of %d px: live GL objects %ld before, up to %ld during a render, %ld after; "
+      "over the last %d: heap in use %+ld KiB (bound %ld), VmRSS %ld KiB -> %ld KiB (%+ld KiB, bound %ld)%s\n",
+      renders, kSize, std::accumulate(baseline.begin(), baseline.end(), 0L), during, gl::liveObjectCount(),
+      kRounds * int(kCases.size()), heap1 - heap0, kHeapBoundKiB + zinkAllowance, rss0, rss1, rss1 - rss0,
+      kRssBoundKiB + zinkAllowance, kCheckMemory ? "" : ", not checked under ASan");
   RecordProperty("heap_growth_kib", std::to_string(heap1 - heap0));
   RecordProperty("rss_growth_kib", std::to_string(rss1 - rss0));
   if (zink) {
@@ -160,7 +161,8 @@ TEST(RenderResources, FreshRenderersLeakNothing) {
     RecordProperty("zink_dcs_rss_growth_kib_per_render", std::to_string(zinkDcsGrowth / std::max(zinkDcsRenders, 1)));
   }
   if (kCheckMemory) {
-    EXPECT_LT(heap1 - heap0, kHeapBoundKiB + zinkAllowance) << "heap in use grew from " << heap0 << " to " << heap1 << " KiB";
+    EXPECT_LT(heap1 - heap0, kHeapBoundKiB + zinkAllowance)
+        << "heap in use grew from " << heap0 << " to " << heap1 << " KiB";
     EXPECT_LT(rss1 - rss0, kRssBoundKiB + zinkAllowance) << "VmRSS grew from " << rss0 << " to " << rss1 << " KiB";
   }
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
@@ -198,9 +200,11 @@ TEST(RenderResources, ReusedRendererIsStable) {
         EXPECT_EQ(liveCounts(), after) << c.technique << " frame " << i + 2 << ": " << describe(liveCounts());
       }
       const long rssGrowth = rssKiB() - rss0, heapGrowth = heapInUseKiB() - heap0;
-      std::printf("[ resources ] reused renderer, %s: over 16 frames heap in use %+ld KiB (bound %ld), VmRSS %+ld KiB "
-                  "(bound %ld)%s\n", c.technique, heapGrowth, kHeapBoundKiB, rssGrowth, kRssBoundKiB,
-                  kCheckMemory ? "" : ", not checked under ASan");
+      std::printf(
+          "[ resources ] reused renderer, %s: over 16 frames heap in use %+ld KiB (bound %ld), VmRSS %+ld KiB "
+          "(bound %ld)%s\n",
+          c.technique, heapGrowth, kHeapBoundKiB, rssGrowth, kRssBoundKiB,
+          kCheckMemory ? "" : ", not checked under ASan");
       RecordProperty(std::string("heap_growth_kib_") + c.technique, std::to_string(heapGrowth));
       RecordProperty(std::string("rss_growth_kib_") + c.technique, std::to_string(rssGrowth));
       if (kCheckMemory) {

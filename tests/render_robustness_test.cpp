@@ -80,8 +80,8 @@ TEST(Robustness, ConvergedReferenceMatchesTheClosedFormAtEveryFloorSize) {
         noise.add((v - double(second.visibility.at(x, y, 0))) / std::sqrt(2.0));
       }
     ASSERT_GT(penumbra, 300) << "floor " << size;
-    std::printf("floor %s: converged reference RMSE vs closed form %.5f, sampling noise %.5f (%d penumbra px)\n",
-                size, error.value(), noise.value(), penumbra);
+    std::printf("floor %s: converged reference RMSE vs closed form %.5f, sampling noise %.5f (%d penumbra px)\n", size,
+                error.value(), noise.value(), penumbra);
     RecordProperty(std::string("rmse_floor_") + size, std::to_string(error.value()));
     EXPECT_LE(error.value(), 1.5 * noise.value()) << "floor " << size;
     errors.push_back(error.value());
@@ -127,7 +127,7 @@ TEST(Robustness, FarFromTheOriginEqualsTheUntranslatedScene) {
   Scene fromFile = loadScene(scenePath("scenes/hard/26-cube-far-1e5.json"));
   Scene inCode = translated(near, {1e5f, 0.0f, 1e5f});
   // Usual tolerances: exact techniques 1e-3; the shadow-map ones their own same-scene error.
-  const std::pair<const char*, double> techniques[] = {{"raytrace", 1e-3}, {"dcs", 1e-3}, {"hard-sv", 1e-3},
+  const std::pair<const char*, double> techniques[] = {{"raytrace", 1e-3}, {"dcs", 1e-3},  {"hard-sv", 1e-3},
                                                        {"mvr", 0.01},      {"pcss", 0.02}, {"vssm", 0.02}};
   for (auto [technique, tolerance] : techniques) {
     auto render = [&](const Scene& scene) {
@@ -169,8 +169,10 @@ TEST(Robustness, StraddledQuadFarFromTheOrigin) {
     Comparison c = renderAndCompare(far, "dcs", s);
     const double rmse = compareImages(c.reference.lights[0].visibility, twin.lights[0].visibility).rmse;
     const double input = compareImages(c.reference.lights[0].visibility, original.lights[0].visibility).rmse;
-    std::printf("straddled quad at %.0e: raytrace vs untranslated twin %.6f (vs the unrounded original %.6f), dcs vs "
-                "raytrace %.6f\n", double(offset), rmse, input, c.errors.visibilityOutsideBand.rmse);
+    std::printf(
+        "straddled quad at %.0e: raytrace vs untranslated twin %.6f (vs the unrounded original %.6f), dcs vs "
+        "raytrace %.6f\n",
+        double(offset), rmse, input, c.errors.visibilityOutsideBand.rmse);
     EXPECT_LE(rmse, 1e-3) << offset;
     EXPECT_LE(input, 5e-3) << offset;
     EXPECT_LE(c.errors.visibilityOutsideBand.rmse, 1e-3) << offset;

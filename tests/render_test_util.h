@@ -96,8 +96,8 @@ inline double misclassifiedFraction(const TechniqueErrors& e) {
              : 0.0;
 }
 
-// Light bleeding against vssm on a scene (the moment techniques, msm and evsm): `technique`'s RMSE against the same-sample reference at
-// most `gate` and below `factor` x vssm's (printed and recorded).
+// Light bleeding against vssm on a scene (the moment techniques, msm and evsm): `technique`'s RMSE against the
+// same-sample reference at most `gate` and below `factor` x vssm's (printed and recorded).
 struct BleedCase {
   const char* path;
   double gate;

@@ -52,8 +52,8 @@ TEST(Timing, HarnessStagesApartAndMapsNeedNoGBufferReadback) {
 
 // Pixels whose receiver plane has the whole light above it (every sample above the horizon):
 // there a single-view technique's visibility is its shadow factor alone (elsewhere it is scaled
-// by the fraction of samples above the horizon, src/techniques/common/shadow_map/shaders/pcss_common.glsl horizonLuminance, which
-// depends on the samples as the reference's integral does).
+// by the fraction of samples above the horizon, src/techniques/common/shadow_map/shaders/pcss_common.glsl
+// horizonLuminance, which depends on the samples as the reference's integral does).
 std::vector<std::uint8_t> wholeLightAbove(const FrameResult& f, const Light& light, const glm::dvec3& origin) {
   std::vector<std::uint8_t> out(f.gbuffer.valid.size(), 0);
   const glm::dvec3 c = glm::dvec3(light.position) - origin;  // camera-relative, as the G-buffer
@@ -159,8 +159,10 @@ TEST(Timing, GpuFrustumFitMatchesTheCpu) {
         const glm::vec3 r = g.position[i] - light.position;
         const float depth = glm::dot(r, f.axis) - f.sampleAxialMax;
         const float lateral = std::max(std::abs(glm::dot(r, f.right)), std::abs(glm::dot(r, f.up))) + f.sampleLateral;
-        if (depth <= f.zNear || lateral > tanMax * depth) mask[i] = 1, ++outside;
-        else tanHalf = std::max(tanHalf, lateral / depth);
+        if (depth <= f.zNear || lateral > tanMax * depth)
+          mask[i] = 1, ++outside;
+        else
+          tanHalf = std::max(tanHalf, lateral / depth);
       }
       ASSERT_GT(tanHalf, 0.0f) << at;
       EXPECT_NEAR(f.tanHalf, tanHalf * (1.0f + 4.0f / float(f.size)), 1e-6 * tanHalf) << at;

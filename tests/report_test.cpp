@@ -9,8 +9,8 @@
 #include "compare/report.h"
 #include "cli/options.h"
 
-using penumbra::cli::parseSweep;
 using penumbra::cli::parseInset;
+using penumbra::cli::parseSweep;
 
 namespace penumbra {
 namespace {
@@ -46,7 +46,8 @@ TEST(Report, SweepAndInsetParsing) {
   EXPECT_EQ(r.y, 8);
   EXPECT_EQ(r.w, 16);
   EXPECT_EQ(r.h, 24);
-  for (const char* bad : {"1,2,3", "1,2,3,4,5", "-1,0,4,4", "0,0,0,4", "a,0,4,4"}) EXPECT_THROW(parseInset(bad), Error) << bad;
+  for (const char* bad : {"1,2,3", "1,2,3,4,5", "-1,0,4,4", "0,0,0,4", "a,0,4,4"})
+    EXPECT_THROW(parseInset(bad), Error) << bad;
 }
 
 TEST(Report, InsetsGoWhereThePenumbraIs) {
@@ -67,9 +68,11 @@ TEST(Report, InsetsGoWhereThePenumbraIs) {
   auto insets = chooseInsets(ref, 2);
   ASSERT_EQ(insets.size(), 2u);
   EXPECT_EQ(insets[0].w, 16);  // min(W, H) / 5
-  EXPECT_TRUE(insets[0].x >= 56 && insets[0].x + insets[0].w <= 84 && insets[0].y >= 6 && insets[0].y + insets[0].h <= 34)
+  EXPECT_TRUE(insets[0].x >= 56 && insets[0].x + insets[0].w <= 84 && insets[0].y >= 6 &&
+              insets[0].y + insets[0].h <= 34)
       << insets[0].x << "," << insets[0].y;
-  EXPECT_TRUE(insets[1].x <= 14 && insets[1].x + insets[1].w >= 5 && insets[1].y <= 59 && insets[1].y + insets[1].h >= 50)
+  EXPECT_TRUE(insets[1].x <= 14 && insets[1].x + insets[1].w >= 5 && insets[1].y <= 59 &&
+              insets[1].y + insets[1].h >= 50)
       << insets[1].x << "," << insets[1].y;
   // No penumbra at all: no inset.
   for (auto& v : ref.lights[0].visibility.data) v = 1.0f;
@@ -97,8 +100,9 @@ CompareResult handMade() {
     c.image = name + ".png";
     return c;
   };
-  r.runs = {run("raytrace", 0, true, 5, 0, 0.05), run("fast", 0, false, 1, 0.2, 0.21), run("slow", 0, false, 50, 1e-9, 0.049),
-            run("raytrace", 1, true, 9, 0, 0.03), run("fast", 1, false, 1.5, 0.1, 0.12), run("slow", 1, false, 90, 1e-9, 0.029)};
+  r.runs = {run("raytrace", 0, true, 5, 0, 0.05),   run("fast", 0, false, 1, 0.2, 0.21),
+            run("slow", 0, false, 50, 1e-9, 0.049), run("raytrace", 1, true, 9, 0, 0.03),
+            run("fast", 1, false, 1.5, 0.1, 0.12),  run("slow", 1, false, 90, 1e-9, 0.029)};
   return r;
 }
 
@@ -187,7 +191,8 @@ TEST(Report, PlotLabelsFamiliesAndAxes) {
   EXPECT_NE(summary[0].find("fast @ samples=4 (1.0 ms, 0.2100)"), std::string::npos) << summary[0];
   EXPECT_NE(summary[0].find("slow @ samples=8 (90.0 ms, 0.0290)"), std::string::npos) << summary[0];
   EXPECT_EQ(summary[1].rfind("exact per sample: most accurate slow @ samples=8", 0), 0u) << summary[1];
-  EXPECT_EQ(summary[2].rfind("single map: most accurate fast @ samples=8 (1.5 ms, 0.1200), fastest fast @ samples=4", 0), 0u)
+  EXPECT_EQ(
+      summary[2].rfind("single map: most accurate fast @ samples=8 (1.5 ms, 0.1200), fastest fast @ samples=4", 0), 0u)
       << summary[2];
   EXPECT_EQ(summary.back(), "No technique failed or left a pixel unshadowed.");
   CompareRun broken;
@@ -215,7 +220,8 @@ TEST(Report, WantedLabelsFindRoomInACluster) {
     r.runs.push_back(c);
   }
   r.runs.push_back(r.runs[0]);
-  r.runs.back().technique = "far-away", r.runs.back().total = {1000, 1000, 1000}, r.runs.back().errors.visibility.rmse = 1e-3;
+  r.runs.back().technique = "far-away", r.runs.back().total = {1000, 1000, 1000},
+  r.runs.back().errors.visibility.rmse = 1e-3;
   const std::string svg = speedErrorSvg(r);
   const std::size_t wanted = count(svg, "data-wanted=\"1\"");
   EXPECT_GE(wanted, 12u) << "the twelve on the front and the far point";
@@ -256,8 +262,9 @@ TEST(Report, AFailedRunIsARowEverywhere) {
   }
   EXPECT_EQ(ok, 6);
   // 23 measured columns, then the 9 of the harness and the pipeline statistics: all empty.
-  EXPECT_EQ(last, "s<&>,broken,0,samples=8,map=1000,8,8,8,modulate,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,failed,"
-                  "broken: map size 1000 <is> not a power of two");
+  EXPECT_EQ(last,
+            "s<&>,broken,0,samples=8,map=1000,8,8,8,modulate,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,failed,"
+            "broken: map size 1000 <is> not a power of two");
 
   nlohmann::json j = r.json();
   ASSERT_EQ(j["runs"].size(), 7u);
@@ -269,7 +276,8 @@ TEST(Report, AFailedRunIsARowEverywhere) {
 
   std::string html = reportHtml(r);
   EXPECT_EQ(count(html, "<tr class=\"failed\">"), 1u);
-  EXPECT_NE(html.find("<b>failed:</b> broken: map size 1000 &lt;is&gt; not a power of two</td></tr>"), std::string::npos);
+  EXPECT_NE(html.find("<b>failed:</b> broken: map size 1000 &lt;is&gt; not a power of two</td></tr>"),
+            std::string::npos);
   EXPECT_EQ(html.find("<is>"), std::string::npos) << "the reason is escaped";
   EXPECT_EQ(count(html, "<img src=\"broken"), 0u) << "no image for a failed run";
 }

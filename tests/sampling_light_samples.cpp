@@ -38,10 +38,8 @@ Light makeLight(LightShape shape) {
 }
 
 const LightShape kAreaShapes[] = {LightShape::Rect, LightShape::Disk, LightShape::Sphere};
-const SampleStrategy kStrategies[] = {SampleStrategy::Stratified, SampleStrategy::Poisson,
-                                      SampleStrategy::Vogel};
-const PixelPattern kPatterns[] = {PixelPattern::Correlated, PixelPattern::Decorrelated,
-                                  PixelPattern::Interleaved};
+const SampleStrategy kStrategies[] = {SampleStrategy::Stratified, SampleStrategy::Poisson, SampleStrategy::Vogel};
+const PixelPattern kPatterns[] = {PixelPattern::Correlated, PixelPattern::Decorrelated, PixelPattern::Interleaved};
 
 template <class T>
 bool bitEqual(const std::vector<T>& a, const std::vector<T>& b) {
@@ -117,8 +115,7 @@ TEST(Sampling, DeterministicAndSeeded) {
 
 TEST(Sampling, OneSampleIsTheCentre) {
   const Scene scene = emptyScene();
-  for (LightShape shape :
-       {LightShape::Point, LightShape::Rect, LightShape::Disk, LightShape::Sphere})
+  for (LightShape shape : {LightShape::Point, LightShape::Rect, LightShape::Disk, LightShape::Sphere})
     for (SampleStrategy st : kStrategies)
       for (PixelPattern pat : kPatterns) {
         SamplingParams p;
@@ -160,10 +157,8 @@ TEST(Sampling, SamplesLieOnTheLight) {
           ASSERT_EQ(s.positions.size(), std::size_t(s.setCount) * n);
           for (std::size_t i = 0; i < s.positions.size(); ++i) {
             const glm::vec3 d = s.positions[i] - l.position;
-            const float u = glm::dot(d, l.tangent), v = glm::dot(d, l.bitangent()),
-                        w = glm::dot(d, l.normal);
-            ASSERT_TRUE(s.uv[i].x >= 0.0f && s.uv[i].x < 1.0f && s.uv[i].y >= 0.0f &&
-                        s.uv[i].y < 1.0f);
+            const float u = glm::dot(d, l.tangent), v = glm::dot(d, l.bitangent()), w = glm::dot(d, l.normal);
+            ASSERT_TRUE(s.uv[i].x >= 0.0f && s.uv[i].x < 1.0f && s.uv[i].y >= 0.0f && s.uv[i].y < 1.0f);
             if (shape == LightShape::Rect) {
               ASSERT_LE(std::abs(u), 0.5f * l.size.x + 1e-5f);
               ASSERT_LE(std::abs(v), 0.5f * l.size.y + 1e-5f);
@@ -343,8 +338,7 @@ TEST(Sampling, SetForPixel) {
       ASSERT_LT(set, 16);
       ++hist[set];
       // The same function the shaders use (sampling/shaders/sample_sets.h).
-      ASSERT_EQ(set, int(penumbra::shared::penumbraSetForPixel(
-                         x, y, PENUMBRA_PATTERN_DECORRELATED, 16, 1, p.seed)));
+      ASSERT_EQ(set, int(penumbra::shared::penumbraSetForPixel(x, y, PENUMBRA_PATTERN_DECORRELATED, 16, 1, p.seed)));
     }
   for (int h : hist) EXPECT_NEAR(h, 4096, 4096 * 0.1);
   // Neighbours rarely share a set.
@@ -425,8 +419,7 @@ TEST(Sampling, Errors) {
       EXPECT_EQ(e.where(), "samples");
     }
   }
-  EXPECT_NO_THROW(
-      makeLightSamples(scene, makeLight(LightShape::Rect), SamplingParams{PENUMBRA_MAX_SAMPLES}));
+  EXPECT_NO_THROW(makeLightSamples(scene, makeLight(LightShape::Rect), SamplingParams{PENUMBRA_MAX_SAMPLES}));
   const float bad[] = {0.0f, -1.0f, std::nanf(""), INFINITY};
   for (LightShape shape : kAreaShapes)
     for (float v : bad) {

@@ -20,10 +20,10 @@ namespace penumbra {
 namespace {
 
 using detail::Json;
-using test::expectError;
-using test::hasWarning;
 using test::base64;
 using test::cubeDocument;
+using test::expectError;
+using test::hasWarning;
 using test::sceneData;
 using test::sceneWithTexture;
 
@@ -68,8 +68,7 @@ void setCubeBuffer(Json& doc, const CubeBuffer& b) {
 // Triangles of the cube that use vertex v.
 std::size_t trianglesUsing(const CubeBuffer& b, std::uint16_t v) {
   std::size_t n = 0;
-  for (int t = 0; t < 12; ++t)
-    n += (b.indices[3 * t] == v || b.indices[3 * t + 1] == v || b.indices[3 * t + 2] == v);
+  for (int t = 0; t < 12; ++t) n += (b.indices[3 * t] == v || b.indices[3 * t + 1] == v || b.indices[3 * t + 2] == v);
   return n;
 }
 
@@ -97,8 +96,8 @@ TEST(SceneBadInputs, GltfNanPositionsAreDroppedWithACount) {
   EXPECT_EQ(dropped(s, &geo::MeshReport::droppedNonFinite), expected);
   // 12 cube triangles less the dropped ones, plus the 2 of the bare file's floor.
   EXPECT_EQ(s.triangleCount(), 12 - expected + 2);
-  EXPECT_TRUE(hasWarning(s, path + ": triangles dropped in 1 of 1 primitives: " +
-                                std::to_string(expected) + " with non-finite positions"));
+  EXPECT_TRUE(hasWarning(s, path + ": triangles dropped in 1 of 1 primitives: " + std::to_string(expected) +
+                                " with non-finite positions"));
 }
 
 TEST(SceneBadInputs, GltfOnlyNanPositionsIsAnErrorWithTheCount) {
@@ -108,8 +107,9 @@ TEST(SceneBadInputs, GltfOnlyNanPositionsIsAnErrorWithTheCount) {
   for (auto& p : b.positions) p[0] = kNaN;
   setCubeBuffer(doc, b);
   const std::string path = dir.file("all_nan.gltf", doc.dump());
-  expectError([&] { loadScene(path); }, path, "no triangles to load (triangles dropped: 12 with "
-                                              "non-finite positions)");
+  expectError([&] { loadScene(path); }, path,
+              "no triangles to load (triangles dropped: 12 with "
+              "non-finite positions)");
 }
 
 TEST(SceneBadInputs, GltfHugeMagnitudesAreKeptAndWarned) {
@@ -131,8 +131,9 @@ TEST(SceneBadInputs, GltfMissingPositionIsCountedWhenNothingIsLeft) {
   Json doc = cubeDocument();
   doc["meshes"][0]["primitives"][0]["attributes"] = Json::object({{"NORMAL", 0}});
   const std::string path = dir.file("no_position.gltf", doc.dump());
-  expectError([&] { loadScene(path); }, path, "1 primitives without triangles (points, lines, "
-                                              "no POSITION or sparse)");
+  expectError([&] { loadScene(path); }, path,
+              "1 primitives without triangles (points, lines, "
+              "no POSITION or sparse)");
 }
 
 TEST(SceneBadInputs, GltfNonFiniteNodeTransformsDropTheNodeWithAWarning) {
@@ -182,8 +183,8 @@ TEST(SceneBadInputs, TransformsOverflowingCoordinatesDropAndCountTheTriangles) {
 
   // The same from a scene file: 3e38 * 1 + 3e38 overflows for the vertices at x = 1.
   dir.file("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n");
-  const std::string scene = dir.file(
-      "scene.json", R"({"objects": [{"file": "tri.obj", "scale": [3e38, 1, 1], "translate": [3e38, 0, 0]}],
+  const std::string scene =
+      dir.file("scene.json", R"({"objects": [{"file": "tri.obj", "scale": [3e38, 1, 1], "translate": [3e38, 0, 0]}],
                         "lights": [{"position": [0, 2, 0]}],
                         "camera": {"position": [0, 0, 5], "target": [0, 0, 0]}})");
   const Scene s = loadScene(scene);
@@ -193,8 +194,7 @@ TEST(SceneBadInputs, TransformsOverflowingCoordinatesDropAndCountTheTriangles) {
   EXPECT_TRUE(hasWarning(s, scene + ": objects[0]: 1 triangles of " + dir.path() +
                                 "/tri.obj dropped: the transform takes them beyond float range"));
   // Without a camera, bounds this large cannot be framed: a clear error, not an Inf camera.
-  const std::string unframed = dir.file(
-      "unframed.json", R"({"objects": [{"file": "tri.obj", "scale": [3e38, 1, 1],
+  const std::string unframed = dir.file("unframed.json", R"({"objects": [{"file": "tri.obj", "scale": [3e38, 1, 1],
                                         "translate": [3e38, 0, 0]}]})");
   expectError([&] { loadScene(unframed); }, unframed,
               "camera: the scene's bounds are too large to frame automatically");
@@ -211,7 +211,8 @@ TEST(SceneBadInputs, GltfHugeAccessorCountIsRejectedBeforeAllocating) {
   doc = cubeDocument();
   doc["accessors"][1]["count"] = 4000000000u;  // indices: needs 8 GB
   const std::string indices = dir.file("huge_index_count.gltf", doc.dump());
-  expectError([&] { loadScene(indices); }, indices, "accessor 1 (huge_index_count.gltf#cube indices): needs 8000000000 bytes");
+  expectError([&] { loadScene(indices); }, indices,
+              "accessor 1 (huge_index_count.gltf#cube indices): needs 8000000000 bytes");
 }
 
 TEST(SceneBadInputs, GltfBufferLongerThanItsDataUriIsRejected) {
@@ -219,22 +220,20 @@ TEST(SceneBadInputs, GltfBufferLongerThanItsDataUriIsRejected) {
   Json doc = cubeDocument();
   doc["buffers"][0]["byteLength"] = 1000000000;
   const std::string path = dir.file("long_buffer.gltf", doc.dump());
-  expectError([&] { loadScene(path); }, path,
-              "buffer 0 declares 1000000000 bytes but its data URI holds 168");
+  expectError([&] { loadScene(path); }, path, "buffer 0 declares 1000000000 bytes but its data URI holds 168");
 }
 
 TEST(SceneBadInputs, GltfImageUrisAreSandboxedLikeBuffers) {
   test::TempDir dir;
   dir.file("secret.png", "never read");
   // {uri, the expected problem}: external URIs are quoted in the message, data: URIs are not.
-  const char* const kBad[][2] = {
-      {"../secret.png", "uri '../secret.png' leaves its folder ('..')"},
-      {"/etc/passwd", "uri '/etc/passwd' is an absolute path"},
-      {"http://example.com/a.png", "is a URI with scheme 'http:', not a relative path"},
-      {"file:///etc/passwd", "is a URI with scheme 'file:', not a relative path"},
-      {"a.png;rm -rf x", "uri 'a.png;rm -rf x' contains the shell metacharacter ';'"},
-      {"data:image/png;base64,@@@@", "data URI is not valid base64"},
-      {"data:text/html,<b>", "unsupported data URI 'data:text/html'"}};
+  const char* const kBad[][2] = {{"../secret.png", "uri '../secret.png' leaves its folder ('..')"},
+                                 {"/etc/passwd", "uri '/etc/passwd' is an absolute path"},
+                                 {"http://example.com/a.png", "is a URI with scheme 'http:', not a relative path"},
+                                 {"file:///etc/passwd", "is a URI with scheme 'file:', not a relative path"},
+                                 {"a.png;rm -rf x", "uri 'a.png;rm -rf x' contains the shell metacharacter ';'"},
+                                 {"data:image/png;base64,@@@@", "data URI is not valid base64"},
+                                 {"data:text/html,<b>", "unsupported data URI 'data:text/html'"}};
   for (const auto& [uri, problem] : kBad) {
     SCOPED_TRACE(uri);
     Json doc = cubeDocument();
@@ -260,7 +259,8 @@ struct MeshCase {
 std::string plyHeader(const char* format, const char* indexType) {
   return std::string("ply\nformat ") + format +
          " 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-         "element face 5\nproperty list uchar " + indexType + " vertex_indices\nend_header\n";
+         "element face 5\nproperty list uchar " +
+         indexType + " vertex_indices\nend_header\n";
 }
 
 const int kFaces[5][3] = {{0, 1, 2}, {0, 1, 9}, {0, 0, 1}, {0, 1, 3}, {1, 2, 0}};
@@ -281,18 +281,11 @@ const MeshCase kMeshCases[] = {
        std::string s;
        for (const char* v : kVertexText) s += std::string("v ") + v + "\n";
        for (const auto& f : kFaces)
-         s += "f " + std::to_string(f[0] + 1) + " " + std::to_string(f[1] + 1) + " " +
-              std::to_string(f[2] + 1) + "\n";
+         s += "f " + std::to_string(f[0] + 1) + " " + std::to_string(f[1] + 1) + " " + std::to_string(f[2] + 1) + "\n";
        return s;
      }},
-    {"model.off",
-     [] {
-       return "OFF\n4 5 0\n" + asciiVerticesAndFaces();
-     }},
-    {"ascii.ply",
-     [] {
-       return plyHeader("ascii", "int") + asciiVerticesAndFaces();
-     }},
+    {"model.off", [] { return "OFF\n4 5 0\n" + asciiVerticesAndFaces(); }},
+    {"ascii.ply", [] { return plyHeader("ascii", "int") + asciiVerticesAndFaces(); }},
     {"binary.ply",
      [] {
        std::string s = plyHeader("binary_little_endian", "uint");
@@ -342,14 +335,14 @@ INSTANTIATE_TEST_SUITE_P(Formats, SceneBadMesh, ::testing::ValuesIn(kMeshCases),
 TEST(SceneBadInputs, StlNanVertexAndRepeatedCornerAreCounted) {
   // STL has no indices: a facet with a NaN corner or two equal corners is what can go wrong.
   test::TempDir dir;
-  const std::string path = dir.file(
-      "facets.stl",
-      "solid x\n"
-      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
-      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex nan 1 0\nendloop\n"
-      "endfacet\n"
-      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
-      "endsolid x\n");
+  const std::string path =
+      dir.file("facets.stl",
+               "solid x\n"
+               "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+               "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex nan 1 0\nendloop\n"
+               "endfacet\n"
+               "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+               "endsolid x\n");
   const Scene s = loadScene(path);
   EXPECT_TRUE(hasWarning(s, path + ": 1 triangle, 2 dropped (1 degenerate, 1 non-finite)"));
 }
@@ -409,13 +402,12 @@ TEST(SceneBadInputs, BinaryStlWhoseCountDisagreesWithItsSizeSaysBoth) {
 // by fuzzing, tests/fuzz/regressions/ply/).
 TEST(SceneBadInputs, PlyWithTwoVertexElementsIsRejected) {
   test::TempDir dir;
-  const std::string path = dir.file(
-      "two.ply",
-      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-      "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
-      "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
-      "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n0 0 1\n3 0 1 3\n");
+  const std::string path = dir.file("two.ply",
+                                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                    "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                                    "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                    "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n0 0 1\n3 0 1 3\n");
   expectError([&] { loadScene(path); }, path, "more than one vertex element");
 }
 
@@ -446,11 +438,9 @@ TEST(SceneBadInputs, BrokenExrTextureIsAnErrorNamingTheTexture) {
   std::ifstream in(good, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), {});
   const std::string truncated = dir.file("truncated.exr", bytes.substr(0, bytes.size() / 2));
-  expectError([&] { loadScene(dir.file("a.json", sceneWithTexture("truncated.exr"))); },
-              truncated, "");
+  expectError([&] { loadScene(dir.file("a.json", sceneWithTexture("truncated.exr"))); }, truncated, "");
   const std::string foreign = dir.file("foreign.exr", "P6\n1 1\n255\nabc");
-  expectError([&] { loadScene(dir.file("b.json", sceneWithTexture("foreign.exr"))); }, foreign,
-              "");
+  expectError([&] { loadScene(dir.file("b.json", sceneWithTexture("foreign.exr"))); }, foreign, "");
 }
 
 // A number beyond double's range is not a parse_error in nlohmann's terms (out_of_range 406):
@@ -467,8 +457,7 @@ TEST(SceneBadInputs, SceneNumberBeyondDoubleIsInvalidJson) {
 
 TEST(SceneBadInputs, ZeroSizedLightsAreRejectedForEveryShape) {
   test::TempDir dir;
-  const std::string path = dir.file(
-      "lights.json", R"({"objects": [{"shape": "plane"}],
+  const std::string path = dir.file("lights.json", R"({"objects": [{"shape": "plane"}],
                          "lights": [{"type": "rect", "size": [1, 1]}]})");
   EXPECT_NO_THROW(loadScene(path));
   expectError([&] { loadScene(path, {"lights.0.size=[1,0]"}); }, path,
@@ -478,7 +467,9 @@ TEST(SceneBadInputs, ZeroSizedLightsAreRejectedForEveryShape) {
   for (const std::string shape : {"disk", "sphere"}) {
     SCOPED_TRACE(shape);
     expectError(
-        [&] { loadScene(path, {"lights.0.type=" + shape, "lights.0.radius=0"}); },
+        [&] {
+          loadScene(path, {"lights.0.type=" + shape, "lights.0.radius=0"});
+        },
         path, "lights[0].radius: an area light needs a positive radius");
   }
   // A glTF area light of size 0, and one whose node scales it to nothing.
@@ -504,20 +495,19 @@ TEST(SceneBadInputs, ZeroSizedLightsAreRejectedForEveryShape) {
 // with the key, the file and where it is; comments still parse.
 TEST(SceneBadInputs, DuplicateKeysAreRefusedWithTheKeyAndWhere) {
   test::TempDir dir;
-  const std::string shape = dir.file(
-      "shape.json", R"({"objects": [{"shape": "box", "shape": "sphere"}], "lights": [{}]})");
+  const std::string shape =
+      dir.file("shape.json", R"({"objects": [{"shape": "box", "shape": "sphere"}], "lights": [{}]})");
   expectError([&] { loadScene(shape); }, shape, "objects[0]: duplicate key 'shape'");
   const std::string nested = dir.file("nested.json", R"({
     "objects": [{"shape": "box"},
                 {"shape": "box", "spin": {"axis": [0, 1, 0], /* again: */ "axis": [1, 0, 0]}}],
     "lights": [{}]})");
   expectError([&] { loadScene(nested); }, nested, "objects[1].spin: duplicate key 'axis'");
-  const std::string top =
-      dir.file("top.json", R"({"lights": [{}], "objects": [{"shape": "box"}], "lights": []})");
+  const std::string top = dir.file("top.json", R"({"lights": [{}], "objects": [{"shape": "box"}], "lights": []})");
   expectError([&] { loadScene(top); }, top, "scene: duplicate key 'lights'");
   // The same key in sibling objects is not a duplicate.
-  const std::string ok = dir.file(
-      "ok.json", R"({"objects": [{"shape": "box"}, {"shape": "box", "translate": [2, 0, 0]}],
+  const std::string ok =
+      dir.file("ok.json", R"({"objects": [{"shape": "box"}, {"shape": "box", "translate": [2, 0, 0]}],
                      "lights": [{"position": [0, 4, 0]}, {"position": [1, 4, 0]}]})");
   EXPECT_EQ(loadScene(ok).meshes.size(), 2u);
 }
@@ -527,15 +517,12 @@ TEST(SceneBadInputs, DuplicateKeysAreRefusedWithTheKeyAndWhere) {
 TEST(SceneBadInputs, MisleadingMessagesSayWhatIsWrong) {
   test::TempDir dir;
   std::filesystem::create_directories(dir.path() + "/folder.obj");
-  const std::string scene =
-      dir.file("folder.json", R"({"objects": [{"file": "folder.obj"}], "lights": [{}]})");
+  const std::string scene = dir.file("folder.json", R"({"objects": [{"file": "folder.obj"}], "lights": [{}]})");
   expectError([&] { loadScene(scene); }, scene, "'folder.obj' (");
   expectError([&] { loadScene(scene); }, scene, "folder.obj) is a folder, not a file");
   expectError([&] { loadScene(dir.path() + "/folder.obj"); }, "folder.obj", "is a folder, not a file");
-  const std::string red =
-      dir.file("red.json", R"({"objects": [{"shape": "box", "material": "red"}], "lights": [{}]})");
-  expectError([&] { loadScene(red); }, red,
-              "unknown material 'red' (the scene's \"materials\" defines none)");
+  const std::string red = dir.file("red.json", R"({"objects": [{"shape": "box", "material": "red"}], "lights": [{}]})");
+  expectError([&] { loadScene(red); }, red, "unknown material 'red' (the scene's \"materials\" defines none)");
   const std::string known = dir.file("known.json", R"({"materials": [{"name": "blue"}],
       "objects": [{"shape": "box", "material": "red"}], "lights": [{}]})");
   expectError([&] { loadScene(known); }, known, "unknown material 'red' (known: blue)");
@@ -551,18 +538,27 @@ TEST(SceneBadInputs, LightExtentsFloatCannotHoldAreRefusedSayingSo) {
               "lights[0] 'key': size [1e+19, 1e+19] is beyond what float can hold");
   expectError([&] { loadScene(cube, {"lights.0.size=1e-30"}); }, cube,
               "size [1e-30, 1e-30] is below what float resolves at the light's position");
-  expectError([&] { loadScene(cube, {"lights.0.type=disk", "lights.0.radius=1e-30"}); }, cube,
-              "radius 1e-30 is below what float resolves");
+  expectError(
+      [&] {
+        loadScene(cube, {"lights.0.type=disk", "lights.0.radius=1e-30"});
+      },
+      cube, "radius 1e-30 is below what float resolves");
   // Relative to the position: 1e-5 resolves at |position| 4 (4 spacings = 1.9e-6), not at 1e3
   // (2.4e-4).
   EXPECT_NO_THROW(loadScene(cube, {"lights.0.size=1e-5"}));
-  expectError([&] { loadScene(cube, {"lights.0.size=1e-5", "lights.0.position=[0,1000,0]"}); },
-              cube, "is below what float resolves at the light's position");
+  expectError(
+      [&] {
+        loadScene(cube, {"lights.0.size=1e-5", "lights.0.position=[0,1000,0]"});
+      },
+      cube, "is below what float resolves at the light's position");
   // Just inside the upper bound: loads (rendered by scenes/hard/31-huge-light.json).
   EXPECT_NO_THROW(loadScene(cube, {"lights.0.size=7e18"}));
   // The reach counts from the origin: a smaller light far out is refused too.
-  expectError([&] { loadScene(cube, {"lights.0.size=1e18", "lights.0.position=[0,5e18,0]"}); },
-              cube, "the light reaches 5.71e+18 from the origin");
+  expectError(
+      [&] {
+        loadScene(cube, {"lights.0.size=1e18", "lights.0.position=[0,5e18,0]"});
+      },
+      cube, "the light reaches 5.71e+18 from the origin");
 }
 
 // OBJ mtllib/usemtl were ignored (a red Kd rendered grey). Faces after
@@ -578,8 +574,7 @@ const Material& materialOf(const Scene& s, const std::string& meshSuffix) {
 
 const SceneMesh* meshNamed(const Scene& s, const std::string& suffix) {
   for (const SceneMesh& m : s.meshes)
-    if (m.name.size() >= suffix.size() &&
-        m.name.compare(m.name.size() - suffix.size(), suffix.size(), suffix) == 0)
+    if (m.name.size() >= suffix.size() && m.name.compare(m.name.size() - suffix.size(), suffix.size(), suffix) == 0)
       return &m;
   return nullptr;
 }
@@ -589,7 +584,7 @@ TEST(SceneBadInputs, ObjMaterialsGiveEachFaceItsKdOpacityAndTexture) {
   Image png(2, 2, 4, 1.0f);
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 2; ++x) png.at(x, y, 1) = png.at(x, y, 2) = 0.0f;  // red, opaque
-  dir.file("tex/.keep", "");  // the texture's folder
+  dir.file("tex/.keep", "");                                               // the texture's folder
   writePng(dir.path() + "/tex/red.png", png);
   dir.file("m.mtl",
            "newmtl red\nKd 1 0 0\nKs 0.5 0.5 0.5\nNs 10\n"
@@ -598,13 +593,12 @@ TEST(SceneBadInputs, ObjMaterialsGiveEachFaceItsKdOpacityAndTexture) {
            "newmtl textured\nmap_Kd tex/red.png\nmap_Bump tex/red.png\n");
   // Two red triangles apart (the second after another material), one for each other material,
   // and one degenerate face of `half` dropped and counted in that mesh only.
-  const std::string obj = dir.file(
-      "m.obj",
-      "mtllib m.mtl\n"
-      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 3 0 0\nv 2 1 0\nv 4 0 0\nv 5 0 0\nv 4 1 0\n"
-      "v 6 0 0\nv 7 0 0\nv 6 1 0\nv 8 0 0\nv 9 0 0\nv 8 1 0\nvt 0 0\n"
-      "usemtl red\nf 1 2 3\nusemtl half\nf 4 5 6\nf 4 4 5\nusemtl red\nf 13 14 15\n"
-      "usemtl tr\nf 7 8 9\nusemtl textured\nf 10/1 11/1 12/1\nusemtl nosuch\nf 1 3 2\n");
+  const std::string obj = dir.file("m.obj",
+                                   "mtllib m.mtl\n"
+                                   "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 3 0 0\nv 2 1 0\nv 4 0 0\nv 5 0 0\nv 4 1 0\n"
+                                   "v 6 0 0\nv 7 0 0\nv 6 1 0\nv 8 0 0\nv 9 0 0\nv 8 1 0\nvt 0 0\n"
+                                   "usemtl red\nf 1 2 3\nusemtl half\nf 4 5 6\nf 4 4 5\nusemtl red\nf 13 14 15\n"
+                                   "usemtl tr\nf 7 8 9\nusemtl textured\nf 10/1 11/1 12/1\nusemtl nosuch\nf 1 3 2\n");
   const Scene s = loadScene(obj);
   const SceneMesh* red = meshNamed(s, "m.obj#red");
   ASSERT_NE(red, nullptr);
@@ -637,15 +631,16 @@ TEST(SceneBadInputs, ObjMaterialsGiveEachFaceItsKdOpacityAndTexture) {
   EXPECT_EQ(meshNamed(s, "m.obj#nosuch")->material, 0);
   EXPECT_TRUE(hasWarning(s, obj + ": usemtl 'nosuch': no such material in "));
   // Ks/Ns map onto the metallic-roughness BRDF: a dielectric lobe, roughness (2 / (Ns + 2))^(1/4).
-  EXPECT_TRUE(hasWarning(s, "m.mtl: Ks is read as a dielectric specular lobe (F0 0.04, roughness from Ns); "
-                            "its strength and colour are not used, in 2 materials (red, half)"));
+  EXPECT_TRUE(hasWarning(s,
+                         "m.mtl: Ks is read as a dielectric specular lobe (F0 0.04, roughness from Ns); "
+                         "its strength and colour are not used, in 2 materials (red, half)"));
   EXPECT_FALSE(hasWarning(s, "'Ks' not used"));
   EXPECT_FALSE(hasWarning(s, "'Ns' not used"));
   const Material& redMaterial = materialOf(s, "m.obj#red");
   EXPECT_EQ(redMaterial.brdf, BrdfModel::MetallicRoughness);
   EXPECT_NEAR(redMaterial.roughness, std::pow(2.0f / 12.0f, 0.25f), 1e-6f);
   EXPECT_EQ(redMaterial.metallic, 0.0f);
-  EXPECT_EQ(materialOf(s, "m.obj#half").roughness, 1.0f);  // no Ns
+  EXPECT_EQ(materialOf(s, "m.obj#half").roughness, 1.0f);         // no Ns
   EXPECT_EQ(materialOf(s, "m.obj#tr").brdf, BrdfModel::Lambert);  // no Ks
   EXPECT_TRUE(hasWarning(s, "m.mtl: 'map_Bump' not used"));
   EXPECT_FALSE(hasWarning(s, "'Kd' not used"));
@@ -673,8 +668,7 @@ TEST(SceneBadInputs, ObjMaterialProblemsAreWarnedAndTheObjectMaterialWins) {
   EXPECT_NEAR(materialOf(t, "t.obj#a").opacity, 1.0f, 1e-6f);
   EXPECT_EQ(materialOf(t, "t.obj#a").baseColorTexture, -1);
   // A scene file's "material" replaces the OBJ's; its "opacity" overrides the OBJ's opacity.
-  const std::string scene = dir.file(
-      "s.json", R"({"materials": [{"name": "blue", "baseColor": [0, 0, 1]}],
+  const std::string scene = dir.file("s.json", R"({"materials": [{"name": "blue", "baseColor": [0, 0, 1]}],
                     "objects": [{"file": "t.obj", "material": "blue"},
                                 {"file": "t.obj", "opacity": 0.3}],
                     "lights": [{"position": [0, 4, 0]}]})");

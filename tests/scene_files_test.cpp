@@ -58,8 +58,7 @@ TEST(SceneFiles, EveryShippedSceneLoadsWithoutWarnings) {
       }
       EXPECT_GE(s.lights.size(), 1u);
       EXPECT_GT(s.triangleCount(), 0u);
-      std::printf("[          ] %-28s %8zu triangles\n", entry.path().filename().c_str(),
-                  s.triangleCount());
+      std::printf("[          ] %-28s %8zu triangles\n", entry.path().filename().c_str(), s.triangleCount());
       ++count;
     }
   }
@@ -117,8 +116,7 @@ TEST(SceneFiles, DefaultSceneOverrides) {
   EXPECT_EQ(s.camera.fovY, 30.0f);
   EXPECT_EQ(s.width, 64);
   EXPECT_EQ(s.height, 32);
-  test::expectError([] { defaultScene({"lights.0.size=[0,1]"}); }, "<default scene>",
-                    "lights[0] 'window'");
+  test::expectError([] { defaultScene({"lights.0.size=[0,1]"}); }, "<default scene>", "lights[0] 'window'");
 }
 
 TEST(SceneFiles, StainedGlass) {
@@ -169,10 +167,8 @@ TEST(SceneFiles, Engine) {
 
 TEST(SceneFiles, AssimpPrefixNeedsThePackage) {
   test::TempDir dir;
-  const std::string path =
-      dir.file("s.json", R"({"objects": [{"file": "assimp:glTF2/NoSuchModel/none.glb"}]})");
-  test::expectError([&] { loadScene(path); }, path,
-                    assimpInstalled() ? "not found" : "assimp-testmodels");
+  const std::string path = dir.file("s.json", R"({"objects": [{"file": "assimp:glTF2/NoSuchModel/none.glb"}]})");
+  test::expectError([&] { loadScene(path); }, path, assimpInstalled() ? "not found" : "assimp-testmodels");
 }
 
 TEST(SceneFiles, HardCubeOnPlane) {

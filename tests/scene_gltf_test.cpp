@@ -51,8 +51,7 @@ TEST(SceneGltf, MirroredInstanceKeepsOutwardWinding) {
     glm::vec3 centre(0.0f);
     for (const glm::vec3& p : s.mesh.positions) centre += p / float(s.mesh.positions.size());
     for (const glm::uvec3& t : s.mesh.triangles) {
-      const glm::vec3 a = s.mesh.positions[t.x], b = s.mesh.positions[t.y],
-                      c = s.mesh.positions[t.z];
+      const glm::vec3 a = s.mesh.positions[t.x], b = s.mesh.positions[t.y], c = s.mesh.positions[t.z];
       EXPECT_GT(glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0f - centre), 0.0f) << s.name;
     }
   }
@@ -125,13 +124,11 @@ TEST(SceneGltf, PrimitiveModes) {
   EXPECT_TRUE(warned(m, "no POSITION"));
   for (const SceneMesh& s : m.meshes) {
     for (const glm::uvec3& t : s.mesh.triangles) {
-      const glm::vec3 a = s.mesh.positions[t.x], b = s.mesh.positions[t.y],
-                      c = s.mesh.positions[t.z];
+      const glm::vec3 a = s.mesh.positions[t.x], b = s.mesh.positions[t.y], c = s.mesh.positions[t.z];
       EXPECT_GT(glm::cross(b - a, c - a).z, 0.0f) << "strip/fan winding must stay +Z";
     }
   }
-  expectError([] { load("mode_unknown.gltf"); }, sceneData("mode_unknown.gltf"),
-              "unknown primitive mode 9");
+  expectError([] { load("mode_unknown.gltf"); }, sceneData("mode_unknown.gltf"), "unknown primitive mode 9");
 }
 
 TEST(SceneGltf, Materials) {
@@ -212,28 +209,21 @@ TEST_P(SceneGltfBad, RejectedWithOneLineNamingTheFile) {
 INSTANTIATE_TEST_SUITE_P(
     Inputs, SceneGltfBad,
     ::testing::Values(
-        BadCase{"accessor_overrun.gltf", "accessor 0"},
-        BadCase{"bufferview_overrun.gltf", "bufferView 1"},
+        BadCase{"accessor_overrun.gltf", "accessor 0"}, BadCase{"bufferview_overrun.gltf", "bufferView 1"},
         BadCase{"accessor_count0.gltf", "count is 0"},
         BadCase{"accessor_misaligned.gltf", "not a multiple of the component size"},
         BadCase{"accessor_wrong_type.gltf", "unsupported type/componentType"},
-        BadCase{"index_not_multiple_of_3.gltf", "not a multiple of 3"},
-        BadCase{"uri_parent.gltf", "leaves its folder"},
-        BadCase{"uri_percent_parent.gltf", "leaves its folder"},
-        BadCase{"uri_absolute.gltf", "absolute path"}, BadCase{"uri_file.gltf", "scheme 'file:'"},
-        BadCase{"uri_http.gltf", "scheme 'http:'"},
-        BadCase{"uri_shell.gltf", "shell metacharacter ';'"},
-        BadCase{"uri_missing.gltf", "not found"},
+        BadCase{"index_not_multiple_of_3.gltf", "not a multiple of 3"}, BadCase{"uri_parent.gltf", "leaves its folder"},
+        BadCase{"uri_percent_parent.gltf", "leaves its folder"}, BadCase{"uri_absolute.gltf", "absolute path"},
+        BadCase{"uri_file.gltf", "scheme 'file:'"}, BadCase{"uri_http.gltf", "scheme 'http:'"},
+        BadCase{"uri_shell.gltf", "shell metacharacter ';'"}, BadCase{"uri_missing.gltf", "not found"},
         BadCase{"data_uri_bad_base64.gltf", "not valid base64"},
         BadCase{"buffer_declared_huge.gltf", "declares 900000000 bytes"},
-        BadCase{"draco_required.gltf", "KHR_draco_mesh_compression"},
-        BadCase{"node_cycle.gltf", "cycle"}, BadCase{"node_two_parents.gltf", "two parents"},
-        BadCase{"node_self_child.gltf", "its own child"}, BadCase{"not_gltf2.gltf", "version 1.0"},
-        BadCase{"duplicate_key.gltf", "nodes[0]: duplicate key 'mesh'"},
-        BadCase{"glb_length_beyond_file.glb", "declares"},
-        BadCase{"glb_json_chunk_huge.glb", "JSON chunk length"},
-        BadCase{"glb_bin_chunk_huge.glb", "BIN chunk length"},
-        BadCase{"glb_bin_chunk_plus8.glb", "BIN chunk length"},
+        BadCase{"draco_required.gltf", "KHR_draco_mesh_compression"}, BadCase{"node_cycle.gltf", "cycle"},
+        BadCase{"node_two_parents.gltf", "two parents"}, BadCase{"node_self_child.gltf", "its own child"},
+        BadCase{"not_gltf2.gltf", "version 1.0"}, BadCase{"duplicate_key.gltf", "nodes[0]: duplicate key 'mesh'"},
+        BadCase{"glb_length_beyond_file.glb", "declares"}, BadCase{"glb_json_chunk_huge.glb", "JSON chunk length"},
+        BadCase{"glb_bin_chunk_huge.glb", "BIN chunk length"}, BadCase{"glb_bin_chunk_plus8.glb", "BIN chunk length"},
         BadCase{"glb_missing_bin.glb", "no BIN chunk"}, BadCase{"glb_truncated.glb", "declares"},
         BadCase{"empty.glb", "empty file"}, BadCase{"empty.gltf", "empty file"}),
     [](const ::testing::TestParamInfo<BadCase>& info) {
@@ -309,9 +299,8 @@ TEST(SceneGltf, AssimpModelsLoad) {
   }
   EXPECT_EQ(kept + dropped, 121496u + 2u);
   EXPECT_GT(engine.triangleCount(), 75000u);
-  for (const char* box :
-       {"/BoxTextured-glTF/BoxTextured.gltf", "/BoxTextured-glTF-Binary/BoxTextured.glb",
-        "/BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+  for (const char* box : {"/BoxTextured-glTF/BoxTextured.gltf", "/BoxTextured-glTF-Binary/BoxTextured.glb",
+                          "/BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
     SCOPED_TRACE(box);
     const Scene s = loadScene(dir + box);
     EXPECT_EQ(s.triangleCount(), 12u + 2u);
@@ -326,9 +315,9 @@ TEST(SceneGltf, AssimpMalformedModelsAreRejected) {
   if (!std::filesystem::is_directory(kAssimpGltf))
     FAIL() << "assimp-testmodels not installed (./setup.sh --deps installs it)";
   const std::string dir = kAssimpGltf;
-  for (const char* bad : {"/RecursiveNodes/RecursiveNodes.gltf", "/MissingBin/BoxTextured.gltf",
-                          "/draco/2CylinderEngine.gltf", "/TestNoRootNode/NoScene.gltf",
-                          "/IndexOutOfRange/AllIndicesOutOfRange.gltf"}) {
+  for (const char* bad :
+       {"/RecursiveNodes/RecursiveNodes.gltf", "/MissingBin/BoxTextured.gltf", "/draco/2CylinderEngine.gltf",
+        "/TestNoRootNode/NoScene.gltf", "/IndexOutOfRange/AllIndicesOutOfRange.gltf"}) {
     const std::string path = dir + bad;
     expectError([&] { loadScene(path); }, path, "");
   }
@@ -337,8 +326,7 @@ TEST(SceneGltf, AssimpMalformedModelsAreRejected) {
 TEST(SceneGltf, AssimpInfinitesAreCounted) {
   // Every vertex of this box has an infinite coordinate: all 12 triangles are dropped and the
   // error says why.
-  const std::string path =
-      std::string(kAssimpGltf) + "/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb";
+  const std::string path = std::string(kAssimpGltf) + "/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb";
   if (!std::filesystem::exists(path)) FAIL() << "assimp-testmodels not installed (./setup.sh --deps installs it)";
   expectError([&] { detail::loadGltf(path); }, path, "12 with non-finite positions");
 }
@@ -382,8 +370,7 @@ TEST(SceneGltf, AssimpWholeFolderWalk) {
       const Scene s = loadScene(path);
       EXPECT_GT(s.triangleCount(), 0u) << path;
       if (std::getenv("PENUMBRA_TEST_VERBOSE")) {
-        std::printf("loaded   %s: %zu triangles, %zu warnings\n", path.c_str(), s.triangleCount(),
-                    s.warnings.size());
+        std::printf("loaded   %s: %zu triangles, %zu warnings\n", path.c_str(), s.triangleCount(), s.warnings.size());
       }
       ++loaded;
     } catch (const Error& e) {

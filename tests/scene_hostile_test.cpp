@@ -91,7 +91,6 @@ TEST(SceneHostile, BadValuesAreQuotedShort) {
   EXPECT_EQ(shown.substr(80, 3), "...");
 }
 
-
 // Accepted silently before: a glTF light of negative intensity or colour (a scene file's was
 // refused), a colour of 4 numbers read as white, two lights of one name (the LUT tool overwrote
 // the first one's tables), box/plane/quad sizes of 0, -0 or 1e-45 and collinear quad corners (the
@@ -125,15 +124,18 @@ TEST(SceneHostile, WhatWasAcceptedSilentlyIsRefusedOrNamed) {
   EXPECT_EQ(lamps[1].rfind("lamp@", 0), 0u) << lamps[1];
   const std::string twice = dir.file("twice.json", R"({"objects": [{"shape": "plane"}],
       "lights": [{"name": "key", "type": "point", "position": [0, 2, 0]}, {"name": "key", "type": "point", "position": [1, 2, 0]}]})");
-  expectError([&] { loadScene(twice); }, twice, "lights[1] 'key': has the name of lights[0] 'key': light names must differ");
+  expectError([&] { loadScene(twice); }, twice,
+              "lights[1] 'key': has the name of lights[0] 'key': light names must differ");
 
   for (const char* size : {"0", "-0", "[1, 0]", "[1, -2]"}) {
-    const std::string path = dir.file("zero.json", std::string(R"({"objects": [{"shape": "plane", "size": )") + size + "}]}");
+    const std::string path =
+        dir.file("zero.json", std::string(R"({"objects": [{"shape": "plane", "size": )") + size + "}]}");
     expectError([&] { loadScene(path); }, path, "size: must be positive");
   }
   const std::string tiny = dir.file("tiny.json", R"({"objects": [{"shape": "box", "size": 1e-45}]})");
   expectError([&] { loadScene(tiny); }, tiny, "no triangle of the box has an area in float");
-  const std::string line = dir.file("line.json", R"({"objects": [{"shape": "quad", "corners": [[0,0,0],[1,0,0],[2,0,0],[3,0,0]]}]})");
+  const std::string line =
+      dir.file("line.json", R"({"objects": [{"shape": "quad", "corners": [[0,0,0],[1,0,0],[2,0,0],[3,0,0]]}]})");
   expectError([&] { loadScene(line); }, line, "no triangle of the quad has an area in float");
 
   // What a glTF holds that penumbra does not use is said, once each.
@@ -163,7 +165,6 @@ TEST(SceneHostile, WhatWasAcceptedSilentlyIsRefusedOrNamed) {
   expectError([&] { loadScene(textured); }, textured, "has 1 negative values (a light cannot emit negative radiance)");
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // Memory from small files: sizes are read from headers and glTF instancing is counted before
 // anything is decoded or placed, against the run's budget (core/memory.h), naming the file, the
@@ -185,7 +186,8 @@ std::string greyPng(std::uint32_t width, std::uint32_t height, const std::string
     const std::string raw = std::string(std::size_t(height) * (1 + (width + 7) / 8), '\0');
     uLongf size = compressBound(uLong(raw.size()));
     data.resize(size);
-    compress2(reinterpret_cast<Bytef*>(data.data()), &size, reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()), 9);
+    compress2(reinterpret_cast<Bytef*>(data.data()), &size, reinterpret_cast<const Bytef*>(raw.data()),
+              uLong(raw.size()), 9);
     data.resize(size);
   }
   const std::string header = u32(width) + u32(height) + std::string{1, 0, 0, 0, 0};  // 1-bit grey
@@ -238,7 +240,8 @@ TEST(SceneHostile, MemoryIsEstimatedFromHeadersBeforeAllocating) {
     doc["scenes"][0]["nodes"].push_back(i);
   }
   const std::string many = dir.file("many.gltf", doc.dump());
-  expectError([&] { loadScene(many); }, many, "placing 100000000 triangles (100 mesh instances on 100 nodes) needs about");
+  expectError([&] { loadScene(many); }, many,
+              "placing 100000000 triangles (100 mesh instances on 100 nodes) needs about");
 
   // A glTF's images, summed from their headers before the first is decoded.
   Json textured = cubeDocument();
@@ -260,33 +263,62 @@ TEST(SceneHostile, MemoryIsEstimatedFromHeadersBeforeAllocating) {
 // where: each is refused naming the object and the property.
 TEST(SceneHostile, GltfPropertiesOfTheWrongTypeAreNamed) {
   test::TempDir dir;
-  const auto refused = [&](const std::string& name, const std::function<void(Json&)>& edit, const std::string& message) {
+  const auto refused = [&](const std::string& name, const std::function<void(Json&)>& edit,
+                           const std::string& message) {
     Json doc = cubeDocument();
     edit(doc);
     const std::string path = dir.file(name + ".gltf", doc.dump());
     expectError([&] { loadScene(path); }, path, message);
   };
-  refused("mesh", [](Json& d) { d["nodes"][0]["mesh"] = "0"; }, "nodes[0]: 'mesh' must be a non-negative integer, got \"0\"");
-  refused("translation", [](Json& d) { d["nodes"][0]["translation"] = {1.0, 2.0}; },
-          "nodes[0]: 'translation' must be 3 numbers, got [1.0,2.0]");
-  refused("children", [](Json& d) { d["nodes"][0]["children"] = "1"; },
-          "nodes[0]: 'children' must be an array of non-negative integers");
-  refused("mode", [](Json& d) { d["meshes"][0]["primitives"][0]["mode"] = "x"; },
-          "meshes[0].primitives[0]: 'mode' must be a non-negative integer, got \"x\"");
-  refused("attributes", [](Json& d) { d["meshes"][0]["primitives"][0]["attributes"] = {0}; },
-          "meshes[0].primitives[0]: 'attributes' must be an object");
-  refused("component", [](Json& d) { d["accessors"][0]["componentType"] = "float"; },
-          "accessors[0]: 'componentType' must be a non-negative integer, got \"float\"");
-  refused("pbr", [](Json& d) { d["materials"] = {Json{{"pbrMetallicRoughness", {1, 2}}}}; },
-          "materials[0]: 'pbrMetallicRoughness' must be an object, got [1,2]");
-  refused("index", [](Json& d) { d["materials"] = {Json{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", "0"}}}}}}}; },
-          "materials[0]: pbrMetallicRoughness: 'baseColorTexture': 'index' must be a non-negative integer, got \"0\"");
-  refused("factor", [](Json& d) { d["materials"] = {Json{{"emissiveFactor", {1, 1}}}}; },
-          "materials[0]: 'emissiveFactor' must be 3 numbers, got [1,1]");
+  refused(
+      "mesh", [](Json& d) { d["nodes"][0]["mesh"] = "0"; },
+      "nodes[0]: 'mesh' must be a non-negative integer, got \"0\"");
+  refused(
+      "translation",
+      [](Json& d) {
+        d["nodes"][0]["translation"] = {1.0, 2.0};
+      },
+      "nodes[0]: 'translation' must be 3 numbers, got [1.0,2.0]");
+  refused(
+      "children", [](Json& d) { d["nodes"][0]["children"] = "1"; },
+      "nodes[0]: 'children' must be an array of non-negative integers");
+  refused(
+      "mode", [](Json& d) { d["meshes"][0]["primitives"][0]["mode"] = "x"; },
+      "meshes[0].primitives[0]: 'mode' must be a non-negative integer, got \"x\"");
+  refused(
+      "attributes", [](Json& d) { d["meshes"][0]["primitives"][0]["attributes"] = {0}; },
+      "meshes[0].primitives[0]: 'attributes' must be an object");
+  refused(
+      "component", [](Json& d) { d["accessors"][0]["componentType"] = "float"; },
+      "accessors[0]: 'componentType' must be a non-negative integer, got \"float\"");
+  refused(
+      "pbr",
+      [](Json& d) {
+        d["materials"] = {Json{{"pbrMetallicRoughness", {1, 2}}}};
+      },
+      "materials[0]: 'pbrMetallicRoughness' must be an object, got [1,2]");
+  refused(
+      "index",
+      [](Json& d) {
+        d["materials"] = {Json{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", "0"}}}}}}};
+      },
+      "materials[0]: pbrMetallicRoughness: 'baseColorTexture': 'index' must be a non-negative integer, got \"0\"");
+  refused(
+      "factor",
+      [](Json& d) {
+        d["materials"] = {Json{{"emissiveFactor", {1, 1}}}};
+      },
+      "materials[0]: 'emissiveFactor' must be 3 numbers, got [1,1]");
   // glTF 1.0 is named as such (its objects are dictionaries), not as a missing version.
-  refused("v1", [](Json& d) { d["meshes"] = Json{{"cube", Json::object()}}; d["asset"].erase("version"); },
-          "a glTF 1.0 file ('meshes' is a dictionary): only glTF 2.0 is read");
-  refused("version", [](Json& d) { d["asset"]["version"] = 2; }, "'asset.version' must be a string (\"2.0\"), got 2");
+  refused(
+      "v1",
+      [](Json& d) {
+        d["meshes"] = Json{{"cube", Json::object()}};
+        d["asset"].erase("version");
+      },
+      "a glTF 1.0 file ('meshes' is a dictionary): only glTF 2.0 is read");
+  refused(
+      "version", [](Json& d) { d["asset"]["version"] = 2; }, "'asset.version' must be a string (\"2.0\"), got 2");
 }
 
 // Messages that named the wrong thing, and values that rendered without a word.

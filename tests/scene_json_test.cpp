@@ -35,8 +35,8 @@ glm::vec3 boundsHi(const SceneMesh& m) {
 }
 
 void expectNear(glm::vec3 a, glm::vec3 b, float eps = 1e-5f) {
-  EXPECT_LT(glm::distance(a, b), eps) << "(" << a.x << ", " << a.y << ", " << a.z << ") vs (" << b.x
-                                      << ", " << b.y << ", " << b.z << ")";
+  EXPECT_LT(glm::distance(a, b), eps) << "(" << a.x << ", " << a.y << ", " << a.z << ") vs (" << b.x << ", " << b.y
+                                      << ", " << b.z << ")";
 }
 
 constexpr const char* kAllShapes = R"({
@@ -195,9 +195,8 @@ TEST(SceneJson, UnknownKeysWarnWithTheirPath) {
 TEST(SceneJson, Overrides) {
   TempDir dir;
   const std::string path = dir.file("o.json", kAllShapes);
-  const Scene s = loadScene(
-      path, {"camera.fov=30", "lights.0.size=[3,4]", "objects.0.translate.1=5", "name=renamed",
-             "objects.1.material=\"glass\"", "lights.0.color=2", "background=[0,0,1]"});
+  const Scene s = loadScene(path, {"camera.fov=30", "lights.0.size=[3,4]", "objects.0.translate.1=5", "name=renamed",
+                                   "objects.1.material=\"glass\"", "lights.0.color=2", "background=[0,0,1]"});
   EXPECT_EQ(s.camera.fovY, 30.0f);
   EXPECT_EQ(s.lights[0].size, glm::vec2(3, 4));
   expectNear(boundsLo(mesh(s, "box")), {9.5f, 4.0f, -1.5f});
@@ -222,12 +221,10 @@ TEST(SceneJson, Overrides) {
 TEST(SceneJson, ValidationErrorsNameTheFileAndTheItem) {
   TempDir dir;
   auto scene = [&](const std::string& lights, const std::string& extra = "") {
-    return dir.file("v.json",
-                    R"({"objects": [{"shape": "box"}], "lights": [)" + lights + "]" + extra + "}");
+    return dir.file("v.json", R"({"objects": [{"shape": "box"}], "lights": [)" + lights + "]" + extra + "}");
   };
   std::string p = scene(R"({"name": "key", "type": "rect", "size": [0, 1]})");
-  expectError([&] { loadScene(p); }, p,
-              "lights[0] 'key'.size: an area light needs a positive size");
+  expectError([&] { loadScene(p); }, p, "lights[0] 'key'.size: an area light needs a positive size");
   p = scene(R"({"name": "d", "type": "disk", "radius": -1})");
   expectError([&] { loadScene(p); }, p, "lights[0] 'd'.radius");
   p = scene(R"({"type": "rect", "position": [0, 1, 0], "target": [0, 1, 0]})");
@@ -236,8 +233,7 @@ TEST(SceneJson, ValidationErrorsNameTheFileAndTheItem) {
   expectError([&] { loadScene(p); }, p, "projected onto the light's plane");
   p = scene(R"({"type": "tube"})");
   expectError([&] { loadScene(p); }, p, "unknown light type 'tube'");
-  p = scene(
-      R"({"type": "rect", "frames": ["procedural:stained-glass", "procedural:stained-glass"]})");
+  p = scene(R"({"type": "rect", "frames": ["procedural:stained-glass", "procedural:stained-glass"]})");
   expectError([&] { loadScene(p); }, p, "needs \"fps\" > 0");
   p = scene(R"({"type": "rect", "intensity": 1e39})");
   expectError([&] { loadScene(p); }, p, "not a finite number");
@@ -250,9 +246,7 @@ TEST(SceneJson, ValidationErrorsNameTheFileAndTheItem) {
   p = scene("{}", R"(, "resolution": [0, 10])");
   expectError([&] { loadScene(p); }, p, "resolution");
 
-  auto object = [&](const std::string& o) {
-    return dir.file("o.json", R"({"objects": [)" + o + "]}");
-  };
+  auto object = [&](const std::string& o) { return dir.file("o.json", R"({"objects": [)" + o + "]}"); };
   p = object(R"({"shape": "cube"})");
   expectError([&] { loadScene(p); }, p, "unknown shape 'cube'");
   p = object(R"({"shape": "box", "scale": [1, 0, 1]})");
@@ -282,16 +276,14 @@ TEST(SceneJson, ValidationErrorsNameTheFileAndTheItem) {
   expectError([&] { loadScene(p); }, p, "invalid JSON");
   p = dir.file("list.json", "[1, 2]");
   expectError([&] { loadScene(p); }, p, "JSON object");
-  expectError([&] { loadScene(dir.path() + "/none.json"); }, dir.path() + "/none.json",
-              "no such file");
+  expectError([&] { loadScene(dir.path() + "/none.json"); }, dir.path() + "/none.json", "no such file");
   p = dir.file("x.txt", "");
   expectError([&] { loadScene(p); }, p, "unsupported scene file");
 }
 
 TEST(SceneJson, CameraFramesTheSceneWhenMissing) {
   TempDir dir;
-  const std::string p =
-      dir.file("c.json", R"({"objects": [{"shape": "box", "translate": [3, 0, 0]}],
+  const std::string p = dir.file("c.json", R"({"objects": [{"shape": "box", "translate": [3, 0, 0]}],
                                               "lights": [{"type": "point"}]})");
   const Scene s = loadScene(p);
   expectNear(s.camera.target, {3, 0, 0});
@@ -391,7 +383,8 @@ TEST(SceneJson, DocumentedExampleLoads) {
     fs::copy_file(png, dir.path() + "/textures/" + name);
   }
   fs::copy_file(test::sceneData("cube.glb"), dir.path() + "/models/teapot.glb");
-  if (!fs::is_directory("/usr/share/assimp/models")) FAIL() << "assimp-testmodels not installed (./setup.sh --deps installs it)";
+  if (!fs::is_directory("/usr/share/assimp/models"))
+    FAIL() << "assimp-testmodels not installed (./setup.sh --deps installs it)";
   const Scene s = loadScene(path, {"lights.0.size=[3,1.5]", "objects.2.translate.1=1"});
   for (const std::string& w : s.warnings) EXPECT_EQ(w.find("example.json"), std::string::npos) << w;
   EXPECT_EQ(s.lights.size(), 5u);

@@ -66,8 +66,7 @@ TEST(SceneShapes, CylinderCapsAndOpenBottom) {
 }
 
 TEST(SceneShapes, QuadAndDiskFaceUp) {
-  for (const geo::TriangleMesh& m :
-       {detail::makeQuad(glm::vec2(2.0f, 1.0f)), detail::makeDisk(0.5f, 16)}) {
+  for (const geo::TriangleMesh& m : {detail::makeQuad(glm::vec2(2.0f, 1.0f)), detail::makeDisk(0.5f, 16)}) {
     for (const glm::uvec3& t : m.triangles) {
       const glm::vec3 a = m.positions[t.x], b = m.positions[t.y], c = m.positions[t.z];
       EXPECT_GT(glm::cross(b - a, c - a).y, 0.0f);

@@ -22,9 +22,7 @@ inline std::string sceneData(const std::string& name) {
   return std::string(PENUMBRA_SOURCE_DIR) + "/tests/data/scene/" + name;
 }
 
-inline std::string sourcePath(const std::string& relative) {
-  return std::string(PENUMBRA_SOURCE_DIR) + "/" + relative;
-}
+inline std::string sourcePath(const std::string& relative) { return std::string(PENUMBRA_SOURCE_DIR) + "/" + relative; }
 
 // A fresh folder under the system temp dir, removed with the object.
 class TempDir {
@@ -32,8 +30,7 @@ class TempDir {
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     path_ = std::filesystem::temp_directory_path() /
-            ("penumbra_scene_" + std::string(info ? info->name() : "x") + "_" +
-             std::to_string(::getpid()));
+            ("penumbra_scene_" + std::string(info ? info->name() : "x") + "_" + std::to_string(::getpid()));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

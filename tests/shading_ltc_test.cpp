@@ -125,15 +125,19 @@ TEST(Ltc, TheShaderIntegralIsTheFittedLobe) {
             for (int i = 0; i < m; ++i) {
               const glm::dvec3 x = l + ((i + 0.5) / m * 2.0 - 1.0) * h * e1 + ((j + 0.5) / m * 2.0 - 1.0) * h * e2;
               const double r2 = glm::dot(x, x);
-              expected += shading::ltcCellLobe(t, a, row, x / std::sqrt(r2)) * (2.0 * h / m) * (2.0 * h / m) / (r2 * std::sqrt(r2));
+              expected += shading::ltcCellLobe(t, a, row, x / std::sqrt(r2)) * (2.0 * h / m) * (2.0 * h / m) /
+                          (r2 * std::sqrt(r2));
             }
           expected /= double(cellTerms(t, a, row).x);
           const shared::vec3 z(0.0f, 0.0f, 1.0f);
-          const double integral = shared::penumbraLightPolygon(PENUMBRA_LIGHT_RECT, glm::vec3(0.0f), z, z, glm::vec3(l),
-                                                               glm::vec3(e1), glm::vec3(e2), glm::vec2(float(h)), true,
-                                                               glm::vec3(v), cellMinv(t, a, row)).y;
+          const double integral =
+              shared::penumbraLightPolygon(PENUMBRA_LIGHT_RECT, glm::vec3(0.0f), z, z, glm::vec3(l), glm::vec3(e1),
+                                           glm::vec3(e2), glm::vec2(float(h)), true, glm::vec3(v), cellMinv(t, a, row))
+                  .y;
           const double rel = std::abs(integral - expected) / expected;
-          if (rel > 2e-3) std::printf("cell (%d, %d), l at theta %.1f phi %.1f: %.5g, the fit's lobe %.5g\n", a, row, theta, phi, integral, expected);
+          if (rel > 2e-3)
+            std::printf("cell (%d, %d), l at theta %.1f phi %.1f: %.5g, the fit's lobe %.5g\n", a, row, theta, phi,
+                        integral, expected);
           worst = std::max(worst, rel);
           ++checked;
         }
@@ -172,7 +176,8 @@ void rectIntegrals(const RectCase& k, double& truth, double& ltc, double& norm) 
   const glm::vec4 terms = shading::ltcLookup(t, 1, float(k.roughness), float(k.cosThetaV));
   const shared::vec3 z(0.0f, 0.0f, 1.0f);
   ltc = double(shared::penumbraLightPolygon(PENUMBRA_LIGHT_RECT, glm::vec3(0.0f), z, z, glm::vec3(c), glm::vec3(e1),
-                                            glm::vec3(e2), glm::vec2(float(k.halfSize)), true, glm::vec3(v), minv).y) *
+                                            glm::vec3(e2), glm::vec2(float(k.halfSize)), true, glm::vec3(v), minv)
+                   .y) *
         double(terms.x);
   norm = double(terms.x);
 }
@@ -199,9 +204,13 @@ TEST(Ltc, PolygonIntegralAgainstTheTrueLobe) {
           if (where == 2) k.theta = std::max(thetaV, 0.3), k.phi = 1.0;
           double truth, ltc, norm;
           rectIntegrals(k, truth, ltc, norm);
-          std::printf("roughness %.2f cos(theta_v) %.2f half-size %.1f %-8s: true %.5g ltc %.5g (%+.3f, %+.4f of norm)\n",
-                      r, cv, size, where == 0 ? "mirror" : where == 1 ? "beyond" : "sideways", truth, ltc,
-                      (ltc - truth) / truth, (ltc - truth) / norm);
+          std::printf(
+              "roughness %.2f cos(theta_v) %.2f half-size %.1f %-8s: true %.5g ltc %.5g (%+.3f, %+.4f of norm)\n", r,
+              cv, size,
+              where == 0   ? "mirror"
+              : where == 1 ? "beyond"
+                           : "sideways",
+              truth, ltc, (ltc - truth) / truth, (ltc - truth) / norm);
           if (where == 0) worstOn = std::max(worstOn, std::abs(ltc - truth) / truth);
           worstNorm = std::max(worstNorm, std::abs(ltc - truth) / norm);
         }
@@ -238,12 +247,12 @@ double ltcFloorError(const LtcTable& table, double roughness, int n, double* bia
           PENUMBRA_LIGHT_RECT, glm::vec3(p), up, v, glm::vec3(s.lightCentre), glm::vec3(0.0f, -1.0f, 0.0f),
           glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, 1.0f), glm::vec2(float(s.halfW), float(s.halfH)),
           shared::penumbraAlpha(float(roughness)));
-      const double got = double(shared::penumbraLightPolygon(PENUMBRA_LIGHT_RECT, glm::vec3(p), up, up,
-                                                            glm::vec3(s.lightCentre), glm::vec3(1.0f, 0.0f, 0.0f),
-                                                            glm::vec3(0.0f, 0.0f, 1.0f),
-                                                            glm::vec2(float(s.halfW), float(s.halfH)), true, v, minv)
-                                    .y) *
-                         double(terms.x) * metal.fresnel(glm::dot(glm::dvec3(v), glm::normalize(glm::dvec3(v) + glm::dvec3(l))));
+      const double got =
+          double(shared::penumbraLightPolygon(PENUMBRA_LIGHT_RECT, glm::vec3(p), up, up, glm::vec3(s.lightCentre),
+                                              glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, 1.0f),
+                                              glm::vec2(float(s.halfW), float(s.halfH)), true, v, minv)
+                     .y) *
+          double(terms.x) * metal.fresnel(glm::dot(glm::dvec3(v), glm::normalize(glm::dvec3(v) + glm::dvec3(l))));
       se += (got - want) * (got - want), sum += want * want;
       signedSum += got - want, wantSum += want;
     }
@@ -259,8 +268,10 @@ TEST(Ltc, UnshadowedTermAgainstTheQuadratureOnRectLitFloors) {
     double metalBias = 0.0, dielectricBias = 0.0;
     const double metal = ltcFloorError(table, r, 24, &metalBias);
     const double dielectric = ltcFloorError(table, r, 24, &dielectricBias, 0.0);
-    std::printf("roughness %.2f: the LTC's specular term, relative RMSE (bias): metal %.4f (%+.4f), dielectric "
-                "%.4f (%+.4f)\n", r, metal, metalBias, dielectric, dielectricBias);
+    std::printf(
+        "roughness %.2f: the LTC's specular term, relative RMSE (bias): metal %.4f (%+.4f), dielectric "
+        "%.4f (%+.4f)\n",
+        r, metal, metalBias, dielectric, dielectricBias);
     // Measured (the CPU's: the shader's functions compiled as C++): metal 0.0029 / 0.0021 /
     // 0.0250 / 0.0511 / 0.0237 / 0.0160, dielectric 0.0028 / 0.0023 / 0.0477 / 0.0632 / 0.0254 /
     // 0.0184 at roughness 0.05 / 0.1 / 0.3 / 0.5 / 0.7 / 1.0. The fit of 2026-12-03 (the paper's

@@ -105,21 +105,22 @@ Errors measure(const Image& texture, const Config& k) {
       const float nv = glm::dot(up, v);
       const glm::vec4 minv = glossy ? shading::ltcLookup(table, 0, float(k.roughness), nv) : glm::vec4(1, 0, 0, 1);
       const float norm = glossy ? shading::ltcLookup(table, 1, float(k.roughness), nv).x : 1.0f;
-      const glm::vec2 polygon = shared::penumbraLightPolygon(
-          k.shape == LightShape::Rect ? PENUMBRA_LIGHT_RECT : PENUMBRA_LIGHT_DISK, p, up, up, glm::vec3(c), glm::vec3(t),
-          glm::vec3(b), half, glossy, v, minv);
+      const glm::vec2 polygon =
+          shared::penumbraLightPolygon(k.shape == LightShape::Rect ? PENUMBRA_LIGHT_RECT : PENUMBRA_LIGHT_DISK, p, up,
+                                       up, glm::vec3(c), glm::vec3(t), glm::vec3(b), half, glossy, v, minv);
       const double closed = glossy ? double(polygon.y) * norm : double(polygon.x);
       const glm::vec3 x = shared::penumbraLtcTangent(up, v), y = glm::cross(up, x);
-      const glm::vec3 foot = shared::penumbraPrefilterFootprint(p, glm::vec3(c), glm::vec3(t), glm::vec3(b),
-                                                                k.shape == LightShape::Rect ? half : glm::vec2(half.x),
-                                                                x, y, up, minv);
+      const glm::vec3 foot =
+          shared::penumbraPrefilterFootprint(p, glm::vec3(c), glm::vec3(t), glm::vec3(b),
+                                             k.shape == LightShape::Rect ? half : glm::vec2(half.x), x, y, up, minv);
       const glm::dvec3 filtered(shading::prefilteredEmission(chain, foot));
       // The paper's one level at a log of the footprint, sigma = 0.85 d (the Gaussian with the
       // cosine's half-weight radius d), linear between levels.
       const float level = std::clamp(std::log2(0.85f * foot.z / chain.sigma0), 0.0f, float(chain.levels - 1));
       const int k0 = int(level), k1 = std::min(k0 + 1, chain.levels - 1);
       const glm::dvec3 single(glm::mix(glm::vec3(shading::prefilteredLevel(chain, glm::vec2(foot), k0)),
-                                       glm::vec3(shading::prefilteredLevel(chain, glm::vec2(foot), k1)), level - float(k0)));
+                                       glm::vec3(shading::prefilteredLevel(chain, glm::vec2(foot), k1)),
+                                       level - float(k0)));
       // The 16 samples of the set this grid point would get.
       const int set = samples.setForPixel(gx, gz);
       glm::dvec3 sampled(0.0);
@@ -178,13 +179,16 @@ TEST(PrefilteredLight, AgainstTheIntegralOverTheTexture) {
     for (const Gated& g : configs) {
       const Config& k = g.config;
       const Errors e = measure(*tex, k);
-      std::printf("%-13s %-27s relative RMSE: prefiltered %.4f (one level %.4f, with the closed form %.4f), "
-                  "16 samples %.4f\n", tex == &glass ? "stained-glass" : "checker", k.name, e.mixture, e.single,
-                  e.whole, e.sampled);
+      std::printf(
+          "%-13s %-27s relative RMSE: prefiltered %.4f (one level %.4f, with the closed form %.4f), "
+          "16 samples %.4f\n",
+          tex == &glass ? "stained-glass" : "checker", k.name, e.mixture, e.single, e.whole, e.sampled);
       EXPECT_GE(e.values, 3 * 60);
       EXPECT_LE(e.mixture, g.gate) << k.name;
       EXPECT_LE(e.mixture, 0.35 * e.sampled) << k.name << ": well below 16 samples' noise";
-      if (k.roughness == 0.0 && k.tilt == 0.0) { EXPECT_LE(e.mixture, e.single) << k.name << ": the mixture's reason"; }
+      if (k.roughness == 0.0 && k.tilt == 0.0) {
+        EXPECT_LE(e.mixture, e.single) << k.name << ": the mixture's reason";
+      }
     }
 }
 
@@ -193,14 +197,16 @@ TEST(PrefilteredLight, AgainstTheIntegralOverTheTexture) {
 // deep inside and falls off outside; the finest level reproduces a checker inside its cells.
 TEST(PrefilteredLight, TheChainIsANormalisedConvolution) {
   Image flat(16, 16, 3, 0.0f);
-  for (int i = 0; i < 16 * 16; ++i) flat.data[std::size_t(i) * 3] = 0.3f, flat.data[std::size_t(i) * 3 + 1] = 0.6f,
-                                     flat.data[std::size_t(i) * 3 + 2] = 0.9f;
+  for (int i = 0; i < 16 * 16; ++i)
+    flat.data[std::size_t(i) * 3] = 0.3f, flat.data[std::size_t(i) * 3 + 1] = 0.6f,
+                               flat.data[std::size_t(i) * 3 + 2] = 0.9f;
   for (bool disk : {false, true}) {
     const shading::PrefilteredLight chain = shading::prefilterLight(flat, disk);
     EXPECT_GE(chain.levels, 6);
     EXPECT_GE(chain.sigma0 * std::exp2(float(chain.levels - 1)), 2.0f);
     double worst = 0.0;
-    for (const glm::vec4& t : chain.texels) worst = std::max(worst, double(glm::length(glm::vec3(t) - glm::vec3(0.3f, 0.6f, 0.9f))));
+    for (const glm::vec4& t : chain.texels)
+      worst = std::max(worst, double(glm::length(glm::vec3(t) - glm::vec3(0.3f, 0.6f, 0.9f))));
     EXPECT_LE(worst, 1e-5) << (disk ? "disk" : "rect");
     EXPECT_NEAR(shading::prefilteredLevel(chain, glm::vec2(0.5f), 0).w, 1.0f, 1e-5f);
     EXPECT_LT(shading::prefilteredLevel(chain, glm::vec2(-0.2f, 0.5f), 0).w, 1e-3f);
@@ -219,9 +225,9 @@ TEST(PrefilteredLight, TheChainIsANormalisedConvolution) {
 TEST(PrefilteredLight, TheFootprintOfAFacingLight) {
   const glm::vec3 centre(0.0f, 2.0f, 0.0f), tangent(1.0f, 0.0f, 0.0f), bitangent(0.0f, 0.0f, 1.0f);
   const glm::vec3 p(0.5f, 0.0f, -0.25f);  // under the corner uv (1, 0)
-  const glm::vec3 foot = shared::penumbraPrefilterFootprint(p, centre, tangent, bitangent, glm::vec2(0.5f, 0.25f),
-                                                            glm::vec3(0, 0, 1), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0),
-                                                            glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+  const glm::vec3 foot =
+      shared::penumbraPrefilterFootprint(p, centre, tangent, bitangent, glm::vec2(0.5f, 0.25f), glm::vec3(0, 0, 1),
+                                         glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
   EXPECT_NEAR(foot.x, 1.0f, 1e-6f);
   EXPECT_NEAR(foot.y, 0.0f, 1e-6f);
   EXPECT_NEAR(foot.z, 2.0f / std::sqrt(0.5f), 1e-5f);

@@ -59,12 +59,16 @@ TEST(TechniqueParams, DcsTakesItsOptionsThroughParam) {
   makeTechnique("dcs", p);
   EXPECT_NO_THROW(p.checkConsumed());
   EXPECT_EQ(p.read().size(), 8u);
-  EXPECT_NE(errorOf([] { makeTechnique("dcs", TechniqueParams({"coverage=fast"})); })
-                .find("param: coverage: expected one of exact, naive, lut, got 'fast'"),
+  EXPECT_NE(errorOf([] {
+              makeTechnique("dcs", TechniqueParams({"coverage=fast"}));
+            }).find("param: coverage: expected one of exact, naive, lut, got 'fast'"),
             std::string::npos);
-  EXPECT_NE(errorOf([] { makeTechnique("dcs", TechniqueParams({"targets=8"})); }).find("param: targets: 8 is outside [1, 7]"),
-            std::string::npos);
-  EXPECT_NE(errorOf([] { makeTechnique("dcs", TechniqueParams({"min-base=48"})); }).find("min-base: expected one of 8, 16, 32, 64"),
+  EXPECT_NE(
+      errorOf([] { makeTechnique("dcs", TechniqueParams({"targets=8"})); }).find("param: targets: 8 is outside [1, 7]"),
+      std::string::npos);
+  EXPECT_NE(errorOf([] {
+              makeTechnique("dcs", TechniqueParams({"min-base=48"}));
+            }).find("min-base: expected one of 8, 16, 32, 64"),
             std::string::npos);
   // The variants are presets of the same declarations: their defaults differ, their keys do not.
   EXPECT_EQ(findTechnique("dcs-lut").params.size(), findTechnique("dcs").params.size());
@@ -81,24 +85,30 @@ TEST(TechniqueParams, DcsTakesItsOptionsThroughParam) {
 TEST(TechniqueParams, UnreadKeysAreRefused) {
   TechniqueParams p({"map=64", "blur=0"});
   makeTechnique("pcss", p);  // pcss (no mask, no min filter) has no blur
-  EXPECT_NE(errorOf([&] { p.checkConsumed(); }).find("no technique of this run has a parameter 'blur'"), std::string::npos);
+  EXPECT_NE(errorOf([&] { p.checkConsumed(); }).find("no technique of this run has a parameter 'blur'"),
+            std::string::npos);
 }
 
 TEST(KeyValueReader, TextAndJsonValuesShareTheirChecksAndWording) {
   const KeyPlace param{"param", "map", ExitCode::Usage}, scene{"a.json", "camera.resolution", ExitCode::Error};
   KeyValue json;
   json.kind = KeyValue::Kind::Number, json.number = 2.5, json.shown = "2.5";
-  EXPECT_EQ(errorOf([&] { readInteger(KeyValue::ofText("2.5"), param, 0, 10); }), "param: map: expected an integer, got '2.5'");
-  EXPECT_EQ(errorOf([&] { readInteger(json, scene, 0, 10); }), "a.json: camera.resolution: expected an integer, got 2.5");
+  EXPECT_EQ(errorOf([&] { readInteger(KeyValue::ofText("2.5"), param, 0, 10); }),
+            "param: map: expected an integer, got '2.5'");
+  EXPECT_EQ(errorOf([&] { readInteger(json, scene, 0, 10); }),
+            "a.json: camera.resolution: expected an integer, got 2.5");
   EXPECT_EQ(errorOf([&] { readNumber(KeyValue::ofText("20"), param, 0, 10); }), "param: map: 20 is outside [0, 10]");
-  EXPECT_EQ(errorOf([&] { readNumber(KeyValue::ofText("1e400"), param, 0, 10); }), "param: map: not a finite number: '1e400'");
-  EXPECT_EQ(errorOf([&] { readNumber(KeyValue::ofText("12abc"), param, 0, 100); }), "param: map: expected a number, got '12abc'");
+  EXPECT_EQ(errorOf([&] { readNumber(KeyValue::ofText("1e400"), param, 0, 10); }),
+            "param: map: not a finite number: '1e400'");
+  EXPECT_EQ(errorOf([&] { readNumber(KeyValue::ofText("12abc"), param, 0, 100); }),
+            "param: map: expected a number, got '12abc'");
   EXPECT_EQ(readNumber(KeyValue::ofText("0.25"), param, 0, 1), 0.25);
   EXPECT_TRUE(readBoolean(KeyValue::ofText("on"), param));
   EXPECT_FALSE(readBoolean(KeyValue::ofText("0"), param));
   KeyValue yes;
   yes.kind = KeyValue::Kind::String, yes.text = "yes", yes.shown = "\"yes\"";
-  EXPECT_EQ(errorOf([&] { readBoolean(yes, scene); }), "a.json: camera.resolution: expected true or false, got \"yes\"");
+  EXPECT_EQ(errorOf([&] { readBoolean(yes, scene); }),
+            "a.json: camera.resolution: expected true or false, got \"yes\"");
   EXPECT_EQ(readChoice(KeyValue::ofText("lut"), param, {"exact", "naive", "lut"}), 2);
   KeyValue five;
   five.kind = KeyValue::Kind::Integer, five.number = 5, five.shown = "5";

@@ -132,7 +132,7 @@ int shading(int argc, char** argv) {
 int penumbraBenchMain(const char* study, int argc, char** argv) {
   // Keyed like studyTable() (bench/studies.h).
   static const std::map<std::string, std::function<int(int, char**)>> mains = {
-      {"speed-error", speedError}, {"dcs", dcs}, {"multiview", multiview}, {"single-map", singleMap},
-      {"techniques", timings}, {"shading", shading}};
+      {"speed-error", speedError}, {"dcs", dcs},        {"multiview", multiview}, {"single-map", singleMap},
+      {"techniques", timings},     {"shading", shading}};
   return mains.at(study)(argc, argv);
 }

@@ -55,13 +55,17 @@ RenderSettings settingsFor(const CommonOptions& o, const Scene& scene) {
   checkTime(o.time);
   RenderSettings s;
   if ((o.width && *o.width < 1) || (o.height && *o.height < 1))
-    throw Error("-W/-H", fmt::format("image size must be positive, got {} x {}", o.width ? std::to_string(*o.width) : "the scene's",
-                                     o.height ? std::to_string(*o.height) : "the scene's"), ExitCode::Usage);
+    throw Error(
+        "-W/-H",
+        fmt::format("image size must be positive, got {} x {}", o.width ? std::to_string(*o.width) : "the scene's",
+                    o.height ? std::to_string(*o.height) : "the scene's"),
+        ExitCode::Usage);
   s.width = o.width.value_or(scene.width);
   s.height = o.height.value_or(scene.height);
   if (o.samples < 1 || o.samples > PENUMBRA_MAX_SAMPLES)
-    throw Error("--samples", "must be in 1.." + std::to_string(PENUMBRA_MAX_SAMPLES) + ", got " +
-                                 std::to_string(o.samples), ExitCode::Usage);
+    throw Error("--samples",
+                "must be in 1.." + std::to_string(PENUMBRA_MAX_SAMPLES) + ", got " + std::to_string(o.samples),
+                ExitCode::Usage);
   s.sampling.count = o.samples;
   s.sampling.strategy = parseSampleStrategy(o.strategy);
   s.sampling.pattern = parsePixelPattern(o.pattern);
@@ -97,8 +101,10 @@ void checkWritableFolder(const fs::path& dir, const std::string& what, bool crea
 void checkImageSize(const gl::Context& context, const RenderSettings& s) {
   const int maxSize = context.maxTextureSize();
   if (s.width > maxSize || s.height > maxSize)
-    throw Error("-W/-H", "image size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " outside 1.." +
-                             std::to_string(maxSize), ExitCode::Usage);
+    throw Error("-W/-H",
+                "image size " + std::to_string(s.width) + "x" + std::to_string(s.height) + " outside 1.." +
+                    std::to_string(maxSize),
+                ExitCode::Usage);
 }
 
 void checkOutputPath(const std::string& path) {
@@ -125,8 +131,10 @@ std::string shortNames(const std::vector<std::string>& names) {
       if (familyOf(u.name) == f) members.push_back(u.name);
     for (auto& m : members)
       if (std::find(names.begin(), names.end(), m) != names.end()) in.push_back(m);
-    if (in.size() == members.size() && members.size() > 1) out.push_back(f + "*");
-    else out.insert(out.end(), in.begin(), in.end());
+    if (in.size() == members.size() && members.size() > 1)
+      out.push_back(f + "*");
+    else
+      out.insert(out.end(), in.begin(), in.end());
   }
   return fmt::format("{}", fmt::join(out, ", "));
 }
@@ -148,7 +156,8 @@ std::string paramsMarkdown(const std::vector<TechniqueInfo>& techniques) {
       });
       if (row == rows.end()) row = rows.insert(rows.end(), Row{&p, {}, {}});
       row->techniques.push_back(t.name);
-      auto d = std::find_if(row->defaults.begin(), row->defaults.end(), [&](auto& e) { return e.first == p.defaultText(); });
+      auto d =
+          std::find_if(row->defaults.begin(), row->defaults.end(), [&](auto& e) { return e.first == p.defaultText(); });
       if (d == row->defaults.end()) d = row->defaults.insert(row->defaults.end(), {p.defaultText(), {}});
       d->second.push_back(t.name);
     }
@@ -157,7 +166,8 @@ std::string paramsMarkdown(const std::vector<TechniqueInfo>& techniques) {
   for (auto& r : rows) {
     std::string defaults;
     for (auto& [value, names] : r.defaults)
-      defaults += (defaults.empty() ? "" : ", ") + value + (r.defaults.size() > 1 ? " (" + shortNames(names) + ")" : "");
+      defaults +=
+          (defaults.empty() ? "" : ", ") + value + (r.defaults.size() > 1 ? " (" + shortNames(names) + ")" : "");
     auto cell = [](std::string s) {  // a '|' inside a cell is escaped (GitHub tables)
       for (std::size_t p = s.find('|'); p != std::string::npos; p = s.find('|', p + 2)) s.insert(p, "\\");
       return s;
@@ -180,7 +190,8 @@ int listTechniques(bool asJson, bool withParams, const std::string& format, cons
       if (withParams) {
         e["params"] = json::array();
         for (auto& p : t.params)
-          e["params"].push_back({{"key", p.key}, {"default", p.defaultText()}, {"values", p.rangeText()}, {"meaning", p.meaning}});
+          e["params"].push_back(
+              {{"key", p.key}, {"default", p.defaultText()}, {"values", p.rangeText()}, {"meaning", p.meaning}});
       }
       j.push_back(e);
     }
@@ -201,7 +212,8 @@ int listTechniques(bool asJson, bool withParams, const std::string& format, cons
     std::printf("%-20s %s\n", t.name.c_str(), t.description.c_str());
     if (!withParams) continue;
     for (auto& p : t.params)
-      std::printf("    %-18s %-22s %-24s %s\n", p.key.c_str(), p.defaultText().c_str(), p.rangeText().c_str(), p.meaning.c_str());
+      std::printf("    %-18s %-22s %-24s %s\n", p.key.c_str(), p.defaultText().c_str(), p.rangeText().c_str(),
+                  p.meaning.c_str());
   }
   return 0;
 }
@@ -218,16 +230,24 @@ int info(const CommonOptions& o) {
   json meshes = json::array();
   for (auto& m : scene.meshes) {
     const auto& r = m.report;
-    meshes.push_back({{"name", m.name}, {"triangles", r.triangles}, {"inputFaces", r.inputFaces},
-                      {"droppedInvalidIndex", r.droppedInvalidIndex}, {"droppedDegenerate", r.droppedDegenerate},
-                      {"droppedNonFinite", r.droppedNonFinite}, {"droppedDuplicate", r.droppedDuplicate},
-                      {"duplicatedVertices", r.duplicatedVertices}, {"openEdges", r.openEdges},
-                      {"nonManifoldEdges", r.nonManifoldEdges}, {"inconsistentEdges", r.inconsistentEdges},
-                      {"components", r.components}, {"closed", r.closed}});
+    meshes.push_back({{"name", m.name},
+                      {"triangles", r.triangles},
+                      {"inputFaces", r.inputFaces},
+                      {"droppedInvalidIndex", r.droppedInvalidIndex},
+                      {"droppedDegenerate", r.droppedDegenerate},
+                      {"droppedNonFinite", r.droppedNonFinite},
+                      {"droppedDuplicate", r.droppedDuplicate},
+                      {"duplicatedVertices", r.duplicatedVertices},
+                      {"openEdges", r.openEdges},
+                      {"nonManifoldEdges", r.nonManifoldEdges},
+                      {"inconsistentEdges", r.inconsistentEdges},
+                      {"components", r.components},
+                      {"closed", r.closed}});
   }
   j["meshes"] = meshes;
   json textures = json::array();
-  for (const Texture& t : scene.textures) textures.push_back({{"source", t.source}, {"width", t.width}, {"height", t.height}});
+  for (const Texture& t : scene.textures)
+    textures.push_back({{"source", t.source}, {"width", t.width}, {"height", t.height}});
   j["textures"] = textures;
   if (o.json) {
     std::printf("%s\n", j.dump(2).c_str());
@@ -248,7 +268,7 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   checkTime(o.time);
   Scene scene = loadSceneFor(o);
   if (scene.isAnimated()) scene = scene.posedAt(o.time);  // "spin": the pose at --time
-  scene.makeCameraRelative();  // in place: the Renderer would otherwise translate a copy
+  scene.makeCameraRelative();                             // in place: the Renderer would otherwise translate a copy
   RenderSettings settings = settingsFor(o, scene);
   // Parameters are read (and refused) before any GL work, as compare does.
   TechniqueParams params(o.params);
@@ -265,8 +285,11 @@ int render(const CommonOptions& o, const std::string& technique, const std::stri
   j["technique"] = technique;
   j["renderer"] = context->renderer();
   j["output"] = output;
-  if (o.json) std::printf("%s\n", j.dump(2).c_str());
-  else PLOG_INFO("{}: {:.1f} ms (harness {:.1f} ms apart) -> {}", technique, frame.timer.total(), frame.timer.harnessTotal(), output);
+  if (o.json)
+    std::printf("%s\n", j.dump(2).c_str());
+  else
+    PLOG_INFO("{}: {:.1f} ms (harness {:.1f} ms apart) -> {}", technique, frame.timer.total(),
+              frame.timer.harnessTotal(), output);
   return 0;
 }
 
@@ -290,12 +313,14 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
   if (options.techniques.empty()) throw Error("--techniques", "no technique given", ExitCode::Usage);
   for (auto& s : c.sweeps) options.sweeps.push_back(parseSweep(s));
   for (auto& s : c.insets) options.insets.push_back(parseInset(s));
-  if (c.timingFrames < 1 || c.timingFrames > 1000) throw Error("--timing-frames", "must be in 1..1000", ExitCode::Usage);
+  if (c.timingFrames < 1 || c.timingFrames > 1000)
+    throw Error("--timing-frames", "must be in 1..1000", ExitCode::Usage);
   if (c.warmup < 0 || c.warmup > 100) throw Error("--warmup", "must be in 0..100", ExitCode::Usage);
   if (c.frames < 1 || c.frames > 10000) throw Error("--frames", "must be in 1..10000", ExitCode::Usage);
   if (!(c.fps > 0.0f) || !std::isfinite(c.fps)) throw Error("--fps", "must be positive", ExitCode::Usage);
   if (!(c.pixelsPerDegree > 0.0) || !std::isfinite(c.pixelsPerDegree) || c.pixelsPerDegree > 1000.0)
-    throw Error("--ppd", fmt::format("must be in (0, 1000] pixels per degree, got {}", c.pixelsPerDegree), ExitCode::Usage);
+    throw Error("--ppd", fmt::format("must be in (0, 1000] pixels per degree, got {}", c.pixelsPerDegree),
+                ExitCode::Usage);
   if (c.maxError && !(std::isfinite(*c.maxError) && *c.maxError >= 0.0))
     throw Error("--max-error", fmt::format("must be a finite RMSE >= 0, got {}", *c.maxError), ExitCode::Usage);
   checkTime(o.time);
@@ -334,8 +359,8 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
       failed.push_back(run.technique + (label.empty() ? "" : " @ " + label) + " (" + run.failure + ")");
     }
   if (!failed.empty())
-    throw Error("compare", fmt::format("{} of {} technique runs failed (see the report): {}", failed.size(), techniqueRuns,
-                                       fmt::join(failed, "; ")));
+    throw Error("compare", fmt::format("{} of {} technique runs failed (see the report): {}", failed.size(),
+                                       techniqueRuns, fmt::join(failed, "; ")));
   if (c.maxError) {
     for (auto& run : result.runs)
       // A NaN error fails the threshold (the pipeline refuses NaN images; this is the last guard).
@@ -411,7 +436,8 @@ int bench(const BenchOptions& b) {
   checkWritableFolder(dir, dir, /*create=*/true);
   const FolderLock lock(dir);
   const std::string machine = fmt::format(
-      "date      {}\ncpu       {}\ncores     {}\nmemory    {}\nos        {}\nrenderer  {}\ngl        {}\nbackend   {}\nsuite     {}\n",
+      "date      {}\ncpu       {}\ncores     {}\nmemory    {}\nos        {}\nrenderer  {}\ngl        {}\nbackend   "
+      "{}\nsuite     {}\n",
       utcNow(), firstLine("/proc/cpuinfo", "model name"), std::thread::hardware_concurrency(),
       firstLine("/proc/meminfo", "MemTotal"), firstLine("/etc/os-release", "PRETTY_NAME"), renderer, version, b.backend,
       b.quick ? "quick" : "full");
@@ -481,7 +507,8 @@ int ltcLut(const CommonOptions& o, const LutOptions& l) {
 
 int lut(const CommonOptions& o, const LutOptions& l) {
   if (l.ltc) return ltcLut(o, l);
-  if (l.shape != "rect" && l.shape != "disk") throw Error("--shape", "must be rect or disk, got '" + l.shape + "'", ExitCode::Usage);
+  if (l.shape != "rect" && l.shape != "disk")
+    throw Error("--shape", "must be rect or disk, got '" + l.shape + "'", ExitCode::Usage);
   if (l.cube < 1 || l.cube > 1024) throw Error("--cube", "must be in 1..1024", ExitCode::Usage);
   if (l.line < 2 || l.line > 4096 || l.line % 2) throw Error("--line", "must be even, in 2..4096", ExitCode::Usage);
   Scene scene;
@@ -500,10 +527,12 @@ int lut(const CommonOptions& o, const LutOptions& l) {
   std::map<std::string, std::string> lightFiles;  // path -> light
   const auto lightFile = [&](const Light& light, const std::string& kind) {
     const std::string path = (fs::path(l.outDir) / (fileNameComponent(scene.name, "scene") + "_" +
-                                                    fileNameComponent(light.name, "light") + "_" + kind + ".exr")).string();
+                                                    fileNameComponent(light.name, "light") + "_" + kind + ".exr"))
+                                 .string();
     if (const auto [it, fresh] = lightFiles.emplace(path, light.name); !fresh)
       throw Error("lut", fmt::format("lights '{}' and '{}' would write the same file '{}': give them names that differ "
-                                     "in letters or digits", abbreviate(it->second), abbreviate(light.name), path));
+                                     "in letters or digits",
+                                     abbreviate(it->second), abbreviate(light.name), path));
     return path;
   };
   for (const Light& light : scene.lights) {
@@ -512,8 +541,8 @@ int lut(const CommonOptions& o, const LutOptions& l) {
       std::string path = (fs::path(l.outDir) / dcs::edgeLutFileName(samples)).string();
       if (std::find(done.begin(), done.end(), path) == done.end()) {
         done.push_back(path);
-        dcs::EdgeLut table = dcs::buildEdgeLut(dcs::normalisedSamples(samples), samples.count, samples.setCount,
-                                               {l.cube, l.line});
+        dcs::EdgeLut table =
+            dcs::buildEdgeLut(dcs::normalisedSamples(samples), samples.count, samples.setCount, {l.cube, l.line});
         dcs::writeEdgeLut(path, table);
         written.push_back({{"light", light.name}, {"kind", "edge"}, {"path", path}});
       }

@@ -11,7 +11,7 @@
 namespace penumbra::cli {
 
 struct CommonOptions {
-  std::string scene;  // empty: the built-in default scene
+  std::string scene;                   // empty: the built-in default scene
   std::vector<std::string> overrides;  // --set key=value
   std::string backend = "egl";
   std::optional<int> width, height;  // absent: the scene's resolution (-W -1 was read as that: now refused)
@@ -27,7 +27,8 @@ struct CommonOptions {
 };
 
 // `penumbra list [--params] [--format text|markdown|json]`: the techniques, with --params every
-// parameter each declares (default, values, meaning); markdown is docs/cli.md's parameter table (without --params, README's technique table).
+// parameter each declares (default, values, meaning); markdown is docs/cli.md's parameter table (without --params,
+// README's technique table).
 int listTechniques(bool json, bool withParams, const std::string& format, const std::vector<std::string>& names);
 int info(const CommonOptions& o);
 int render(const CommonOptions& o, const std::string& technique, const std::string& output);
@@ -59,13 +60,13 @@ struct LutOptions {
   std::string shape = "rect";  // without a scene: the light shape the table is for (rect | disk)
   int cube = 64, line = 512;   // edge LUT sizes (edge_lut.h)
   std::string outDir = "luts";
-  bool ltc = false;            // instead: the LTC GGX table (src/shading/ltc.h) and its error report
+  bool ltc = false;  // instead: the LTC GGX table (src/shading/ltc.h) and its error report
   int ltcSize = 64;
 };
 // --ltc: fits the LTC GGX table, writing <outDir>/ltc_ggx.lut and its per-cell error report
-// <outDir>/ltc_ggx_error.csv. Else writes the dcs edge LUT (src/techniques/dcs/edge_lut.h) of the sample pattern the options
-// describe: for each rect or disk light of the scene (none given: for a light of --shape), and
-// the luminance table (N samples x M sets, RGB EXR) of each textured light.
+// <outDir>/ltc_ggx_error.csv. Else writes the dcs edge LUT (src/techniques/dcs/edge_lut.h) of the sample pattern the
+// options describe: for each rect or disk light of the scene (none given: for a light of --shape), and the luminance
+// table (N samples x M sets, RGB EXR) of each textured light.
 int lut(const CommonOptions& o, const LutOptions& l);
 
 }  // namespace penumbra::cli

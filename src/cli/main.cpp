@@ -27,7 +27,8 @@ void addOptions(CLI::App* app, cli::CommonOptions& o, int groups) {
   app->add_flag("--json", o.json, "machine-readable output on stdout");
   if (groups & int(Options::Samples)) {
     auto* g = app->add_option_group("light samples");
-    g->add_option("--samples", o.samples, "light samples per light, for every technique and the reference")->capture_default_str();
+    g->add_option("--samples", o.samples, "light samples per light, for every technique and the reference")
+        ->capture_default_str();
     g->add_option("--strategy", o.strategy, "sample strategy: " + namesOf(kSampleStrategyNames))->capture_default_str();
     g->add_option("--pattern", o.pattern, "per-pixel sets: " + namesOf(kPixelPatternNames))->capture_default_str();
     g->add_option("--seed", o.seed, "sample seed")->capture_default_str();
@@ -35,11 +36,15 @@ void addOptions(CLI::App* app, cli::CommonOptions& o, int groups) {
   }
   if (groups & int(Options::Rendering)) {
     auto* g = app->add_option_group("rendering");
-    g->add_option("--param", o.params, "technique parameter key=value (repeatable; `penumbra list --params`, e.g. map=512)");
+    g->add_option("--param", o.params,
+                  "technique parameter key=value (repeatable; `penumbra list --params`, e.g. map=512)");
     g->add_option("--backend", o.backend, "GL backend: " + namesOf(gl::kBackendNames))->capture_default_str();
     g->add_option("-W,--width", o.width, "image width (default: the scene's)");
     g->add_option("-H,--height", o.height, "image height (default: the scene's)");
-    g->add_option("--shading", o.shading, "ratio (unshadowed term x shadow ratio, Heitz et al. 2018) | ratio-exact (the unshadowed term integrated on the CPU, not the LTC) | modulate (DCS eq. 3) | per-sample (eq. 6)")->capture_default_str();
+    g->add_option("--shading", o.shading,
+                  "ratio (unshadowed term x shadow ratio, Heitz et al. 2018) | ratio-exact (the unshadowed term "
+                  "integrated on the CPU, not the LTC) | modulate (DCS eq. 3) | per-sample (eq. 6)")
+        ->capture_default_str();
     g->add_flag("--no-interleave-filter", o.noInterleaveFilter,
                 "with --pattern interleaved: skip the normal/depth-aware gather of the K x K sets");
   }
@@ -69,7 +74,8 @@ int main(int argc, char** argv) {
   auto* list = app.add_subcommand("list", "list the techniques, one line each");
   list->add_flag("--json", listJson, "machine-readable output (as --format json)");
   list->add_flag("--params", listParams, "every technique's parameters (--param key=value): default, values, meaning");
-  list->add_option("--format", listFormat, "text, markdown (README's technique table; with --params docs/cli.md's parameter table) or json")
+  list->add_option("--format", listFormat,
+                   "text, markdown (README's technique table; with --params docs/cli.md's parameter table) or json")
       ->capture_default_str();
   std::vector<std::string> listNames;
   list->add_option("techniques", listNames, "only these techniques (a technique folder's README.md lists its own)");
@@ -81,38 +87,55 @@ int main(int argc, char** argv) {
   auto* render = app.add_subcommand("render", "render one technique");
   addOptions(render, o, Options::Samples | Options::Rendering);
   render->add_option("-t,--technique", technique, "technique (see `penumbra list`)")->capture_default_str();
-  render->add_option("-o,--output", output, "output image (.exr: float RGB + visibility layers; .png: sRGB)")->required();
+  render->add_option("-o,--output", output, "output image (.exr: float RGB + visibility layers; .png: sRGB)")
+      ->required();
 
   std::string techniques = "all";
   cli::CompareCliOptions cmp;
-  auto* compare = app.add_subcommand("compare", "render techniques and the raytrace reference with the same samples; write index.html, report.json/.csv, plot.svg, images");
+  auto* compare = app.add_subcommand("compare",
+                                     "render techniques and the raytrace reference with the same samples; write "
+                                     "index.html, report.json/.csv, plot.svg, images");
   addOptions(compare, o, Options::Samples | Options::Rendering);
   compare->add_option("--techniques", techniques, "comma-separated techniques, or 'all'")->capture_default_str();
   compare->add_option("-o,--output", cmp.outDir, "output folder (default: out/<scene name>)");
   double maxError = 0.0;
-  auto* maxErrorOption = compare->add_option("--max-error", maxError, "exit 3 if a technique's visibility RMSE against the reference exceeds this");
-  compare->add_option("--sweep", cmp.sweeps, "key=v1,v2,...: samples, resolution or a technique parameter (repeatable; presets are the product)");
-  compare->add_flag("--converged", cmp.converged, "also measure against raytrace-converged (implied by a samples sweep)");
-  compare->add_option("--inset", cmp.insets, "x,y,w,h: a region to zoom in the report (repeatable; default: two chosen)");
-  compare->add_option("--timing-frames", cmp.timingFrames, "timed frames per technique (median and spread)")->capture_default_str();
+  auto* maxErrorOption = compare->add_option(
+      "--max-error", maxError, "exit 3 if a technique's visibility RMSE against the reference exceeds this");
+  compare->add_option(
+      "--sweep", cmp.sweeps,
+      "key=v1,v2,...: samples, resolution or a technique parameter (repeatable; presets are the product)");
+  compare->add_flag("--converged", cmp.converged,
+                    "also measure against raytrace-converged (implied by a samples sweep)");
+  compare->add_option("--inset", cmp.insets,
+                      "x,y,w,h: a region to zoom in the report (repeatable; default: two chosen)");
+  compare->add_option("--timing-frames", cmp.timingFrames, "timed frames per technique (median and spread)")
+      ->capture_default_str();
   compare->add_option("--warmup", cmp.warmup, "untimed frames first")->capture_default_str();
-  compare->add_option("--frames", cmp.frames, "frames of the scene's animation, for temporal flicker")->capture_default_str();
+  compare->add_option("--frames", cmp.frames, "frames of the scene's animation, for temporal flicker")
+      ->capture_default_str();
   compare->add_option("--fps", cmp.fps, "frames per second of --frames")->capture_default_str();
-  compare->add_option("--ppd", cmp.pixelsPerDegree,
-                      "FLIP's pixels per degree (default: 0.7 m from a 0.7 m wide 3840-pixel monitor, the FLIP paper's)")
+  compare
+      ->add_option("--ppd", cmp.pixelsPerDegree,
+                   "FLIP's pixels per degree (default: 0.7 m from a 0.7 m wide 3840-pixel monitor, the FLIP paper's)")
       ->capture_default_str();
 
   cli::BenchOptions benchOptions;
-  auto* bench = app.add_subcommand("bench", "run the benchmark studies; tables, reports and plots into bench/results/<machine>/");
-  bench->add_option("--studies", benchOptions.studies, "comma-separated studies (default: all; docs/benchmarks.md)")->delimiter(',');
+  auto* bench =
+      app.add_subcommand("bench", "run the benchmark studies; tables, reports and plots into bench/results/<machine>/");
+  bench->add_option("--studies", benchOptions.studies, "comma-separated studies (default: all; docs/benchmarks.md)")
+      ->delimiter(',');
   bench->add_flag("--quick", benchOptions.quick, "smaller images, maps and frame counts (a smoke run)");
   bench->add_option("-o,--output", benchOptions.outDir, "output folder (default: bench/results/<machine>)");
-  bench->add_option("--backend", benchOptions.backend, "GL backend: " + namesOf(gl::kBackendNames))->capture_default_str();
+  bench->add_option("--backend", benchOptions.backend, "GL backend: " + namesOf(gl::kBackendNames))
+      ->capture_default_str();
 
   cli::LutOptions lutOptions;
-  auto* lut = app.add_subcommand("lut", "write the dcs edge LUT of a sample pattern (and textured lights' luminance tables), or the LTC GGX table");
+  auto* lut = app.add_subcommand(
+      "lut",
+      "write the dcs edge LUT of a sample pattern (and textured lights' luminance tables), or the LTC GGX table");
   addOptions(lut, o, int(Options::Samples));
-  lut->add_option("--shape", lutOptions.shape, "light shape when no scene is given: rect | disk")->capture_default_str();
+  lut->add_option("--shape", lutOptions.shape, "light shape when no scene is given: rect | disk")
+      ->capture_default_str();
   lut->add_option("--cube", lutOptions.cube, "sector table size (cube map faces)")->capture_default_str();
   lut->add_option("--line", lutOptions.line, "line table size")->capture_default_str();
   lut->add_option("-o,--output", lutOptions.outDir, "output folder")->capture_default_str();
@@ -161,8 +184,9 @@ int main(int argc, char** argv) {
     return int(e.exitCode());
   } catch (const std::bad_alloc&) {
     // What the up-front estimates (core/memory.h) did not foresee: still one line, exit 1.
-    std::fprintf(stderr, "penumbra: out of memory: the scene, image or technique needs more memory "
-                         "than this process may allocate (physical memory or ulimit)\n");
+    std::fprintf(stderr,
+                 "penumbra: out of memory: the scene, image or technique needs more memory "
+                 "than this process may allocate (physical memory or ulimit)\n");
     return int(ExitCode::Error);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "penumbra: %s\n", e.what());

@@ -18,21 +18,29 @@ E parseNamed(const Named<E> (&table)[N], const std::string& text, const char* fl
 }
 }  // namespace
 
-gl::Backend parseBackend(const std::string& name) { return parseNamed(gl::kBackendNames, name, "--backend", "backend"); }
+gl::Backend parseBackend(const std::string& name) {
+  return parseNamed(gl::kBackendNames, name, "--backend", "backend");
+}
 
-ShadingMode parseShadingMode(const std::string& s) { return parseNamed(kShadingModeNames, s, "--shading", "shading mode"); }
+ShadingMode parseShadingMode(const std::string& s) {
+  return parseNamed(kShadingModeNames, s, "--shading", "shading mode");
+}
 
 SampleStrategy parseSampleStrategy(const std::string& s) {
   return parseNamed(kSampleStrategyNames, s, "--strategy", "sampling strategy");
 }
 
-PixelPattern parsePixelPattern(const std::string& s) { return parseNamed(kPixelPatternNames, s, "--pattern", "pixel pattern"); }
+PixelPattern parsePixelPattern(const std::string& s) {
+  return parseNamed(kPixelPatternNames, s, "--pattern", "pixel pattern");
+}
 
 std::string flagFor(const std::string& field, const std::string& subcommand) {
   if (field == "technique") return subcommand == "compare" ? "--techniques" : "--technique";
-  static const std::pair<const char*, const char*> kFlags[] = {
-      {"param", "--param"},     {"sweep", "--sweep"},     {"override", "--set"},
-      {"samples", "--samples"}, {"reference-samples", "--param reference-samples"}};
+  static const std::pair<const char*, const char*> kFlags[] = {{"param", "--param"},
+                                                               {"sweep", "--sweep"},
+                                                               {"override", "--set"},
+                                                               {"samples", "--samples"},
+                                                               {"reference-samples", "--param reference-samples"}};
   for (const auto& [name, flag] : kFlags)
     if (field == name) return flag;
   return {};
@@ -44,12 +52,13 @@ double parseByteSize(const std::string& what, const std::string& text) {
   for (const auto& [unit, scale] : kUnits) {
     const std::size_t n = std::char_traits<char>::length(unit);
     double x = 0.0;
-    if (text.size() > n && text.compare(text.size() - n, n, unit) == 0 && parseNumber(text.substr(0, text.size() - n), x) &&
-        x > 0.0 && x * scale < 1e18)
+    if (text.size() > n && text.compare(text.size() - n, n, unit) == 0 &&
+        parseNumber(text.substr(0, text.size() - n), x) && x > 0.0 && x * scale < 1e18)
       return x * scale;
   }
-  throw Error(what, "expected a positive size with a unit (512MiB, 1.5GiB; KiB, MiB, GiB, TiB), got '" + abbreviate(text) + "'",
-              ExitCode::Usage);
+  throw Error(
+      what, "expected a positive size with a unit (512MiB, 1.5GiB; KiB, MiB, GiB, TiB), got '" + abbreviate(text) + "'",
+      ExitCode::Usage);
 }
 
 void requireDecimalNumbers(CLI::App& app) {
@@ -88,8 +97,10 @@ namespace {
 std::vector<std::string> splitList(const std::string& s) {
   std::vector<std::string> out(1);
   for (char c : s) {
-    if (c == ',') out.emplace_back();
-    else out.back() += c;
+    if (c == ',')
+      out.emplace_back();
+    else
+      out.back() += c;
   }
   return out;
 }
@@ -108,8 +119,8 @@ SweepAxis parseSweep(const std::string& arg) {
         throw Error("--sweep", axis.key + ": value '" + axis.values[i] + "' given twice", ExitCode::Usage);
   if (axis.key == "samples" || axis.key == "resolution")
     for (auto& v : axis.values)
-      axis.integers.push_back(parsePositive("--sweep " + axis.key, v,
-                                            axis.key == "samples" ? PENUMBRA_MAX_SAMPLES : 16384));
+      axis.integers.push_back(
+          parsePositive("--sweep " + axis.key, v, axis.key == "samples" ? PENUMBRA_MAX_SAMPLES : 16384));
   return axis;
 }
 

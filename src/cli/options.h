@@ -17,9 +17,9 @@ class App;
 namespace penumbra::cli {
 
 gl::Backend parseBackend(const std::string& name);         // "egl" | "osmesa", else Error("--backend")
-ShadingMode parseShadingMode(const std::string& s);          // "modulate" | "per-sample", else Error("--shading")
-SampleStrategy parseSampleStrategy(const std::string& s);    // "stratified|poisson|vogel", else Error("--strategy")
-PixelPattern parsePixelPattern(const std::string& s);        // "correlated|decorrelated|interleaved", else Error("--pattern")
+ShadingMode parseShadingMode(const std::string& s);        // "modulate" | "per-sample", else Error("--shading")
+SampleStrategy parseSampleStrategy(const std::string& s);  // "stratified|poisson|vogel", else Error("--strategy")
+PixelPattern parsePixelPattern(const std::string& s);  // "correlated|decorrelated|interleaved", else Error("--pattern")
 
 // One --sweep axis: "key=v1,v2,..."; `samples` and `resolution` values must be integers in
 // 1..PENUMBRA_MAX_SAMPLES and 1..16384. Throws Error("--sweep") (usage).

@@ -21,18 +21,24 @@ PipelineCounts totalCounts(const CompareRun& run) {
 
 const char* toString(ErrorAxis a) {
   switch (a) {
-    case ErrorAxis::Visibility: return "visibility";
-    case ErrorAxis::Shaded: return "shaded";
-    case ErrorAxis::Flip: return "flip";
+    case ErrorAxis::Visibility:
+      return "visibility";
+    case ErrorAxis::Shaded:
+      return "shaded";
+    case ErrorAxis::Flip:
+      return "flip";
   }
   return "?";
 }
 
 double CompareRun::errorOn(ErrorAxis axis) const {
   switch (axis) {
-    case ErrorAxis::Visibility: return plotError();
-    case ErrorAxis::Shaded: return converged ? converged->shaded.rmse : errors.shaded.rmse;
-    case ErrorAxis::Flip: return flip ? *flip : -1.0;
+    case ErrorAxis::Visibility:
+      return plotError();
+    case ErrorAxis::Shaded:
+      return converged ? converged->shaded.rmse : errors.shaded.rmse;
+    case ErrorAxis::Flip:
+      return flip ? *flip : -1.0;
   }
   return -1.0;
 }
@@ -44,7 +50,8 @@ std::vector<std::pair<const ComparePreset*, double>> referenceNoiseOn(const Comp
     if (!run.referenceNoise) continue;
     const double v = axis == ErrorAxis::Visibility ? run.referenceNoise->visibility : run.referenceNoise->shaded;
     const ComparePreset& p = r.presets[run.preset];
-    if (std::none_of(out.begin(), out.end(), [&](auto& o) { return o.first->width == p.width && o.first->height == p.height; }))
+    if (std::none_of(out.begin(), out.end(),
+                     [&](auto& o) { return o.first->width == p.width && o.first->height == p.height; }))
       out.emplace_back(&p, v);
   }
   return out;
@@ -81,13 +88,16 @@ struct Plan {
 Plan planComparison(const RenderSettings& settings, const CompareOptions& o) {
   Plan plan;
   plan.presets = makePresets(settings, o.params, o.sweeps);
-  plan.converged = o.converged || std::any_of(o.sweeps.begin(), o.sweeps.end(), [](auto& a) { return a.key == "samples"; });
+  plan.converged =
+      o.converged || std::any_of(o.sweeps.begin(), o.sweeps.end(), [](auto& a) { return a.key == "samples"; });
   if (!o.reference.create || (plan.converged && !o.convergedReference.create))
     throw Error("compare", "no reference technique was handed in (CompareOptions::reference, convergedReference)");
   for (auto& r : o.insets)
     if (r.x + r.w > plan.presets[0].width || r.y + r.h > plan.presets[0].height)
-      throw Error("compare", fmt::format("inset {},{},{},{} is outside the {}x{} image", r.x, r.y, r.w, r.h,
-                                         plan.presets[0].width, plan.presets[0].height), ExitCode::Usage);
+      throw Error("compare",
+                  fmt::format("inset {},{},{},{} is outside the {}x{} image", r.x, r.y, r.w, r.h, plan.presets[0].width,
+                              plan.presets[0].height),
+                  ExitCode::Usage);
   plan.jobs.resize(plan.presets.size());
   TechniqueParams all(plan.presets[0].params, plan.presets[0].swept);
   std::vector<std::string> keys;
@@ -118,20 +128,27 @@ Plan planComparison(const RenderSettings& settings, const CompareOptions& o) {
 class Comparison {
  public:
   Comparison(gl::Context& context, const Scene& scene, const RenderSettings& settings, const CompareOptions& o)
-      : context_(context), scene_(scene), settings_(settings), o_(o), frames_(std::max(1, o.frames)),
+      : context_(context),
+        scene_(scene),
+        settings_(settings),
+        o_(o),
+        frames_(std::max(1, o.frames)),
         animated_(scene.isAnimated()) {
     Plan plan = planComparison(settings, o);
     result_.presets = std::move(plan.presets);
     converged_ = plan.converged;
     jobs_ = std::move(plan.jobs);
-    if (converged_ && !o.converged) PLOG_INFO("samples are swept: errors are also measured against {}", o.convergedReference.name);
+    if (converged_ && !o.converged)
+      PLOG_INFO("samples are swept: errors are also measured against {}", o.convergedReference.name);
     if (frames_ > 1 && !animated_ &&
         std::all_of(scene.lights.begin(), scene.lights.end(), [](auto& l) { return l.emissionFrames.size() < 2; }))
-      PLOG_WARN("{} frames: the scene has no animation (no \"spin\", no animated light): every frame is the same", frames_);
+      PLOG_WARN("{} frames: the scene has no animation (no \"spin\", no animated light): every frame is the same",
+                frames_);
   }
 
   CompareResult run() {
-    if (!o_.outDir.empty() && o_.writeImages) std::filesystem::create_directories(std::filesystem::path(o_.outDir) / "insets");
+    if (!o_.outDir.empty() && o_.writeImages)
+      std::filesystem::create_directories(std::filesystem::path(o_.outDir) / "insets");
     int steps = 0;
     for (auto& j : jobs_) steps += int(j.size()) + 1 + (converged_ ? 1 : 0);
     Progress progress(steps, o_.progress);
@@ -203,7 +220,8 @@ class Comparison {
     for (auto& [k, v] : t.stages) run.stages.emplace_back(k, v);
     for (auto& [k, v] : t.harnessStages) run.harnessStages.emplace_back(k, v);
     for (auto& st : t.last.timer.stages())
-      if (st.counted && st.kind == StageKind::Technique && st.stage != "prepare") run.counts.emplace_back(st.stage, st.counts);
+      if (st.counted && st.kind == StageKind::Technique && st.stage != "prepare")
+        run.counts.emplace_back(st.stage, st.counts);
     run.total = t.total, run.harness = t.harness, run.prepareMs = t.prepareMs;
     if (frames_ == 1) first = std::move(t.last);
     run.memoryBytes = first.memoryBytes, run.statistics = first.statistics;
@@ -267,10 +285,12 @@ class Comparison {
       run.converged = measureErrors(refs.frame, *refs.converged);
       run.referenceNoise = referenceNoise(*refs.converged);
       run.referenceStatistics = refs.converged->statistics;
-      if (!run.referenceNoise) PLOG_WARN("{}{} states no noise: the report shows no error floor", o_.convergedReference.name, at());
+      if (!run.referenceNoise)
+        PLOG_WARN("{}{} states no noise: the report shows no error floor", o_.convergedReference.name, at());
     }
     run.errors = measureErrors(refs.frame, refs.frame);
-    refs.flip = std::make_unique<HdrFlipReference>((refs.converged ? *refs.converged : refs.frame).color, o_.pixelsPerDegree);
+    refs.flip =
+        std::make_unique<HdrFlipReference>((refs.converged ? *refs.converged : refs.frame).color, o_.pixelsPerDegree);
     Image flip;
     if (refs.converged) flip = measureFlip(refs.frame, refs, run);
     writeImages(o_.reference.name, refs.frame, refs.converged, refs.converged ? &flip : nullptr, run);
@@ -396,7 +416,9 @@ class Comparison {
 
 }  // namespace
 
-void checkComparison(const RenderSettings& settings, const CompareOptions& options) { planComparison(settings, options); }
+void checkComparison(const RenderSettings& settings, const CompareOptions& options) {
+  planComparison(settings, options);
+}
 
 CompareResult compareTechniques(gl::Context& context, const Scene& given, const RenderSettings& settings,
                                 const CompareOptions& o) {

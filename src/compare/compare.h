@@ -35,19 +35,19 @@ struct CompareOptions {
   std::vector<TechniqueInfo> techniques;
   TechniqueInfo reference;           // same samples, per sample
   TechniqueInfo convergedReference;  // with `converged` (or a samples sweep)
-  std::vector<std::string> params;  // --param key=value, for every technique
+  std::vector<std::string> params;   // --param key=value, for every technique
   std::vector<SweepAxis> sweeps;
-  bool converged = false;          // also measure against raytrace-converged (forced by a samples sweep)
+  bool converged = false;            // also measure against raytrace-converged (forced by a samples sweep)
   int timingFrames = 3, warmup = 1;  // per technique and preset
-  std::vector<Inset> insets;       // empty: chooseInsets on the first preset's reference
+  std::vector<Inset> insets;         // empty: chooseInsets on the first preset's reference
   // Temporal stability: frames rendered at time + f / fps (scene animation, "spin" in the
   // scene file, and animated light textures); 1 = a still.
   int frames = 1;
   float fps = 30.0f;
-  std::string outDir;  // images are written here as they are made; empty: nothing written
+  std::string outDir;       // images are written here as they are made; empty: nothing written
   bool writeImages = true;  // PNG images, heat maps and insets
   bool writeExr = true;     // float images with the visibility layers
-  int progress = -1;   // Progress's `interactive`: -1 from isatty
+  int progress = -1;        // Progress's `interactive`: -1 from isatty
   // Called after every row (reference, technique, failure) with the result so far, its info's
   // "incomplete" saying how many rows of how many: the report rewritten as the run goes, so an
   // interrupted run leaves a report that says it is incomplete.
@@ -69,14 +69,14 @@ struct CompareRun {
   std::vector<std::string> params;  // key=value of the given parameters this technique read
   std::string shading;
   std::vector<std::pair<std::string, Spread>> stages;  // ms; "prepare" left out
-  Spread total;                     // ms per frame, stages summed: the technique's time
+  Spread total;                                        // ms per frame, stages summed: the technique's time
   // The harness's readbacks and uploads (StageKind::Harness), apart from `total`.
   std::vector<std::pair<std::string, Spread>> harnessStages;
   Spread harness;
   // The GL's pipeline statistics of the last timed frame per stage of `stages` (empty where the
   // GL counts none: CompareResult::info["pipelineStatistics"] says why).
   std::vector<std::pair<std::string, PipelineCounts>> counts;
-  double prepareMs = 0.0;           // once per scene
+  double prepareMs = 0.0;  // once per scene
   std::size_t memoryBytes = 0;
   std::vector<std::pair<std::string, double>> statistics;
   TechniqueErrors errors;                    // against the same-sample reference
@@ -98,8 +98,8 @@ struct CompareRun {
   // ends the comparison (compareTechniques throws).
   bool failed = false;
   std::string failure;
-  std::string image, heat;  // file names in the output folder, "" if not written
-  std::string flipHeat;     // the FLIP map in magma, "" if not written
+  std::string image, heat;     // file names in the output folder, "" if not written
+  std::string flipHeat;        // the FLIP map in magma, "" if not written
   std::string unshadowedMask;  // white where frame 0 left a pixel unshadowed in any light, "" if none
   std::vector<std::string> insetImages;
   // The error the plot uses: visibility RMSE against the converged reference if measured,
@@ -112,7 +112,6 @@ struct CompareRun {
 
 // The converged references' noise on `axis` (the plot's error floors), one per image size, in
 // the order of the runs; none on the FLIP axis.
-
 
 // The sum of a run's pipeline statistics over its stages.
 PipelineCounts totalCounts(const CompareRun& run);

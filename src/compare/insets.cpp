@@ -20,8 +20,9 @@ std::vector<Inset> chooseInsets(const FrameResult& ref, int count) {
           float v = l.visibility.data[i * 3];
           pen |= v > 0.02f && v < 0.98f;
         }
-      sat[std::size_t(y + 1) * (W + 1) + x + 1] =
-          pen + sat[std::size_t(y) * (W + 1) + x + 1] + sat[std::size_t(y + 1) * (W + 1) + x] - sat[std::size_t(y) * (W + 1) + x];
+      sat[std::size_t(y + 1) * (W + 1) + x + 1] = pen + sat[std::size_t(y) * (W + 1) + x + 1] +
+                                                  sat[std::size_t(y + 1) * (W + 1) + x] -
+                                                  sat[std::size_t(y) * (W + 1) + x];
     }
   auto sum = [&](int x, int y) {
     auto at = [&](int xx, int yy) { return sat[std::size_t(yy) * (W + 1) + xx]; };

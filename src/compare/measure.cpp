@@ -104,7 +104,8 @@ TechniqueErrors measureErrors(const FrameResult& frame, const FrameResult& ref) 
     for (std::size_t i = 0; i < n; ++i) {
       if (!valid[i] || band[l * n + i]) continue;
       float d = 0.0f;
-      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(fa.visibility.data[i * 3 + c] - fb.visibility.data[i * 3 + c]));
+      for (int c = 0; c < 3; ++c)
+        d = std::max(d, std::abs(fa.visibility.data[i * 3 + c] - fb.visibility.data[i * 3 + c]));
       if (d > decision) ++e.misclassifiedPixels;
       if (fa.perSample.empty() || fb.perSample.empty() || fa.samples != fb.samples) continue;
       for (int k = 0; k < fb.samples; ++k) {

@@ -33,16 +33,22 @@ void writeFrame(const std::string& path, const FrameResult& frame, float exposur
 }
 
 nlohmann::json frameSummary(const FrameResult& frame) {
-  nlohmann::json stages = nlohmann::json::object(), harness = nlohmann::json::object(), counts = nlohmann::json::object();
+  nlohmann::json stages = nlohmann::json::object(), harness = nlohmann::json::object(),
+                 counts = nlohmann::json::object();
   for (auto& s : frame.timer.stages()) {
     (s.kind == StageKind::Harness ? harness : stages)[s.stage] = s.ms;
     if (s.counted && s.kind == StageKind::Technique) counts[s.stage] = countsJson(s.counts);
   }
   nlohmann::json stats = nlohmann::json::object();
   for (auto& [k, v] : frame.statistics) stats[k] = v;
-  nlohmann::json j = {{"stagesMs", stages}, {"statistics", stats}, {"totalMs", frame.timer.total()},
-                      {"harnessStagesMs", harness}, {"harnessMs", frame.timer.harnessTotal()},
-                      {"memoryBytes", frame.memoryBytes}, {"width", frame.color.width}, {"height", frame.color.height}};
+  nlohmann::json j = {{"stagesMs", stages},
+                      {"statistics", stats},
+                      {"totalMs", frame.timer.total()},
+                      {"harnessStagesMs", harness},
+                      {"harnessMs", frame.timer.harnessTotal()},
+                      {"memoryBytes", frame.memoryBytes},
+                      {"width", frame.color.width},
+                      {"height", frame.color.height}};
   if (!counts.empty()) j["pipelineStatistics"] = counts;
   return j;
 }
@@ -55,11 +61,16 @@ nlohmann::json countsJson(const PipelineCounts& c) {
 
 nlohmann::json errorsJson(const TechniqueErrors& e) {
   auto stats = [](const ErrorStats& s) {
-    return nlohmann::json{{"rmse", s.rmse}, {"meanAbs", s.meanAbs}, {"maxAbs", s.maxAbs},
-                          {"pixelsOver1_255", s.pixelsOver}, {"pixels", s.pixelsCounted}};
+    return nlohmann::json{{"rmse", s.rmse},
+                          {"meanAbs", s.meanAbs},
+                          {"maxAbs", s.maxAbs},
+                          {"pixelsOver1_255", s.pixelsOver},
+                          {"pixels", s.pixelsCounted}};
   };
-  nlohmann::json j{{"visibility", stats(e.visibility)}, {"visibilityOutsideBand", stats(e.visibilityOutsideBand)},
-                   {"shaded", stats(e.shaded)}, {"shadedOutsideBand", stats(e.shadedOutsideBand)},
+  nlohmann::json j{{"visibility", stats(e.visibility)},
+                   {"visibilityOutsideBand", stats(e.visibilityOutsideBand)},
+                   {"shaded", stats(e.shaded)},
+                   {"shadedOutsideBand", stats(e.shadedOutsideBand)},
                    {"misclassifiedPixelsOutsideBand", e.misclassifiedPixels},
                    {"unshadowedPixels", e.unshadowedPixels},
                    {"visibilityExceptUnshadowed", stats(e.visibilityExceptUnshadowed)}};
@@ -79,7 +90,8 @@ void writeRunImages(const RunImages& out, const std::string& base, const FrameRe
   writeFrame((dir / (base + ".png")).string(), f);
   run.image = base + ".png";
   if (against) {
-    writePng((dir / (base + "_heat.png")).string(), errorHeatMap(f.lights[0].visibility, against->lights[0].visibility, 0.25f));
+    writePng((dir / (base + "_heat.png")).string(),
+             errorHeatMap(f.lights[0].visibility, against->lights[0].visibility, 0.25f));
     run.heat = base + "_heat.png";
   }
   if (flip) {
@@ -111,8 +123,8 @@ nlohmann::json CompareResult::json() const {
   nlohmann::json j = info;
   nlohmann::json presetsJson = nlohmann::json::array();
   for (auto& p : presets)
-    presetsJson.push_back({{"label", p.label}, {"width", p.width}, {"height", p.height}, {"samples", p.samples},
-                           {"params", p.params}});
+    presetsJson.push_back(
+        {{"label", p.label}, {"width", p.width}, {"height", p.height}, {"samples", p.samples}, {"params", p.params}});
   j["presets"] = presetsJson;
   nlohmann::json insetJson = nlohmann::json::array();
   for (auto& r : insets) insetJson.push_back({r.x, r.y, r.w, r.h});
@@ -120,7 +132,8 @@ nlohmann::json CompareResult::json() const {
   j["insetSource"] = insetSource;
   nlohmann::json runsJson = nlohmann::json::array();
   for (auto& r : runs) {
-    nlohmann::json stages = nlohmann::json::object(), spreads = nlohmann::json::object(), stats = nlohmann::json::object();
+    nlohmann::json stages = nlohmann::json::object(), spreads = nlohmann::json::object(),
+                   stats = nlohmann::json::object();
     for (auto& [k, v] : r.stages) stages[k] = v.median, spreads[k] = spreadJson(v);
     for (auto& [k, v] : r.statistics) stats[k] = v;
     nlohmann::json harness = nlohmann::json::object();
@@ -171,12 +184,14 @@ nlohmann::json CompareResult::json() const {
       t["convergedReferenceNoise"] = {{"visibilityRmse", r.referenceNoise->visibility},
                                       {"shadedRmse", r.referenceNoise->shaded},
                                       {"statistics", stats},
-                                      {"meaning", "the RMSE the converged reference's own noise puts into every error "
-                                                  "against it: the error floor"}};
+                                      {"meaning",
+                                       "the RMSE the converged reference's own noise puts into every error "
+                                       "against it: the error floor"}};
     }
     if (r.flip) t["flip"] = {{"mean", *r.flip}, {"against", r.converged ? "converged" : "same-sample"}};
     if (r.flicker >= 0.0)
-      t["temporal"] = {{"flicker", r.flicker}, {"referenceMotion", r.referenceMotion}, {"meanVisibilityRmse", r.meanFrameRmse}};
+      t["temporal"] = {
+          {"flicker", r.flicker}, {"referenceMotion", r.referenceMotion}, {"meanVisibilityRmse", r.meanFrameRmse}};
     runsJson.push_back(t);
   }
   j["runs"] = runsJson;

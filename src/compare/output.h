@@ -22,15 +22,15 @@ void writeFrame(const std::string& path, const FrameResult& frame, float exposur
 
 // What of a run's frame 0 goes into the output folder.
 struct RunImages {
-  std::string dir;           // the output folder
-  bool exr = true;           // <base>.exr
-  bool images = true;        // <base>.png, <base>_heat.png, <base>_unshadowed.png, insets
-  std::vector<Inset> insets; // crops (first preset only: empty for the others)
+  std::string dir;            // the output folder
+  bool exr = true;            // <base>.exr
+  bool images = true;         // <base>.png, <base>_heat.png, <base>_unshadowed.png, insets
+  std::vector<Inset> insets;  // crops (first preset only: empty for the others)
 };
 // Writes `frame`'s images as `base` (+ "_heat" against `against`, and "_flip", the FLIP map
 // in magma, if given) and records their file names in `run`.
-void writeRunImages(const RunImages& out, const std::string& base, const FrameResult& frame,
-                    const FrameResult* against, const Image* flip, CompareRun& run);
+void writeRunImages(const RunImages& out, const std::string& base, const FrameResult& frame, const FrameResult* against,
+                    const Image* flip, CompareRun& run);
 
 nlohmann::json frameSummary(const FrameResult& frame);
 // {"primitives": .., "vertex": .., "geometry": .., "rasterized": .., "fragment": .., "compute": ..}

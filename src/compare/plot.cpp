@@ -12,11 +12,16 @@ namespace {
 // Okabe and Ito's colour-blind-safe palette, one colour a family.
 const char* familyColour(TechniqueFamily f) {
   switch (f) {
-    case TechniqueFamily::ExactPerSample: return "#0072B2";  // blue
-    case TechniqueFamily::MultiView: return "#009E73";       // bluish green
-    case TechniqueFamily::SingleMap: return "#E69F00";       // orange
-    case TechniqueFamily::Denoised: return "#CC79A7";        // reddish purple
-    case TechniqueFamily::Hard: return "#000000";            // black
+    case TechniqueFamily::ExactPerSample:
+      return "#0072B2";  // blue
+    case TechniqueFamily::MultiView:
+      return "#009E73";  // bluish green
+    case TechniqueFamily::SingleMap:
+      return "#E69F00";  // orange
+    case TechniqueFamily::Denoised:
+      return "#CC79A7";  // reddish purple
+    case TechniqueFamily::Hard:
+      return "#000000";  // black
   }
   return "#777777";
 }
@@ -48,16 +53,30 @@ std::string marker(Shape shape, double x, double y, double r, const std::string&
     return fmt::format("<path d=\"{} Z\" {}>{}</path>\n", d, attrs, body);
   };
   switch (shape) {
-    case Shape::Circle: return fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{}\" {}>{}</circle>\n", x, y, r, attrs, body);
+    case Shape::Circle:
+      return fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{}\" {}>{}</circle>\n", x, y, r, attrs, body);
     case Shape::Square:
-      return fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" {}>{}</rect>\n", x - 0.9 * r,
-                         y - 0.9 * r, 1.8 * r, 1.8 * r, attrs, body);
-    case Shape::Up: return poly({{0, -1.25}, {1.1, 0.75}, {-1.1, 0.75}});
-    case Shape::Down: return poly({{0, 1.25}, {1.1, -0.75}, {-1.1, -0.75}});
-    case Shape::Diamond: return poly({{0, -1.3}, {1.3, 0}, {0, 1.3}, {-1.3, 0}});
+      return fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" {}>{}</rect>\n",
+                         x - 0.9 * r, y - 0.9 * r, 1.8 * r, 1.8 * r, attrs, body);
+    case Shape::Up:
+      return poly({{0, -1.25}, {1.1, 0.75}, {-1.1, 0.75}});
+    case Shape::Down:
+      return poly({{0, 1.25}, {1.1, -0.75}, {-1.1, -0.75}});
+    case Shape::Diamond:
+      return poly({{0, -1.3}, {1.3, 0}, {0, 1.3}, {-1.3, 0}});
     case Shape::Plus:
-      return poly({{-0.4, -1.2}, {0.4, -1.2}, {0.4, -0.4}, {1.2, -0.4}, {1.2, 0.4}, {0.4, 0.4}, {0.4, 1.2}, {-0.4, 1.2},
-                   {-0.4, 0.4}, {-1.2, 0.4}, {-1.2, -0.4}, {-0.4, -0.4}});
+      return poly({{-0.4, -1.2},
+                   {0.4, -1.2},
+                   {0.4, -0.4},
+                   {1.2, -0.4},
+                   {1.2, 0.4},
+                   {0.4, 0.4},
+                   {0.4, 1.2},
+                   {-0.4, 1.2},
+                   {-0.4, 0.4},
+                   {-1.2, 0.4},
+                   {-1.2, -0.4},
+                   {-0.4, -0.4}});
   }
   return {};
 }
@@ -87,7 +106,8 @@ std::string tickLabel(double log10v) {
 // The preset part of a point's label: "N=16" for samples=16, the rest as given.
 std::string presetShort(const std::string& label) {
   std::string s = label;
-  for (std::size_t at = s.find("samples="); at != std::string::npos; at = s.find("samples=", at)) s.replace(at, 8, "N=");
+  for (std::size_t at = s.find("samples="); at != std::string::npos; at = s.find("samples=", at))
+    s.replace(at, 8, "N=");
   return s;
 }
 
@@ -107,12 +127,23 @@ std::string escapeMarkup(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -167,9 +198,12 @@ std::vector<std::size_t> paretoRuns(const CompareResult& r, ErrorAxis axis) {
 std::string errorAxisName(const CompareResult& r, ErrorAxis axis) {
   const std::string against = r.hasConverged() ? "converged reference" : "same-sample reference";
   switch (axis) {
-    case ErrorAxis::Visibility: return "visibility RMSE vs " + against;
-    case ErrorAxis::Shaded: return "shaded-image RMSE vs " + against;
-    case ErrorAxis::Flip: return "mean HDR-FLIP vs " + against;
+    case ErrorAxis::Visibility:
+      return "visibility RMSE vs " + against;
+    case ErrorAxis::Shaded:
+      return "shaded-image RMSE vs " + against;
+    case ErrorAxis::Flip:
+      return "mean HDR-FLIP vs " + against;
   }
   return {};
 }
@@ -190,7 +224,8 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
     for (auto& n : names) looks.emplace(n, lookOf(familyOf[n], variants[familyOf[n]]++));
   }
   int familiesShown = 0;
-  for (TechniqueFamily f : kTechniqueFamilies) familiesShown += std::any_of(names.begin(), names.end(), [&](auto& n) { return familyOf[n] == f; });
+  for (TechniqueFamily f : kTechniqueFamilies)
+    familiesShown += std::any_of(names.begin(), names.end(), [&](auto& n) { return familyOf[n] == f; });
 
   const double left = 70, right = 200, top = 30, bottom = 50, W = 800, line = 14;
   const double legendHeight = line * double(names.size() + std::size_t(familiesShown)) + 30.0;
@@ -209,7 +244,8 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
   // The converged reference's own noise: a dotted floor per image size, inside the axis.
   const auto floors = referenceNoiseOn(r, axis);
   for (auto& [preset, noise] : floors)
-    if (noise > 0.0) y0 = std::min(y0, std::log10(std::max(noise, kExact))), y1 = std::max(y1, std::log10(std::max(noise, kExact)));
+    if (noise > 0.0)
+      y0 = std::min(y0, std::log10(std::max(noise, kExact))), y1 = std::max(y1, std::log10(std::max(noise, kExact)));
   auto pad = [](double& lo, double& hi) {
     if (hi - lo < 0.5) {
       double mid = 0.5 * (lo + hi);
@@ -233,43 +269,51 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
                    escapeMarkup(r.info.value("sceneName", std::string("scene"))));
   for (double t : logTicks(x0, x1)) {
     double x = left + (t - x0) / (x1 - x0) * pw;
-    s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
-                     "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>\n",
-                     x, top, top + ph, top + ph + 16, tickLabel(t));
+    s += fmt::format(
+        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
+        "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>\n",
+        x, top, top + ph, top + ph + 16, tickLabel(t));
   }
   for (double t : logTicks(y0, y1)) {
     double y = top + (1.0 - (t - y0) / (y1 - y0)) * ph;
     bool exact = anyExact && std::abs(t - std::log10(kExact)) < 1e-9;
-    s += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>"
-                     "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
-                     left, y, left + pw, left - 6, y + 4, exact ? "&#8804;1e-4" : tickLabel(t));
+    s += fmt::format(
+        "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>"
+        "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
+        left, y, left + pw, left - 6, y + 4, exact ? "&#8804;1e-4" : tickLabel(t));
   }
-  s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#333\"/>\n", left, top, pw, ph);
-  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">median ms per frame (log)</text>\n", left + pw / 2, H - 10);
-  s += fmt::format("<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\">{} (log)</text>\n", top + ph / 2,
-                   escapeMarkup(errorAxisName(r, axis)));
+  s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#333\"/>\n", left, top,
+                   pw, ph);
+  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">median ms per frame (log)</text>\n", left + pw / 2,
+                   H - 10);
+  s += fmt::format("<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\">{} (log)</text>\n",
+                   top + ph / 2, escapeMarkup(errorAxisName(r, axis)));
 
   for (auto& [preset, noise] : floors) {
     if (!(noise > 0.0)) continue;
     const double y = Y(std::max(noise, kExact));
     const std::string size = floors.size() > 1 ? fmt::format(" ({}x{})", preset->width, preset->height) : "";
-    s += fmt::format("<g class=\"reference-noise\"><line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" "
-                     "stroke=\"#555\" stroke-dasharray=\"1,3\"/><text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\" "
-                     "fill=\"#555\">reference noise{5} {6:.2g}</text></g>\n",
-                     left, y, left + pw, left + pw - 4, y - 4, size, noise);
+    s += fmt::format(
+        "<g class=\"reference-noise\"><line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" "
+        "stroke=\"#555\" stroke-dasharray=\"1,3\"/><text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\" "
+        "fill=\"#555\">reference noise{5} {6:.2g}</text></g>\n",
+        left, y, left + pw, left + pw - 4, y - 4, size, noise);
   }
 
   // Pareto front (dashed steps), then one curve per technique.
   std::vector<std::pair<double, double>> pts;
   for (auto i : runs) pts.emplace_back(r.runs[i].total.median, errorOf(i));
   std::vector<std::size_t> front;  // indices into `runs`
-  for (auto i : paretoRuns(r, axis)) front.push_back(std::size_t(std::find(runs.begin(), runs.end(), i) - runs.begin()));
+  for (auto i : paretoRuns(r, axis))
+    front.push_back(std::size_t(std::find(runs.begin(), runs.end(), i) - runs.begin()));
   if (front.size() > 1) {
     std::string path;
     for (std::size_t k = 0; k < front.size(); ++k) {
       double x = X(pts[front[k]].first), y = Y(pts[front[k]].second);
-      if (k == 0) path += fmt::format("M{:.1f},{:.1f}", x, y);
-      else path += fmt::format(" H{:.1f} V{:.1f}", x, y);
+      if (k == 0)
+        path += fmt::format("M{:.1f},{:.1f}", x, y);
+      else
+        path += fmt::format(" H{:.1f} V{:.1f}", x, y);
     }
     s += "<path class=\"pareto\" d=\"" + path + "\" fill=\"none\" stroke=\"#888\" stroke-dasharray=\"5,4\"/>\n";
   }
@@ -300,7 +344,7 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
     std::size_t best = runs.size();
     for (std::size_t k = 0; k < runs.size(); ++k)
       if (r.runs[runs[k]].family == f && (best == runs.size() || pts[k].second < pts[best].second ||
-                                           (pts[k].second == pts[best].second && pts[k].first < pts[best].first)))
+                                          (pts[k].second == pts[best].second && pts[k].first < pts[best].first)))
         best = k;
     if (best < runs.size() && std::find(wanted.begin(), wanted.end(), best) == wanted.end()) wanted.push_back(best);
   }
@@ -327,8 +371,8 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
       double dx, dy;  // baseline anchor point
       const char* anchor;
     };
-    const Try tries[] = {{d, 3.5, "start"},      {-d, 3.5, "end"},       {0, -d - 1, "middle"},  {0, d + 9, "middle"},
-                         {d - 1, -d, "start"},   {d - 1, d + 8, "start"}, {-d + 1, -d, "end"},    {-d + 1, d + 8, "end"}};
+    const Try tries[] = {{d, 3.5, "start"},    {-d, 3.5, "end"},        {0, -d - 1, "middle"}, {0, d + 9, "middle"},
+                         {d - 1, -d, "start"}, {d - 1, d + 8, "start"}, {-d + 1, -d, "end"},   {-d + 1, d + 8, "end"}};
     auto fits = [&](const Box& b) {
       return b.x0 >= area.x0 && b.x1 <= area.x1 && b.y0 >= area.y0 && b.y1 <= area.y1 &&
              std::none_of(taken.begin(), taken.end(), [&](const Box& o) { return o.overlaps(b); });
@@ -376,19 +420,23 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
                                         escapeMarkup(toString(run.family)));
     auto [name, preset] = labelText(k);
     s += fmt::format("<g class=\"pt\" {}>\n", ids);
-    s += marker(look.shape, X(pts[k].first), Y(pts[k].second), onFront ? 5 : 4,
-                fmt::format("class=\"point\" {} fill=\"{}\" stroke=\"{}\" stroke-width=\"{}\"", ids, look.colour,
-                            onFront ? "#000" : "white", onFront ? 1.5 : 1),
-                fmt::format("<title>{}: {:.2f} ms, {} {:.4g}{}</title>", escapeMarkup(runLabel(r, run)), run.total.median,
-                            escapeMarkup(errorAxisName(r, axis)), run.errorOn(axis), onFront ? " (Pareto front)" : ""));
+    s += marker(
+        look.shape, X(pts[k].first), Y(pts[k].second), onFront ? 5 : 4,
+        fmt::format("class=\"point\" {} fill=\"{}\" stroke=\"{}\" stroke-width=\"{}\"", ids, look.colour,
+                    onFront ? "#000" : "white", onFront ? 1.5 : 1),
+        fmt::format("<title>{}: {:.2f} ms, {} {:.4g}{}</title>", escapeMarkup(runLabel(r, run)), run.total.median,
+                    escapeMarkup(errorAxisName(r, axis)), run.errorOn(axis), onFront ? " (Pareto front)" : ""));
     if (placed[k].leader)
-      s += fmt::format("<line class=\"leader\" x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#999\" "
-                       "stroke-width=\"0.8\"/>\n",
-                       placed[k].lx0, placed[k].ly0, placed[k].lx1, placed[k].ly1);
+      s += fmt::format(
+          "<line class=\"leader\" x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#999\" "
+          "stroke-width=\"0.8\"/>\n",
+          placed[k].lx0, placed[k].ly0, placed[k].lx1, placed[k].ly1);
     const bool isWanted = std::find(wanted.begin(), wanted.end(), k) != wanted.end();
-    s += fmt::format("<text class=\"label{}\"{} {} x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}<tspan fill=\"#555\">{}</tspan></text>\n",
-                     placed[k].shown ? "" : " hidden", isWanted ? " data-wanted=\"1\"" : "", ids, placed[k].x, placed[k].y, placed[k].anchor, escapeMarkup(name),
-                     escapeMarkup(preset));
+    s += fmt::format(
+        "<text class=\"label{}\"{} {} x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}<tspan "
+        "fill=\"#555\">{}</tspan></text>\n",
+        placed[k].shown ? "" : " hidden", isWanted ? " data-wanted=\"1\"" : "", ids, placed[k].x, placed[k].y,
+        placed[k].anchor, escapeMarkup(name), escapeMarkup(preset));
     s += "</g>\n";
   }
 
@@ -397,8 +445,8 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
   const double lx = left + pw + 14;
   for (TechniqueFamily f : kTechniqueFamilies) {
     if (std::none_of(names.begin(), names.end(), [&](auto& n) { return familyOf[n] == f; })) continue;
-    s += fmt::format("<text class=\"family\" x=\"{}\" y=\"{:.1f}\" font-weight=\"bold\" fill=\"{}\">{}</text>\n", lx - 6, ly + 4,
-                     familyColour(f), escapeMarkup(toString(f)));
+    s += fmt::format("<text class=\"family\" x=\"{}\" y=\"{:.1f}\" font-weight=\"bold\" fill=\"{}\">{}</text>\n",
+                     lx - 6, ly + 4, familyColour(f), escapeMarkup(toString(f)));
     ly += line;
     for (auto& n : names) {
       if (familyOf[n] != f) continue;
@@ -408,9 +456,10 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
     }
   }
   ly += 4;
-  s += fmt::format("<line x1=\"{}\" y1=\"{:.1f}\" x2=\"{}\" y2=\"{:.1f}\" stroke=\"#888\" stroke-dasharray=\"5,4\"/>"
-                   "<text x=\"{}\" y=\"{:.1f}\">Pareto front</text>\n",
-                   lx - 6, ly, lx + 6, ly, lx + 10, ly + 4);
+  s += fmt::format(
+      "<line x1=\"{}\" y1=\"{:.1f}\" x2=\"{}\" y2=\"{:.1f}\" stroke=\"#888\" stroke-dasharray=\"5,4\"/>"
+      "<text x=\"{}\" y=\"{:.1f}\">Pareto front</text>\n",
+      lx - 6, ly, lx + 6, ly, lx + 10, ly + 4);
   s += "</svg>\n";
   return s;
 }

@@ -97,8 +97,9 @@ std::vector<std::string> whichTechniqueWhen(const CompareResult& r) {
       out.push_back(runLabel(r, run) + " failed: " + run.failure);
       trouble = true;
     } else if (run.errors.unshadowedPixels > 0) {
-      out.push_back(fmt::format("{} left {} pixels unshadowed (outside its shadow maps; visibility RMSE {:.4f} without them).",
-                                runLabel(r, run), run.errors.unshadowedPixels, run.errors.visibilityExceptUnshadowed.rmse));
+      out.push_back(
+          fmt::format("{} left {} pixels unshadowed (outside its shadow maps; visibility RMSE {:.4f} without them).",
+                      runLabel(r, run), run.errors.unshadowedPixels, run.errors.visibilityExceptUnshadowed.rmse));
       trouble = true;
     }
   }
@@ -123,8 +124,8 @@ std::string reportTable(const CompareResult& r) {
   // Totals are the technique's time; the harness's readbacks and uploads are the "harness" column.
   if (!counted && r.info.contains("pipelineStatistics"))
     t += "pipeline statistics: " + r.info["pipelineStatistics"].get<std::string>() + "\n";
-  t += fmt::format("{:<32} {:>9} {:>17} {:>9} {:>8} {:>9} {:>8} {:>9} {:>10}", "technique", "total ms",
-                   "(min-max)", "harness", "MiB", "vis RMSE", "vis max", "img RMSE", "misclass");
+  t += fmt::format("{:<32} {:>9} {:>17} {:>9} {:>8} {:>9} {:>8} {:>9} {:>10}", "technique", "total ms", "(min-max)",
+                   "harness", "MiB", "vis RMSE", "vis max", "img RMSE", "misclass");
   if (conv) t += fmt::format(" {:>10} {:>10}", "conv vis", "conv img");
   if (flip) t += fmt::format(" {:>8}", "FLIP");
   if (temporal) t += fmt::format(" {:>9}", "flicker");
@@ -138,14 +139,17 @@ std::string reportTable(const CompareResult& r) {
     t += fmt::format("{:<32} {:>9.1f} {:>17} {:>9.1f} {:>8.1f}", runLabel(r, run), run.total.median,
                      fmt::format("({:.1f}-{:.1f})", run.total.min, run.total.max), run.harness.median,
                      double(run.memoryBytes) / 1048576.0);
-    if (run.reference && !run.converged) t += fmt::format(" {:>9} {:>8} {:>9} {:>10}", "-", "-", "-", "-");
-    else if (run.reference) t += fmt::format(" {:>9} {:>8} {:>9} {:>10}", "0", "0", "0", "0");
+    if (run.reference && !run.converged)
+      t += fmt::format(" {:>9} {:>8} {:>9} {:>10}", "-", "-", "-", "-");
+    else if (run.reference)
+      t += fmt::format(" {:>9} {:>8} {:>9} {:>10}", "0", "0", "0", "0");
     else
       t += fmt::format(" {:>9.4f} {:>8.4f} {:>9.4g} {:>10}", run.errors.visibility.rmse, run.errors.visibility.maxAbs,
                        run.errors.shaded.rmse, run.errors.misclassifiedPixels);
     if (conv)
-      t += run.converged ? fmt::format(" {:>10.4f} {:>10.4g}", run.converged->visibility.rmse, run.converged->shaded.rmse)
-                         : fmt::format(" {:>10} {:>10}", "-", "-");
+      t += run.converged
+               ? fmt::format(" {:>10.4f} {:>10.4g}", run.converged->visibility.rmse, run.converged->shaded.rmse)
+               : fmt::format(" {:>10} {:>10}", "-", "-");
     if (flip) t += run.flip ? fmt::format(" {:>8.4f}", *run.flip) : fmt::format(" {:>8}", "-");
     if (temporal) t += run.flicker >= 0.0 ? fmt::format(" {:>9.4f}", run.flicker) : fmt::format(" {:>9}", "-");
     if (counted) {
@@ -175,9 +179,9 @@ std::string reportCsv(const CompareResult& r) {
     const ComparePreset& p = r.presets[run.preset];
     if (run.failed) {
       // The run's identity, empty numbers (never measured), then why it failed.
-      std::vector<std::string> f = {csvField(scene), csvField(run.technique), run.reference ? "1" : "0", csvField(p.label),
-                                    csvField(join(run.params, " ")), std::to_string(p.samples), std::to_string(p.width),
-                                    std::to_string(p.height), run.shading};
+      std::vector<std::string> f = {csvField(scene),         csvField(run.technique),         run.reference ? "1" : "0",
+                                    csvField(p.label),       csvField(join(run.params, " ")), std::to_string(p.samples),
+                                    std::to_string(p.width), std::to_string(p.height),        run.shading};
       f.insert(f.end(), 24 + 9, "");
       f.push_back("failed");
       f.push_back(csvField(run.failure));
@@ -187,17 +191,34 @@ std::string reportCsv(const CompareResult& r) {
     std::vector<std::string> stages;
     for (auto& [k, v] : run.stages) stages.push_back(k + "=" + fmt::format("{:.3f}", v.median));
     const TechniqueErrors& e = run.errors;
-    std::vector<std::string> f = {csvField(scene), csvField(run.technique), run.reference ? "1" : "0", csvField(p.label),
-                                  csvField(join(run.params, " ")), std::to_string(p.samples), std::to_string(p.width),
-                                  std::to_string(p.height), run.shading, num(run.total.median), num(run.total.min),
-                                  num(run.total.max), num(run.prepareMs), csvField(join(stages, ";")),
-                                  std::to_string(run.memoryBytes), num(e.visibility.rmse), num(e.visibility.meanAbs),
-                                  num(e.visibility.maxAbs), num(e.visibilityOutsideBand.rmse),
-                                  std::to_string(e.misclassifiedPixels), e.sampleAgreement >= 0 ? num(e.sampleAgreement) : "",
-                                  num(e.shaded.rmse), num(e.shaded.meanAbs), num(e.shaded.maxAbs)};
+    std::vector<std::string> f = {csvField(scene),
+                                  csvField(run.technique),
+                                  run.reference ? "1" : "0",
+                                  csvField(p.label),
+                                  csvField(join(run.params, " ")),
+                                  std::to_string(p.samples),
+                                  std::to_string(p.width),
+                                  std::to_string(p.height),
+                                  run.shading,
+                                  num(run.total.median),
+                                  num(run.total.min),
+                                  num(run.total.max),
+                                  num(run.prepareMs),
+                                  csvField(join(stages, ";")),
+                                  std::to_string(run.memoryBytes),
+                                  num(e.visibility.rmse),
+                                  num(e.visibility.meanAbs),
+                                  num(e.visibility.maxAbs),
+                                  num(e.visibilityOutsideBand.rmse),
+                                  std::to_string(e.misclassifiedPixels),
+                                  e.sampleAgreement >= 0 ? num(e.sampleAgreement) : "",
+                                  num(e.shaded.rmse),
+                                  num(e.shaded.meanAbs),
+                                  num(e.shaded.maxAbs)};
     if (run.converged) {
       const TechniqueErrors& ce = *run.converged;
-      for (double v : {ce.visibility.rmse, ce.visibility.meanAbs, ce.visibility.maxAbs, ce.shaded.rmse}) f.push_back(num(v));
+      for (double v : {ce.visibility.rmse, ce.visibility.meanAbs, ce.visibility.maxAbs, ce.shaded.rmse})
+        f.push_back(num(v));
     } else {
       f.insert(f.end(), 4, "");
     }
@@ -229,19 +250,22 @@ std::string reportHtml(const CompareResult& r) {
   if (info.contains("incomplete"))
     h += "<p class=\"incomplete\"><strong>Incomplete</strong>: " + escapeMarkup(info["incomplete"].get<std::string>()) +
          " (the run is going on, or was interrupted)</p>\n";
-  h += fmt::format("<p class=\"meta\">scene <code>{}</code> ({} triangles, {} lights) &middot; {}x{} &middot; {} samples, {} / {} "
-                   "(seed {}) &middot; shading {} &middot; renderer {} ({}) &middot; timing: median of {} frames after {} "
-                   "warm-up (glFinish + steady clock) &middot; {}</p>\n",
-                   escapeMarkup(info.value("scene", std::string())), info.value("triangles", 0), info.value("lights", 0),
-                   info.value("width", 0), info.value("height", 0), info.value("samples", 0),
-                   escapeMarkup(info.value("strategy", std::string())), escapeMarkup(info.value("pattern", std::string())),
-                   info.value("seed", 0u), escapeMarkup(info.value("shading", std::string())),
-                   escapeMarkup(info.value("renderer", std::string())), escapeMarkup(info.value("glVersion", std::string())),
-                   info.value("timingFrames", 0), info.value("warmupFrames", 0), escapeMarkup(info.value("date", std::string())));
+  h += fmt::format(
+      "<p class=\"meta\">scene <code>{}</code> ({} triangles, {} lights) &middot; {}x{} &middot; {} samples, {} / {} "
+      "(seed {}) &middot; shading {} &middot; renderer {} ({}) &middot; timing: median of {} frames after {} "
+      "warm-up (glFinish + steady clock) &middot; {}</p>\n",
+      escapeMarkup(info.value("scene", std::string())), info.value("triangles", 0), info.value("lights", 0),
+      info.value("width", 0), info.value("height", 0), info.value("samples", 0),
+      escapeMarkup(info.value("strategy", std::string())), escapeMarkup(info.value("pattern", std::string())),
+      info.value("seed", 0u), escapeMarkup(info.value("shading", std::string())),
+      escapeMarkup(info.value("renderer", std::string())), escapeMarkup(info.value("glVersion", std::string())),
+      info.value("timingFrames", 0), info.value("warmupFrames", 0), escapeMarkup(info.value("date", std::string())));
   h += "<p class=\"meta\">total: the technique's stages (G-buffer, visibility, shading); the harness's readbacks and "
-       "uploads apart &middot; pipeline statistics: " + escapeMarkup(info.value("pipelineStatistics", std::string("-"))) + "</p>\n";
+       "uploads apart &middot; pipeline statistics: " +
+       escapeMarkup(info.value("pipelineStatistics", std::string("-"))) + "</p>\n";
   if (!info.value("params", std::vector<std::string>{}).empty())
-    h += "<p class=\"meta\">parameters: <code>" + escapeMarkup(join(info["params"].get<std::vector<std::string>>(), " ")) + "</code></p>\n";
+    h += "<p class=\"meta\">parameters: <code>" +
+         escapeMarkup(join(info["params"].get<std::vector<std::string>>(), " ")) + "</code></p>\n";
   if (r.presets.size() > 1) {
     std::vector<std::string> labels;
     for (auto& p : r.presets) labels.push_back(p.label);
@@ -260,15 +284,19 @@ std::string reportHtml(const CompareResult& r) {
   for (ErrorAxis a : axes)
     h += fmt::format("<div class=\"plot\" data-axis=\"{}\"{}>\n{}</div>\n", toString(a),
                      a == ErrorAxis::Visibility ? "" : " hidden", speedErrorSvg(r, a));
-  h += std::string("<p class=\"note\">Each point is one technique at one preset: the median time per frame against the "
-                   "error (visibility: all lights' buffers; shaded: the linear image; both RMSE over surface pixels; FLIP: "
-                   "the mean HDR-FLIP of the shaded image, Andersson et al. 2020/2021, at ") +
-       fmt::format("{:.1f}", info.value("flipPixelsPerDegree", kFlipDefaultPixelsPerDegree)) + " pixels per degree) against the " +
+  h += std::string(
+           "<p class=\"note\">Each point is one technique at one preset: the median time per frame against the "
+           "error (visibility: all lights' buffers; shaded: the linear image; both RMSE over surface pixels; FLIP: "
+           "the mean HDR-FLIP of the shaded image, Andersson et al. 2020/2021, at ") +
+       fmt::format("{:.1f}", info.value("flipPixelsPerDegree", kFlipDefaultPixelsPerDegree)) +
+       " pixels per degree) against the " +
        (conv ? "converged reference (raytrace-converged: MIS of light and BRDF samples to a target standard error; "
                "the dotted line is its own noise, the error floor below which a difference is the reference's)"
              : "ray-traced reference with the same light samples") +
-       ". Colour: the technique's family; shape and shade: the variant. Points on the dashed Pareto front (outlined) are "
-       "faster than every more accurate point; the front and each family's best point are labelled, hover a point (or tick "
+       ". Colour: the technique's family; shape and shade: the variant. Points on the dashed Pareto front (outlined) "
+       "are "
+       "faster than every more accurate point; the front and each family's best point are labelled, hover a point (or "
+       "tick "
        "\"all labels\") for the rest.</p>\n";
 
   // Which technique when, from this run's measurements.
@@ -278,8 +306,10 @@ std::string reportHtml(const CompareResult& r) {
 
   // The table.
   const std::vector<std::size_t> frontRuns = paretoRuns(r);
-  h += "<h2>Table</h2>\n<table>\n<tr><th class=\"l\">technique</th><th class=\"l\">preset</th><th class=\"l\">parameters</th>"
-       "<th>samples</th><th>total ms<br>median</th><th>min&ndash;max</th><th class=\"l\">stages ms (median)</th><th>prepare ms</th>"
+  h += "<h2>Table</h2>\n<table>\n<tr><th class=\"l\">technique</th><th class=\"l\">preset</th><th "
+       "class=\"l\">parameters</th>"
+       "<th>samples</th><th>total ms<br>median</th><th>min&ndash;max</th><th class=\"l\">stages ms "
+       "(median)</th><th>prepare ms</th>"
        "<th>memory MiB</th><th>vis RMSE</th><th>vis mean</th><th>vis max</th><th>misclassified px</th>"
        "<th>img RMSE</th><th>img mean</th><th>img max</th>";
   if (conv) h += "<th>vis RMSE vs converged</th><th>img RMSE vs converged</th>";
@@ -295,7 +325,8 @@ std::string reportHtml(const CompareResult& r) {
     std::string stages = join(stageList, " &middot; ");
     if (!run.harnessStages.empty()) {  // the harness's readbacks and uploads, not in the total
       std::vector<std::string> harness;
-      for (auto& [k, v] : run.harnessStages) harness.push_back(fmt::format("{}&nbsp;{:.2f}", escapeMarkup(k), v.median));
+      for (auto& [k, v] : run.harnessStages)
+        harness.push_back(fmt::format("{}&nbsp;{:.2f}", escapeMarkup(k), v.median));
       stages += fmt::format("<br><i>harness {:.2f}: {}</i>", run.harness.median, join(harness, " &middot; "));
     }
     if (!run.counts.empty()) {
@@ -306,38 +337,46 @@ std::string reportHtml(const CompareResult& r) {
     }
     if (run.failed) {
       const int rest = 12 + (conv ? 2 : 0) + (flip ? 1 : 0) + (temporal ? 3 : 0);
-      h += fmt::format("<tr class=\"failed\"><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td>"
-                       "<td class=\"l st\" colspan=\"{}\"><b>failed:</b> {}</td></tr>\n",
-                       escapeMarkup(run.technique), escapeMarkup(p.label), escapeMarkup(join(run.params, " ")), p.samples, rest,
-                       escapeMarkup(run.failure));
+      h += fmt::format(
+          "<tr class=\"failed\"><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td>"
+          "<td class=\"l st\" colspan=\"{}\"><b>failed:</b> {}</td></tr>\n",
+          escapeMarkup(run.technique), escapeMarkup(p.label), escapeMarkup(join(run.params, " ")), p.samples, rest,
+          escapeMarkup(run.failure));
       continue;
     }
-    h += fmt::format("<tr class=\"{}\"><td class=\"l\">{}{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td>"
-                     "<td>{:.2f}</td><td>{:.2f}&ndash;{:.2f}</td><td class=\"l st\">{}</td><td>{:.1f}</td><td>{:.2f}</td>",
-                     run.reference ? "ref" : (front ? "front" : ""), escapeMarkup(run.technique), run.reference ? " (reference)" : "",
-                     escapeMarkup(p.label), escapeMarkup(join(run.params, " ")), p.samples, run.total.median, run.total.min,
-                     run.total.max, stages, run.prepareMs, double(run.memoryBytes) / 1048576.0);
+    h += fmt::format(
+        "<tr class=\"{}\"><td class=\"l\">{}{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td>"
+        "<td>{:.2f}</td><td>{:.2f}&ndash;{:.2f}</td><td class=\"l st\">{}</td><td>{:.1f}</td><td>{:.2f}</td>",
+        run.reference ? "ref" : (front ? "front" : ""), escapeMarkup(run.technique),
+        run.reference ? " (reference)" : "", escapeMarkup(p.label), escapeMarkup(join(run.params, " ")), p.samples,
+        run.total.median, run.total.min, run.total.max, stages, run.prepareMs, double(run.memoryBytes) / 1048576.0);
     const TechniqueErrors& e = run.errors;
-    if (run.reference) h += "<td>-</td><td>-</td><td>-</td><td>-</td><td>-</td><td>-</td><td>-</td>";
+    if (run.reference)
+      h += "<td>-</td><td>-</td><td>-</td><td>-</td><td>-</td><td>-</td><td>-</td>";
     else
-      h += fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4g}</td>",
-                       e.visibility.rmse, e.visibility.meanAbs, e.visibility.maxAbs, e.misclassifiedPixels, e.shaded.rmse,
-                       e.shaded.meanAbs, e.shaded.maxAbs);
+      h += fmt::format(
+          "<td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td><td>{}</td><td>{:.4g}</td><td>{:.4g}</td><td>{:.4g}</td>",
+          e.visibility.rmse, e.visibility.meanAbs, e.visibility.maxAbs, e.misclassifiedPixels, e.shaded.rmse,
+          e.shaded.meanAbs, e.shaded.maxAbs);
     if (conv)
-      h += run.converged ? fmt::format("<td>{:.4f}</td><td>{:.4g}</td>", run.converged->visibility.rmse, run.converged->shaded.rmse)
+      h += run.converged ? fmt::format("<td>{:.4f}</td><td>{:.4g}</td>", run.converged->visibility.rmse,
+                                       run.converged->shaded.rmse)
                          : "<td>-</td><td>-</td>";
     if (flip) h += run.flip ? fmt::format("<td>{:.4f}</td>", *run.flip) : "<td>-</td>";
     if (temporal)
-      h += run.flicker >= 0.0
-               ? fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td>", run.flicker, run.referenceMotion, run.meanFrameRmse)
-               : "<td>-</td><td>-</td><td>-</td>";
+      h += run.flicker >= 0.0 ? fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td>", run.flicker,
+                                            run.referenceMotion, run.meanFrameRmse)
+                              : "<td>-</td><td>-</td><td>-</td>";
     h += "</tr>\n";
   }
-  h += "</table>\n<p class=\"note\">vis: the visibility buffers of all lights (eq. 2), img: the shaded linear image, both "
-       "against the same-sample reference over pixels with a surface; misclassified: pixels outside the 1-pixel edge band "
+  h += "</table>\n<p class=\"note\">vis: the visibility buffers of all lights (eq. 2), img: the shaded linear image, "
+       "both "
+       "against the same-sample reference over pixels with a surface; misclassified: pixels outside the 1-pixel edge "
+       "band "
        "whose visibility differs by more than half a sample. Bold: on the Pareto front.";
   if (temporal)
-    h += " flicker: RMS over frames and pixels of the frame-to-frame change in visibility minus the reference's change (what "
+    h += " flicker: RMS over frames and pixels of the frame-to-frame change in visibility minus the reference's change "
+         "(what "
          "moves that the reference does not); reference motion: the reference's own RMS change.";
   h += "</p>\n";
   for (const CompareRun& run : r.runs)
@@ -345,22 +384,29 @@ std::string reportHtml(const CompareResult& r) {
       h += "<p class=\"note\">" + escapeMarkup(runLabel(r, run) + ": " + noiseText(run)) + "</p>\n";
 
   // Images, one gallery per preset.
-  h += "<h2>Images</h2>\n<p class=\"note\">Left: the shaded image; middle: the visibility error of the first light against the "
-       "" + std::string(conv ? "converged" : "same-sample") + " reference (heat map, black 0 to yellow 0.25 or more); right: "
+  h += "<h2>Images</h2>\n<p class=\"note\">Left: the shaded image; middle: the visibility error of the first light "
+       "against the "
+       "" +
+       std::string(conv ? "converged" : "same-sample") +
+       " reference (heat map, black 0 to yellow 0.25 or more); right: "
        "the shaded image's HDR-FLIP against it (magma, black 0 to pale yellow 1, the FLIP papers' colour map).</p>\n";
   for (std::size_t p = 0; p < r.presets.size(); ++p) {
     h += fmt::format("<details{}><summary>{}</summary>\n<div class=\"gallery\">\n", p == 0 ? " open" : "",
                      r.presets[p].label.empty() ? "all techniques" : escapeMarkup(r.presets[p].label));
     // Small renders are shown enlarged (pixelated), at least 192 px wide.
     const int zoom = std::max(1, 192 / std::max(1, r.presets[p].width));
-    const std::string size = fmt::format(" width=\"{}\" height=\"{}\"", r.presets[p].width * zoom, r.presets[p].height * zoom);
+    const std::string size =
+        fmt::format(" width=\"{}\" height=\"{}\"", r.presets[p].width * zoom, r.presets[p].height * zoom);
     for (auto& run : r.runs) {
       if (run.preset != p || run.image.empty()) continue;
-      h += "<figure><div class=\"pair\"><img src=\"" + escapeMarkup(run.image) + "\"" + size + " alt=\"" + escapeMarkup(run.technique) + "\">";
+      h += "<figure><div class=\"pair\"><img src=\"" + escapeMarkup(run.image) + "\"" + size + " alt=\"" +
+           escapeMarkup(run.technique) + "\">";
       if (!run.heat.empty())
-        h += "<img src=\"" + escapeMarkup(run.heat) + "\"" + size + " alt=\"" + escapeMarkup(run.technique) + " error\">";
+        h += "<img src=\"" + escapeMarkup(run.heat) + "\"" + size + " alt=\"" + escapeMarkup(run.technique) +
+             " error\">";
       if (!run.flipHeat.empty())
-        h += "<img src=\"" + escapeMarkup(run.flipHeat) + "\"" + size + " alt=\"" + escapeMarkup(run.technique) + " FLIP\">";
+        h += "<img src=\"" + escapeMarkup(run.flipHeat) + "\"" + size + " alt=\"" + escapeMarkup(run.technique) +
+             " FLIP\">";
       if (!run.unshadowedMask.empty())
         h += "<img src=\"" + escapeMarkup(run.unshadowedMask) + "\"" + size + " alt=\"" + escapeMarkup(run.technique) +
              " pixels left unshadowed\">";
@@ -368,9 +414,10 @@ std::string reportHtml(const CompareResult& r) {
            fmt::format("{:.1f} ms", run.total.median);
       if (!run.reference) h += fmt::format(", vis RMSE {:.4f}", run.errors.visibility.rmse);
       if (run.errors.unshadowedPixels > 0)
-        h += fmt::format("; {} pixels left unshadowed (outside its maps, white in the third image), vis RMSE {:.4f} "
-                         "without them",
-                         run.errors.unshadowedPixels, run.errors.visibilityExceptUnshadowed.rmse);
+        h += fmt::format(
+            "; {} pixels left unshadowed (outside its maps, white in the third image), vis RMSE {:.4f} "
+            "without them",
+            run.errors.unshadowedPixels, run.errors.visibilityExceptUnshadowed.rmse);
       if (run.converged) h += fmt::format(", vs converged {:.4f}", run.converged->visibility.rmse);
       if (run.flip) h += fmt::format(", FLIP {:.4f}", *run.flip);
       h += "</figcaption></figure>\n";
@@ -382,18 +429,20 @@ std::string reportHtml(const CompareResult& r) {
     h += "<h2>Insets</h2>\n";
     for (std::size_t k = 0; k < r.insets.size(); ++k) {
       const Inset& in = r.insets[k];
-      h += fmt::format("<h3>region {}: x {}, y {}, {}x{} px ({})</h3>\n<div class=\"insets\">\n", k + 1, in.x, in.y, in.w, in.h,
-                       r.insetSource == "given" ? "given" : "most penumbra pixels of the reference");
+      h += fmt::format("<h3>region {}: x {}, y {}, {}x{} px ({})</h3>\n<div class=\"insets\">\n", k + 1, in.x, in.y,
+                       in.w, in.h, r.insetSource == "given" ? "given" : "most penumbra pixels of the reference");
       for (auto& run : r.runs) {
         if (run.preset != 0 || k >= run.insetImages.size()) continue;
-        h += "<figure><img src=\"" + escapeMarkup(run.insetImages[k]) + "\" alt=\"" + escapeMarkup(run.technique) + " inset\"><figcaption>" +
-             escapeMarkup(run.technique) + "</figcaption></figure>\n";
+        h += "<figure><img src=\"" + escapeMarkup(run.insetImages[k]) + "\" alt=\"" + escapeMarkup(run.technique) +
+             " inset\"><figcaption>" + escapeMarkup(run.technique) + "</figcaption></figure>\n";
       }
       h += "</div>\n";
     }
   }
-  h += "<h2>Files</h2>\n<p><a href=\"report.json\">report.json</a> &middot; <a href=\"report.csv\">report.csv</a> &middot; "
-       "<a href=\"table.txt\">table.txt</a> &middot; <a href=\"plot.svg\">plot.svg</a> &middot; <code>&lt;technique&gt;.exr</code>: "
+  h += "<h2>Files</h2>\n<p><a href=\"report.json\">report.json</a> &middot; <a href=\"report.csv\">report.csv</a> "
+       "&middot; "
+       "<a href=\"table.txt\">table.txt</a> &middot; <a href=\"plot.svg\">plot.svg</a> &middot; "
+       "<code>&lt;technique&gt;.exr</code>: "
        "float colour and per-light visibility layers</p>\n";
   // The page around the body: report.html, embedded at build time (compare/CMakeLists.txt).
   const std::string& page = embeddedTemplates().at("report.html");
@@ -410,7 +459,8 @@ const char* const kReportFiles[] = {"report.json", "report.csv", "table.txt", "p
 void writeReport(const CompareResult& r, const std::string& dir) {
   namespace fs = std::filesystem;
   const std::string texts[] = {r.json().dump(2) + "\n", reportCsv(r), reportTable(r), speedErrorSvg(r), reportHtml(r)};
-  for (std::size_t i = 0; i < std::size(kReportFiles); ++i) writeTextFile((fs::path(dir) / kReportFiles[i]).string(), texts[i]);
+  for (std::size_t i = 0; i < std::size(kReportFiles); ++i)
+    writeTextFile((fs::path(dir) / kReportFiles[i]).string(), texts[i]);
 }
 
 void removeReport(const std::string& dir) {

@@ -49,8 +49,7 @@ std::string fileProblem(const std::string& path) {
 }
 
 void checkFailed(const char* expr, const char* file, int line, const std::string& msg) {
-  std::fprintf(stderr, "penumbra: internal check failed: %s (%s:%d) %s\n", expr, file, line,
-               msg.c_str());
+  std::fprintf(stderr, "penumbra: internal check failed: %s (%s:%d) %s\n", expr, file, line, msg.c_str());
   std::abort();
 }
 

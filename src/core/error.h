@@ -29,13 +29,14 @@ inline constexpr std::size_t kMaxErrorMessage = 2000;
 class Error : public std::runtime_error {
  public:
   // `where` is the file, field or object the problem concerns ("scenes/a.json", "samples",
-  // "param", "light[2]": a field's own name; the CLI shows the flag that sets it); `what` says the problem in a few words. The message is one line
-  // whatever the two hold (a file name or a JSON key may hold a newline): control characters
-  // are written escaped, as `\n`, `\t` or `\x1b`; past kMaxErrorMessage characters it is
-  // abbreviated.
+  // "param", "light[2]": a field's own name; the CLI shows the flag that sets it); `what` says the problem in a few
+  // words. The message is one line whatever the two hold (a file name or a JSON key may hold a newline): control
+  // characters are written escaped, as `\n`, `\t` or `\x1b`; past kMaxErrorMessage characters it is abbreviated.
   Error(std::string where, const std::string& what, ExitCode code = ExitCode::Error)
       : std::runtime_error(abbreviate(escapeControls(where.empty() ? what : where + ": " + what), kMaxErrorMessage)),
-        where_(std::move(where)), detail_(what), code_(code) {}
+        where_(std::move(where)),
+        detail_(what),
+        code_(code) {}
   const std::string& where() const { return where_; }
   const std::string& detail() const { return detail_; }  // `what`, without `where`
   ExitCode exitCode() const { return code_; }
@@ -54,7 +55,7 @@ std::string fileProblem(const std::string& path);
 
 }  // namespace penumbra
 
-#define PENUMBRA_CHECK(cond, msg)                                              \
-  do {                                                                         \
-    if (!(cond)) ::penumbra::checkFailed(#cond, __FILE__, __LINE__, (msg));    \
+#define PENUMBRA_CHECK(cond, msg)                                           \
+  do {                                                                      \
+    if (!(cond)) ::penumbra::checkFailed(#cond, __FILE__, __LINE__, (msg)); \
   } while (0)

@@ -31,9 +31,7 @@ namespace {
 // The core library reports errors through a callback (default: stderr); keep the last one.
 thread_local std::string tExrCoreMessage;
 
-void exrCoreError(exr_const_context_t, exr_result_t, const char* msg) {
-  tExrCoreMessage = msg ? msg : "";
-}
+void exrCoreError(exr_const_context_t, exr_result_t, const char* msg) { tExrCoreMessage = msg ? msg : ""; }
 
 // OpenEXR's C++ header reader (checkOpenEXRFile, Imf::InputFile) trusts the file: it
 // allocates an unknown attribute's declared size before reading it (a 1.7 KB file declaring
@@ -68,12 +66,30 @@ void checkExrAttributeSizes(const std::string& path) {
     return out;
   };
   // Known types of fixed size (OpenEXR 3.1's TypedAttribute layouts).
-  static const std::map<std::string, std::int64_t> kFixed = {
-      {"box2i", 16}, {"box2f", 16},  {"compression", 1}, {"lineOrder", 1}, {"envmap", 1},
-      {"float", 4},  {"double", 8},  {"int", 4},         {"v2i", 8},        {"v2f", 8},
-      {"v2d", 16},   {"v3i", 12},    {"v3f", 12},        {"v3d", 24},       {"m33f", 36},
-      {"m44f", 64},  {"m33d", 72},   {"m44d", 128},      {"chromaticities", 32},
-      {"keycode", 28}, {"timecode", 8}, {"rational", 8}, {"tiledesc", 9}, {"deepImageState", 1}};
+  static const std::map<std::string, std::int64_t> kFixed = {{"box2i", 16},
+                                                             {"box2f", 16},
+                                                             {"compression", 1},
+                                                             {"lineOrder", 1},
+                                                             {"envmap", 1},
+                                                             {"float", 4},
+                                                             {"double", 8},
+                                                             {"int", 4},
+                                                             {"v2i", 8},
+                                                             {"v2f", 8},
+                                                             {"v2d", 16},
+                                                             {"v3i", 12},
+                                                             {"v3f", 12},
+                                                             {"v3d", 24},
+                                                             {"m33f", 36},
+                                                             {"m44f", 64},
+                                                             {"m33d", 72},
+                                                             {"m44d", 128},
+                                                             {"chromaticities", 32},
+                                                             {"keycode", 28},
+                                                             {"timecode", 8},
+                                                             {"rational", 8},
+                                                             {"tiledesc", 9},
+                                                             {"deepImageState", 1}};
   for (int count = 0; count < 10000; ++count) {
     const std::string name = readString("attribute name");
     if (name.empty()) return;
@@ -111,8 +127,8 @@ void checkExrAttributeSizes(const std::string& path) {
       content = at;
     }
     if (content != size) {
-      throw Error(path, what + " declares " + std::to_string(size) +
-                            " bytes but its content needs " + std::to_string(content));
+      throw Error(
+          path, what + " declares " + std::to_string(size) + " bytes but its content needs " + std::to_string(content));
     }
     pos += std::size_t(size);
   }
@@ -132,8 +148,7 @@ ImageHeader exrHeader(const std::string& path) {
   exr_context_t ctx = nullptr;
   tExrCoreMessage.clear();
   exr_result_t rv = exr_start_read(&ctx, path.c_str(), &init);
-  std::unique_ptr<exr_context_t, void (*)(exr_context_t*)> guard(
-      &ctx, [](exr_context_t* c) { exr_finish(c); });
+  std::unique_ptr<exr_context_t, void (*)(exr_context_t*)> guard(&ctx, [](exr_context_t* c) { exr_finish(c); });
   if (rv != EXR_ERR_SUCCESS) {
     std::string why = tExrCoreMessage.empty() ? exr_get_default_error_message(rv) : tExrCoreMessage;
     throw Error(path, "not a valid OpenEXR file (" + oneLine(why) + ")");
@@ -141,8 +156,7 @@ ImageHeader exrHeader(const std::string& path) {
   int parts = 0;
   exr_storage_t storage = EXR_STORAGE_SCANLINE;
   exr_attr_box2i_t dw{};
-  if (exr_get_count(ctx, &parts) != EXR_ERR_SUCCESS ||
-      exr_get_storage(ctx, 0, &storage) != EXR_ERR_SUCCESS ||
+  if (exr_get_count(ctx, &parts) != EXR_ERR_SUCCESS || exr_get_storage(ctx, 0, &storage) != EXR_ERR_SUCCESS ||
       exr_get_data_window(ctx, 0, &dw) != EXR_ERR_SUCCESS) {
     throw Error(path, "not a valid OpenEXR file (unreadable header)");
   }
@@ -154,8 +168,7 @@ ImageHeader exrHeader(const std::string& path) {
   const std::int64_t h = std::int64_t(dw.max.y) - dw.min.y + 1;
   if (w <= 0 || h <= 0) throw Error(path, "empty data window");
   if (w > kMaxDimension || h > kMaxDimension) {
-    throw Error(path, "data window " + sizeText(w, h) + " is larger than " +
-                          sizeText(kMaxDimension, kMaxDimension));
+    throw Error(path, "data window " + sizeText(w, h) + " is larger than " + sizeText(kMaxDimension, kMaxDimension));
   }
   return {int(w), int(h)};
 }
@@ -187,8 +200,12 @@ std::map<std::string, LayerChannels> exrLayers(const Imf::Header& header) {
     const std::string suffix = dot == std::string::npos ? name : name.substr(dot + 1);
     LayerChannels& l = layers[layer];
     const bool subsampled = it.channel().xSampling != 1 || it.channel().ySampling != 1;
-    bool* flag = suffix == "R" ? &l.r : suffix == "G" ? &l.g : suffix == "B" ? &l.b
-               : suffix == "A" ? &l.a : suffix == "Y" ? &l.y : nullptr;
+    bool* flag = suffix == "R"   ? &l.r
+                 : suffix == "G" ? &l.g
+                 : suffix == "B" ? &l.b
+                 : suffix == "A" ? &l.a
+                 : suffix == "Y" ? &l.y
+                                 : nullptr;
     // A subsampled channel cannot be read into a full-resolution float buffer; ignore it so
     // the layer is rejected (or skipped) as lacking that channel.
     if (flag && !subsampled) *flag = true;
@@ -207,12 +224,10 @@ struct ChannelPlan {
   bool greyToRgb = false;  // copy output channel 0 into 1 and 2
 };
 
-using Planner = ChannelPlan (*)(const std::string& path,
-                                const std::map<std::string, LayerChannels>& layers,
+using Planner = ChannelPlan (*)(const std::string& path, const std::map<std::string, LayerChannels>& layers,
                                 const std::string& layer);
 
-Image readExrWith(const std::string& path, Planner planner, const std::string& layer,
-                  int* sanitized) {
+Image readExrWith(const std::string& path, Planner planner, const std::string& layer, int* sanitized) {
   checkExrFile(path);
   Image img;
   ChannelPlan plan;
@@ -235,8 +250,8 @@ Image readExrWith(const std::string& path, Planner planner, const std::string& l
         for (std::size_t p = 0; p < img.pixelCount(); ++p) img.data[p * c + i] = plan.fills[i];
         continue;
       }
-      fb.insert(plan.names[i], Imf::Slice::Make(Imf::FLOAT, img.data.data() + i, dw, xStride,
-                                                xStride * w, 1, 1, plan.fills[i]));
+      fb.insert(plan.names[i],
+                Imf::Slice::Make(Imf::FLOAT, img.data.data() + i, dw, xStride, xStride * w, 1, 1, plan.fills[i]));
     }
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
@@ -290,8 +305,7 @@ void writeExr(const std::string& path, const std::vector<ExrLayer>& layers) {
     const std::size_t xStride = sizeof(float) * img->channels;
     for (int c = 0; c < img->channels; ++c) {
       const std::string name = prefixed(layer.name, img->channels == 1 ? "Y" : kRgba[c]);
-      PENUMBRA_CHECK(header.channels().findChannel(name) == nullptr,
-                     "writeExr: duplicate channel " + name);
+      PENUMBRA_CHECK(header.channels().findChannel(name) == nullptr, "writeExr: duplicate channel " + name);
       header.channels().insert(name, Imf::Channel(Imf::FLOAT));
       // OpenEXR's Slice wants a mutable pointer even for writing; it only reads.
       char* base = reinterpret_cast<char*>(const_cast<float*>(img->data.data() + c));
@@ -328,9 +342,7 @@ Image readExr(const std::string& path, int* sanitized) {
     }
     for (const auto& [p, l] : layers) {
       if (!l.y) continue;
-      return {{prefixed(p, "Y"), "", "", l.a ? prefixed(p, "A") : ""},
-              {0.0f, 0.0f, 0.0f, 1.0f},
-              true};
+      return {{prefixed(p, "Y"), "", "", l.a ? prefixed(p, "A") : ""}, {0.0f, 0.0f, 0.0f, 1.0f}, true};
     }
     throw Error(path, "no R,G,B or Y channels");
   };

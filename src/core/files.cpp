@@ -120,8 +120,9 @@ FolderLock::FolderLock(const std::string& dir) {
     ::close(fd_);
     fd_ = -1;
     if (e == EWOULDBLOCK)
-      throw Error(dir, "another penumbra run is writing into this folder (it holds .penumbra-lock): wait for it, or "
-                       "give another output folder");
+      throw Error(dir,
+                  "another penumbra run is writing into this folder (it holds .penumbra-lock): wait for it, or "
+                  "give another output folder");
     throw Error(path, std::string("cannot lock the folder: ") + std::strerror(e));
   }
 }

@@ -67,7 +67,8 @@ Plane convolve(const Plane& in, int w, int h, const std::vector<double>& k, bool
         const float* p = src + std::size_t(i - r) * step;
         for (int j = 0; j <= 2 * r; ++j) sum += kf[std::size_t(j)] * p[std::size_t(j) * step];
       } else {
-        for (int j = -r; j <= r; ++j) sum += kf[std::size_t(j + r)] * src[std::size_t(std::clamp(i + j, 0, n - 1)) * step];
+        for (int j = -r; j <= r; ++j)
+          sum += kf[std::size_t(j + r)] * src[std::size_t(std::clamp(i + j, 0, n - 1)) * step];
       }
       dst[std::size_t(i) * step] = sum;
     }
@@ -84,7 +85,8 @@ Plane separable(const Plane& in, int w, int h, const std::vector<double>& kx, co
 struct Csf {
   double a1, b1, a2, b2;
 };
-constexpr Csf kAchromatic{1.0, 0.0047, 0.0, 1e-5}, kRedGreen{1.0, 0.0053, 0.0, 1e-5}, kBlueYellow{34.1, 0.04, 13.5, 0.025};
+constexpr Csf kAchromatic{1.0, 0.0047, 0.0, 1e-5}, kRedGreen{1.0, 0.0053, 0.0, 1e-5},
+    kBlueYellow{34.1, 0.04, 13.5, 0.025};
 
 Plane csfFilter(const Plane& in, int w, int h, const Csf& c, double ppd) {
   // One radius for all three, from the widest Gaussian (b = 0.04): 3 standard deviations.
@@ -195,7 +197,8 @@ Image exposed(const Image& img, double c) {
   const double scale = std::exp2(c);
   for (std::size_t i = 0; i < img.pixelCount(); ++i)
     for (int k = 0; k < 3; ++k)
-      out.data[i * 3 + std::size_t(k)] = float(aces(scale * std::max(0.0f, img.data[i * std::size_t(img.channels) + std::size_t(k)])));
+      out.data[i * 3 + std::size_t(k)] =
+          float(aces(scale * std::max(0.0f, img.data[i * std::size_t(img.channels) + std::size_t(k)])));
   return out;
 }
 
@@ -263,7 +266,7 @@ struct HdrFlipReference::Impl {
   Image reference;
   double ppd;
   FlipExposures exposures;
-  std::vector<double> c;          // each exposure's log2 scale
+  std::vector<double> c;             // each exposure's log2 scale
   std::vector<Perceived> perceived;  // the reference at each
 };
 
@@ -287,7 +290,8 @@ Image HdrFlipReference::against(const Image& test) const {
   checkPair(test, ref, "HDR-FLIP");
   Image map(test.width, test.height, 1);
   for (std::size_t k = 0; k < impl_->c.size(); ++k) {
-    const Image one = flipOf(perceive(exposed(test, impl_->c[k]), impl_->ppd), impl_->perceived[k], test.width, test.height);
+    const Image one =
+        flipOf(perceive(exposed(test, impl_->c[k]), impl_->ppd), impl_->perceived[k], test.width, test.height);
     for (std::size_t i = 0; i < map.data.size(); ++i) map.data[i] = std::max(map.data[i], one.data[i]);
   }
   markNonFinite(map, test, ref);
@@ -314,11 +318,12 @@ double meanOf(const Image& map, const std::vector<std::uint8_t>& valid) {
 Image flipHeatMap(const Image& map) {
   // matplotlib's magma (van der Walt and Smith, CC0), sRGB-encoded, at 17 even steps.
   static const float magma[17][3] = {
-      {0.0015f, 0.0005f, 0.0139f}, {0.0396f, 0.0311f, 0.1335f}, {0.1131f, 0.0655f, 0.2768f}, {0.2117f, 0.0620f, 0.4186f},
-      {0.3167f, 0.0717f, 0.4854f}, {0.4147f, 0.1104f, 0.5047f}, {0.5128f, 0.1482f, 0.5076f}, {0.6136f, 0.1818f, 0.4985f},
-      {0.7164f, 0.2150f, 0.4753f}, {0.8169f, 0.2559f, 0.4365f}, {0.9043f, 0.3196f, 0.3881f}, {0.9609f, 0.4183f, 0.3596f},
-      {0.9867f, 0.5356f, 0.3822f}, {0.9961f, 0.6537f, 0.4462f}, {0.9969f, 0.7696f, 0.5349f}, {0.9924f, 0.8843f, 0.6401f},
-      {0.9871f, 0.9914f, 0.7495f}};
+      {0.0015f, 0.0005f, 0.0139f}, {0.0396f, 0.0311f, 0.1335f}, {0.1131f, 0.0655f, 0.2768f},
+      {0.2117f, 0.0620f, 0.4186f}, {0.3167f, 0.0717f, 0.4854f}, {0.4147f, 0.1104f, 0.5047f},
+      {0.5128f, 0.1482f, 0.5076f}, {0.6136f, 0.1818f, 0.4985f}, {0.7164f, 0.2150f, 0.4753f},
+      {0.8169f, 0.2559f, 0.4365f}, {0.9043f, 0.3196f, 0.3881f}, {0.9609f, 0.4183f, 0.3596f},
+      {0.9867f, 0.5356f, 0.3822f}, {0.9961f, 0.6537f, 0.4462f}, {0.9969f, 0.7696f, 0.5349f},
+      {0.9924f, 0.8843f, 0.6401f}, {0.9871f, 0.9914f, 0.7495f}};
   Image out(map.width, map.height, 3);
   for (std::size_t i = 0; i < map.pixelCount(); ++i) {
     const float v = std::clamp(map.data[i * std::size_t(map.channels)], 0.0f, 1.0f) * 16.0f;

@@ -17,7 +17,9 @@ struct Fnv1a {
     for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
   }
   template <class T>
-  void value(const T& v) { bytes(&v, sizeof v); }
+  void value(const T& v) {
+    bytes(&v, sizeof v);
+  }
 };
 
 // 16 lower-case hex digits, as the table headers write hashes.

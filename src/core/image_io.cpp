@@ -17,11 +17,9 @@ std::string textureExtension(const std::string& path) {
   const std::size_t slash = path.find_last_of('/');
   const bool hasExt = dot != std::string::npos && (slash == std::string::npos || dot > slash);
   std::string ext = hasExt ? path.substr(dot) : "";
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (ext == ".exr" || ext == ".png") return ext;
-  throw Error(path, "unsupported texture format '" + (hasExt ? ext : "no extension") +
-                        "' (expected .exr or .png)");
+  throw Error(path, "unsupported texture format '" + (hasExt ? ext : "no extension") + "' (expected .exr or .png)");
 }
 
 }  // namespace

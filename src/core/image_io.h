@@ -67,7 +67,6 @@ bool readPngIhdr(const unsigned char* bytes, std::size_t n, PngIhdr& out);
 // longest match, 258 bytes, in a code of at least 2 bits), so the rows' smallest raw size (a
 // filter byte and the packed samples each) bounds the compressed data from below. A 71-byte file
 // declaring 16000^2 is refused before anything is allocated for it.
-std::string pngSizeProblem(std::int64_t width, std::int64_t height, int bitDepth, int colourType,
-                           std::uint64_t bytes);
+std::string pngSizeProblem(std::int64_t width, std::int64_t height, int bitDepth, int colourType, std::uint64_t bytes);
 
 }  // namespace penumbra

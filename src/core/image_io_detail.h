@@ -16,7 +16,8 @@ constexpr std::int64_t kMaxDimension = 16384;
 
 // Library messages can span lines; main() promises one line per error.
 inline std::string oneLine(std::string s) {
-  std::replace_if(s.begin(), s.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::replace_if(
+      s.begin(), s.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   while (!s.empty() && s.back() == ' ') s.pop_back();
   return s;
 }

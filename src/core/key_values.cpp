@@ -42,7 +42,8 @@ double finiteNumber(const KeyValue& v, const KeyPlace& place) {
 }
 
 void checkRange(double x, const KeyValue& v, const KeyPlace& place, double lo, double hi) {
-  if (x < lo || x > hi) place.fail(fmt::format("{} is outside [{}, {}]", v.kind == KeyValue::Kind::Text ? v.text : v.shown, lo, hi));
+  if (x < lo || x > hi)
+    place.fail(fmt::format("{} is outside [{}, {}]", v.kind == KeyValue::Kind::Text ? v.text : v.shown, lo, hi));
 }
 }  // namespace
 
@@ -70,14 +71,17 @@ bool readBoolean(const KeyValue& v, const KeyPlace& place) {
 }
 
 std::string readString(const KeyValue& v, const KeyPlace& place) {
-  if (v.kind != KeyValue::Kind::String && v.kind != KeyValue::Kind::Text) place.fail("expected a string, got " + v.shown);
+  if (v.kind != KeyValue::Kind::String && v.kind != KeyValue::Kind::Text)
+    place.fail("expected a string, got " + v.shown);
   return v.text;
 }
 
 int readChoice(const KeyValue& v, const KeyPlace& place, const std::vector<std::string>& choices) {
   std::string s = v.text;
-  if (v.kind == KeyValue::Kind::Integer) s = fmt::format("{}", v.number);
-  else if (v.kind != KeyValue::Kind::String && v.kind != KeyValue::Kind::Text) s.clear();
+  if (v.kind == KeyValue::Kind::Integer)
+    s = fmt::format("{}", v.number);
+  else if (v.kind != KeyValue::Kind::String && v.kind != KeyValue::Kind::Text)
+    s.clear();
   for (std::size_t i = 0; i < choices.size(); ++i)
     if (!s.empty() && s == choices[i]) return int(i);
   place.fail("expected one of " + joinKeys(choices) + ", got " + v.shown);

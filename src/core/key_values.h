@@ -19,10 +19,10 @@ namespace penumbra {
 struct KeyValue {
   enum class Kind { Number, Integer, Boolean, String, Text, Other };
   Kind kind = Kind::Other;
-  double number = 0.0;  // Number, Integer
-  bool boolean = false; // Boolean
-  std::string text;     // String: its content; Text: as given
-  std::string shown;    // as written, for messages (JSON: its dump; text: quoted)
+  double number = 0.0;   // Number, Integer
+  bool boolean = false;  // Boolean
+  std::string text;      // String: its content; Text: as given
+  std::string shown;     // as written, for messages (JSON: its dump; text: quoted)
 
   static KeyValue ofText(const std::string& text);
 };

@@ -38,8 +38,9 @@ Budget budget() {
     if (getrlimit(resource, &r) != 0 || r.rlim_cur == RLIM_INFINITY) continue;
     const double left = std::max(0.0, double(r.rlim_cur) - procStatusBytes(used));
     if (left < b.bytes)
-      b = {left, fmt::format("{} limit of {:.0f} MiB less {:.0f} MiB in use", resource == RLIMIT_AS ? "ulimit -v" : "ulimit -d",
-                             double(r.rlim_cur) / 1048576.0, procStatusBytes(used) / 1048576.0)};
+      b = {left, fmt::format("{} limit of {:.0f} MiB less {:.0f} MiB in use",
+                             resource == RLIMIT_AS ? "ulimit -v" : "ulimit -d", double(r.rlim_cur) / 1048576.0,
+                             procStatusBytes(used) / 1048576.0)};
   }
   if (gBudget > 0.0) {
     const double held = procStatusBytes("VmRSS");
@@ -60,8 +61,9 @@ void setMemoryBudget(double bytes) { gBudget = bytes > 0.0 ? bytes : 0.0; }
 void checkMemory(const std::string& where, const std::string& what, double bytes) {
   const Budget b = budget();
   if (bytes > b.bytes)
-    throw MemoryError(where, fmt::format("{} needs about {:.0f} MiB, more than the {:.0f} MiB this process may allocate ({})",
-                                   what, bytes / 1048576.0, b.bytes / 1048576.0, b.limit));
+    throw MemoryError(
+        where, fmt::format("{} needs about {:.0f} MiB, more than the {:.0f} MiB this process may allocate ({})", what,
+                           bytes / 1048576.0, b.bytes / 1048576.0, b.limit));
 }
 
 }  // namespace penumbra

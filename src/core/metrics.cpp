@@ -13,24 +13,22 @@ namespace penumbra {
 namespace {
 
 std::string shape(const Image& img) {
-  return std::to_string(img.width) + "x" + std::to_string(img.height) + "x" +
-         std::to_string(img.channels);
+  return std::to_string(img.width) + "x" + std::to_string(img.height) + "x" + std::to_string(img.channels);
 }
 
 void checkComparable(const Image& a, const Image& b) {
   if (a.width != b.width || a.height != b.height || a.channels != b.channels) {
     throw Error("compare", "image shapes differ: " + shape(a) + " vs " + shape(b));
   }
-  if (a.data.size() != a.pixelCount() * a.channels ||
-      b.data.size() != b.pixelCount() * b.channels) {
+  if (a.data.size() != a.pixelCount() * a.channels || b.data.size() != b.pixelCount() * b.channels) {
     throw Error("compare", "image data size does not match its dimensions");
   }
 }
 
 void checkMask(const std::vector<std::uint8_t>& mask, const Image& img, const char* what) {
   if (!mask.empty() && mask.size() != img.pixelCount()) {
-    throw Error("compare", std::string(what) + " mask has " + std::to_string(mask.size()) +
-                               " entries for " + std::to_string(img.pixelCount()) + " pixels");
+    throw Error("compare", std::string(what) + " mask has " + std::to_string(mask.size()) + " entries for " +
+                               std::to_string(img.pixelCount()) + " pixels");
   }
 }
 
@@ -126,8 +124,7 @@ ErrorStats compareImages(const Image& a, const Image& b, const std::vector<std::
   return s;
 }
 
-Image errorHeatMap(const Image& a, const Image& b, float scale,
-                   const std::vector<std::uint8_t>& exclude) {
+Image errorHeatMap(const Image& a, const Image& b, float scale, const std::vector<std::uint8_t>& exclude) {
   checkComparable(a, b);
   checkMask(exclude, a, "exclude");
   PENUMBRA_CHECK(scale > 0.0f && std::isfinite(scale), "errorHeatMap: scale must be positive");

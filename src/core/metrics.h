@@ -10,9 +10,9 @@
 namespace penumbra {
 
 struct ErrorStats {
-  double rmse = 0.0;      // sqrt(mean over counted pixels and channels of (a-b)^2)
-  double meanAbs = 0.0;   // mean over counted pixels and channels of |a-b|
-  double maxAbs = 0.0;    // max over counted pixels and channels of |a-b|
+  double rmse = 0.0;            // sqrt(mean over counted pixels and channels of (a-b)^2)
+  double meanAbs = 0.0;         // mean over counted pixels and channels of |a-b|
+  double maxAbs = 0.0;          // max over counted pixels and channels of |a-b|
   std::int64_t pixelsOver = 0;  // counted pixels where any channel differs by more than 1/255
   std::int64_t pixelsCounted = 0;
 };
@@ -27,13 +27,11 @@ std::vector<std::uint8_t> edgeBandMask(const Image& reference, int radius = 1, f
 // Statistics of a against b over pixels where `exclude` is 0 (or all pixels if exclude is
 // empty) and where `valid` is 1 (or all if empty; e.g. background pixels can be left out).
 // A NaN difference makes rmse, meanAbs and maxAbs NaN and counts its pixel in pixelsOver.
-ErrorStats compareImages(const Image& a, const Image& b,
-                         const std::vector<std::uint8_t>& exclude = {},
+ErrorStats compareImages(const Image& a, const Image& b, const std::vector<std::uint8_t>& exclude = {},
                          const std::vector<std::uint8_t>& valid = {});
 
 // False-colour heat map (RGB, linear) of the per-pixel max-channel absolute error, mapped
 // 0 -> black/blue, `scale` -> red/white (a perceptually ordered ramp). Excluded pixels grey.
-Image errorHeatMap(const Image& a, const Image& b, float scale,
-                   const std::vector<std::uint8_t>& exclude = {});
+Image errorHeatMap(const Image& a, const Image& b, float scale, const std::vector<std::uint8_t>& exclude = {});
 
 }  // namespace penumbra

@@ -64,11 +64,9 @@ struct PngHeader {
 };
 
 // The header's sides against the largest accepted and the file's size (pngSizeProblem).
-void checkPngSize(const std::string& path, std::int64_t width, std::int64_t height, int bitDepth,
-                  int colourType) {
+void checkPngSize(const std::string& path, std::int64_t width, std::int64_t height, int bitDepth, int colourType) {
   if (width > kMaxDimension || height > kMaxDimension) {
-    throw Error(path, "image " + sizeText(width, height) + " is larger than " +
-                          sizeText(kMaxDimension, kMaxDimension));
+    throw Error(path, "image " + sizeText(width, height) + " is larger than " + sizeText(kMaxDimension, kMaxDimension));
   }
   std::error_code ec;
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
@@ -90,14 +88,16 @@ bool readPngIhdr(const unsigned char* b, std::size_t n, PngIhdr& out) {
   return true;
 }
 
-std::string pngSizeProblem(std::int64_t width, std::int64_t height, int bitDepth, int colourType,
-                           std::uint64_t bytes) {
-  const int channels = colourType == PNG_COLOR_TYPE_RGB ? 3 : colourType == PNG_COLOR_TYPE_RGB_ALPHA ? 4
-                     : colourType == PNG_COLOR_TYPE_GRAY_ALPHA ? 2 : 1;
+std::string pngSizeProblem(std::int64_t width, std::int64_t height, int bitDepth, int colourType, std::uint64_t bytes) {
+  const int channels = colourType == PNG_COLOR_TYPE_RGB          ? 3
+                       : colourType == PNG_COLOR_TYPE_RGB_ALPHA  ? 4
+                       : colourType == PNG_COLOR_TYPE_GRAY_ALPHA ? 2
+                                                                 : 1;
   const double raw = double(height) * (1.0 + std::ceil(double(width) * channels * std::max(bitDepth, 1) / 8.0));
   if (raw <= 1032.0 * double(bytes) + 1024.0) return {};
   return "declares " + sizeText(width, height) + " texels (" + std::to_string(std::int64_t(raw / 1048576.0)) +
-         " MiB of rows) in " + std::to_string(bytes) + " bytes, more than deflate can compress into them: "
+         " MiB of rows) in " + std::to_string(bytes) +
+         " bytes, more than deflate can compress into them: "
          "truncated or corrupt";
 }
 
@@ -110,16 +110,15 @@ ImageHeader readPngHeader(const std::string& path) {
   if (got < 8 || png_sig_cmp(b, 0, 8) != 0) throw Error(path, "not a PNG file");
   PngIhdr h;
   if (!readPngIhdr(b, got, h)) throw Error(path, "invalid PNG file: no IHDR chunk first");
-  if (h.width == 0 || h.height == 0) throw Error(path, "invalid PNG file: image of size " + sizeText(h.width, h.height));
+  if (h.width == 0 || h.height == 0)
+    throw Error(path, "invalid PNG file: image of size " + sizeText(h.width, h.height));
   checkPngSize(path, h.width, h.height, h.bitDepth, h.colourType);
   return {int(h.width), int(h.height)};
 }
 
 void writePng(const std::string& path, const Image& linear, float exposure) {
-  PENUMBRA_CHECK(!linear.empty() && linear.width > 0 && linear.height > 0,
-                 "writePng: empty image");
-  PENUMBRA_CHECK(linear.channels >= 1 && linear.channels <= 4,
-                 "writePng: image needs 1 to 4 channels");
+  PENUMBRA_CHECK(!linear.empty() && linear.width > 0 && linear.height > 0, "writePng: empty image");
+  PENUMBRA_CHECK(linear.channels >= 1 && linear.channels <= 4, "writePng: image needs 1 to 4 channels");
   PENUMBRA_CHECK(linear.data.size() == linear.pixelCount() * linear.channels,
                  "writePng: image data size does not match its dimensions");
   // 2-channel (grey + alpha) images are written as grey; alpha is dropped either way because
@@ -150,21 +149,24 @@ void writePng(const std::string& path, const Image& linear, float exposure) {
     if (created) io.info = png_create_info_struct(io.png);
     PngWriteArgs args{png_uint_32(linear.width), png_uint_32(linear.height),
                       outChannels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_GRAY, rows.data()};
-    const bool ok = io.info && pngGuarded(io, [](PngIo& io, void* arg) {
-      const auto& a = *static_cast<PngWriteArgs*>(arg);
-      png_init_io(io.png, io.file);
-      png_set_IHDR(io.png, io.info, a.width, a.height, 8, a.colorType, PNG_INTERLACE_NONE,
-                   PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-      png_set_sRGB(io.png, io.info, PNG_sRGB_INTENT_PERCEPTUAL);
-      png_write_info(io.png, io.info);
-      png_write_image(io.png, a.rows);
-      png_write_end(io.png, nullptr);
-    }, &args);
+    const bool ok =
+        io.info && pngGuarded(
+                       io,
+                       [](PngIo& io, void* arg) {
+                         const auto& a = *static_cast<PngWriteArgs*>(arg);
+                         png_init_io(io.png, io.file);
+                         png_set_IHDR(io.png, io.info, a.width, a.height, 8, a.colorType, PNG_INTERLACE_NONE,
+                                      PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+                         png_set_sRGB(io.png, io.info, PNG_sRGB_INTENT_PERCEPTUAL);
+                         png_write_info(io.png, io.info);
+                         png_write_image(io.png, a.rows);
+                         png_write_end(io.png, nullptr);
+                       },
+                       &args);
     if (io.png) png_destroy_write_struct(&io.png, &io.info);
     const bool closed = std::fclose(file) == 0;
     if (!ok || !closed) {
-      const std::string why = !created || !ok ? (io.message[0] ? io.message : "out of memory")
-                                              : errnoText(errno);
+      const std::string why = !created || !ok ? (io.message[0] ? io.message : "out of memory") : errnoText(errno);
       throw Error(path, "cannot write PNG file: " + oneLine(why));
     }
   });
@@ -190,14 +192,16 @@ Image readPng(const std::string& path, bool srgb) {
   if (!io.info) throw Error(path, "cannot read PNG file: out of memory");
 
   PngHeader hdr;
-  if (!pngGuarded(io, [](PngIo& io, void* arg) {
-        auto& h = *static_cast<PngHeader*>(arg);
-        png_init_io(io.png, io.file);
-        png_set_sig_bytes(io.png, 8);
-        png_read_info(io.png, io.info);
-        png_get_IHDR(io.png, io.info, &h.width, &h.height, &h.bitDepth, &h.colorType, nullptr,
-                     nullptr, nullptr);
-      }, &hdr)) {
+  if (!pngGuarded(
+          io,
+          [](PngIo& io, void* arg) {
+            auto& h = *static_cast<PngHeader*>(arg);
+            png_init_io(io.png, io.file);
+            png_set_sig_bytes(io.png, 8);
+            png_read_info(io.png, io.info);
+            png_get_IHDR(io.png, io.info, &h.width, &h.height, &h.bitDepth, &h.colorType, nullptr, nullptr, nullptr);
+          },
+          &hdr)) {
     throw Error(path, "invalid PNG file: " + oneLine(io.message));
   }
   checkPngSize(path, hdr.width, hdr.height, hdr.bitDepth, hdr.colorType);
@@ -207,19 +211,22 @@ Image readPng(const std::string& path, bool srgb) {
 
   // Every layout becomes 8- or 16-bit RGBA: palette/low-bit grey/tRNS expand, grey widens to
   // RGB, and a missing alpha is filled opaque.
-  if (!pngGuarded(io, [](PngIo& io, void* arg) {
-        auto& h = *static_cast<PngHeader*>(arg);
-        png_set_expand(io.png);
-        png_set_gray_to_rgb(io.png);
-        const bool hasAlpha = (h.colorType & PNG_COLOR_MASK_ALPHA) != 0 ||
-                              png_get_valid(io.png, io.info, PNG_INFO_tRNS) != 0;
-        if (!hasAlpha) png_set_add_alpha(io.png, 0xffff, PNG_FILLER_AFTER);
-        png_set_interlace_handling(io.png);
-        png_read_update_info(io.png, io.info);
-        h.bitDepth = png_get_bit_depth(io.png, io.info);
-        h.channels = png_get_channels(io.png, io.info);
-        h.rowBytes = png_get_rowbytes(io.png, io.info);
-      }, &hdr)) {
+  if (!pngGuarded(
+          io,
+          [](PngIo& io, void* arg) {
+            auto& h = *static_cast<PngHeader*>(arg);
+            png_set_expand(io.png);
+            png_set_gray_to_rgb(io.png);
+            const bool hasAlpha =
+                (h.colorType & PNG_COLOR_MASK_ALPHA) != 0 || png_get_valid(io.png, io.info, PNG_INFO_tRNS) != 0;
+            if (!hasAlpha) png_set_add_alpha(io.png, 0xffff, PNG_FILLER_AFTER);
+            png_set_interlace_handling(io.png);
+            png_read_update_info(io.png, io.info);
+            h.bitDepth = png_get_bit_depth(io.png, io.info);
+            h.channels = png_get_channels(io.png, io.info);
+            h.rowBytes = png_get_rowbytes(io.png, io.info);
+          },
+          &hdr)) {
     throw Error(path, "invalid PNG file: " + oneLine(io.message));
   }
   const int bytesPerSample = hdr.bitDepth / 8;
@@ -231,10 +238,13 @@ Image readPng(const std::string& path, bool srgb) {
   std::vector<png_byte> pixels(hdr.rowBytes * hdr.height);
   std::vector<png_bytep> rows(hdr.height);
   for (png_uint_32 y = 0; y < hdr.height; ++y) rows[y] = pixels.data() + y * hdr.rowBytes;
-  if (!pngGuarded(io, [](PngIo& io, void* arg) {
-        png_read_image(io.png, static_cast<png_bytep*>(arg));
-        png_read_end(io.png, nullptr);
-      }, rows.data())) {
+  if (!pngGuarded(
+          io,
+          [](PngIo& io, void* arg) {
+            png_read_image(io.png, static_cast<png_bytep*>(arg));
+            png_read_end(io.png, nullptr);
+          },
+          rows.data())) {
     throw Error(path, "truncated or corrupt PNG file: " + oneLine(io.message));
   }
 

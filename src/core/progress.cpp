@@ -54,8 +54,8 @@ void PassProgress::advance(std::int64_t units) {
   if (now < due || !nextNs_.compare_exchange_strong(due, now + everyNs_)) return;
   ++reports_;
   const double seconds = double(now) * 1e-9, part = double(std::min(done, total_)) / double(total_);
-  PLOG_INFO("{}: {:.0f}% ({} of {} {}) after {:.0f} s, about {:.0f} s left", what_, 100.0 * part, std::min(done, total_),
-            total_, unit_, seconds, part > 0.0 ? seconds * (1.0 - part) / part : 0.0);
+  PLOG_INFO("{}: {:.0f}% ({} of {} {}) after {:.0f} s, about {:.0f} s left", what_, 100.0 * part,
+            std::min(done, total_), total_, unit_, seconds, part > 0.0 ? seconds * (1.0 - part) / part : 0.0);
 }
 
 }  // namespace penumbra

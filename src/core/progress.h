@@ -30,7 +30,8 @@ class Progress {
 // left at the rate so far. advance() may be called from any thread.
 class PassProgress {
  public:
-  PassProgress(std::string what, std::int64_t total, std::string unit = "rows", double after = 10.0, double every = 10.0);
+  PassProgress(std::string what, std::int64_t total, std::string unit = "rows", double after = 10.0,
+               double every = 10.0);
   void advance(std::int64_t units = 1);
   int reports() const { return reports_; }
 

@@ -6,7 +6,8 @@
 
 namespace penumbra {
 
-std::uint64_t tableChecksum(const std::string& covered, const std::vector<std::pair<const void*, std::size_t>>& payload) {
+std::uint64_t tableChecksum(const std::string& covered,
+                            const std::vector<std::pair<const void*, std::size_t>>& payload) {
   Fnv1a f;
   f.bytes(covered.data(), covered.size());
   for (const auto& [data, size] : payload) f.bytes(data, size);
@@ -14,7 +15,8 @@ std::uint64_t tableChecksum(const std::string& covered, const std::vector<std::p
 }
 
 void TableHeader::checkChecksum(const std::vector<std::pair<const void*, std::size_t>>& payload) const {
-  if (hex64(tableChecksum(covered, payload)) != checksum) throw Error(path, "checksum mismatch (corrupt or edited file)");
+  if (hex64(tableChecksum(covered, payload)) != checksum)
+    throw Error(path, "checksum mismatch (corrupt or edited file)");
 }
 
 TableHeader readTableHeader(std::istream& in, const std::string& path, const std::string& magic,
@@ -26,7 +28,8 @@ TableHeader readTableHeader(std::istream& in, const std::string& path, const std
   if (!std::getline(in, line) || line.rfind(kind + " ", 0) != 0)
     throw Error(path, "not a " + kind + " file (expected '" + magic + "')");
   if (line != magic)
-    throw Error(path, "format '" + abbreviate(line) + "', this build reads '" + magic + "': regenerate it with `penumbra lut`");
+    throw Error(
+        path, "format '" + abbreviate(line) + "', this build reads '" + magic + "': regenerate it with `penumbra lut`");
   h.covered = line + "\n";
   bool ended = false;
   std::set<std::string> seen;
@@ -46,7 +49,8 @@ TableHeader readTableHeader(std::istream& in, const std::string& path, const std
         throw Error(path, "bad header line '" + abbreviate(line) + "'");
       continue;
     }
-    if (std::find(keys.begin(), keys.end(), key) == keys.end()) throw Error(path, "unknown header line '" + abbreviate(line) + "'");
+    if (std::find(keys.begin(), keys.end(), key) == keys.end())
+      throw Error(path, "unknown header line '" + abbreviate(line) + "'");
     if (!h.checksum.empty()) throw Error(path, "header line '" + abbreviate(line) + "' after the checksum");
     h.values[key] = value;
     h.covered += line + "\n";

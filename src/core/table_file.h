@@ -31,7 +31,8 @@ struct TableHeader {
   T get(const std::string& key) const {
     std::istringstream in(values.at(key));
     T v{};
-    if (!(in >> v) || !(in >> std::ws).eof()) throw Error(path, "bad header line '" + abbreviate(key + " " + values.at(key)) + "'");
+    if (!(in >> v) || !(in >> std::ws).eof())
+      throw Error(path, "bad header line '" + abbreviate(key + " " + values.at(key)) + "'");
     return v;
   }
   // Error(path, "checksum mismatch (corrupt or edited file)") unless `payload` (its bytes, in
@@ -40,7 +41,8 @@ struct TableHeader {
 };
 
 // The checksum of `covered` then `payload`.
-std::uint64_t tableChecksum(const std::string& covered, const std::vector<std::pair<const void*, std::size_t>>& payload);
+std::uint64_t tableChecksum(const std::string& covered,
+                            const std::vector<std::pair<const void*, std::size_t>>& payload);
 
 // Reads the header from `in`, at the file's start, leaving `in` at the payload. `magic` is the
 // whole first line; `keys` the keys the header holds, all and only these.

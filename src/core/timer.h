@@ -23,7 +23,7 @@ enum class StageKind { Technique, Harness };
 // Machine-independent work of a stage (ARB_pipeline_statistics_query), summed over its draws
 // and dispatches.
 struct PipelineCounts {
-  std::uint64_t primitivesSubmitted = 0;       // primitives the draws sent
+  std::uint64_t primitivesSubmitted = 0;  // primitives the draws sent
   std::uint64_t vertexInvocations = 0;
   std::uint64_t geometryInvocations = 0;
   std::uint64_t clippingOutputPrimitives = 0;  // primitives that reached the rasteriser
@@ -37,9 +37,9 @@ struct PipelineCounts {
   }
   // (name, value) in the order above, for reports.
   std::vector<std::pair<const char*, std::uint64_t>> fields() const {
-    return {{"primitives", primitivesSubmitted},          {"vertex", vertexInvocations},
-            {"geometry", geometryInvocations},            {"rasterized", clippingOutputPrimitives},
-            {"fragment", fragmentInvocations},            {"compute", computeInvocations}};
+    return {{"primitives", primitivesSubmitted}, {"vertex", vertexInvocations},
+            {"geometry", geometryInvocations},   {"rasterized", clippingOutputPrimitives},
+            {"fragment", fragmentInvocations},   {"compute", computeInvocations}};
   }
 };
 
@@ -74,9 +74,7 @@ class StageTimer {
   auto harness(const std::string& stage, F&& fn) {
     return timeAs(stage, StageKind::Harness, std::forward<F>(fn));
   }
-  void add(const std::string& stage, double ms, StageKind kind = StageKind::Technique) {
-    find(stage, kind).ms += ms;
-  }
+  void add(const std::string& stage, double ms, StageKind kind = StageKind::Technique) { find(stage, kind).ms += ms; }
   // Counts the work of the stages from now on (null: none). Not owned; clear it before the
   // counter goes away.
   void setCounter(StageCounter* counter) { counter_ = counter; }

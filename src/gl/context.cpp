@@ -36,8 +36,8 @@ bool isOutOfMemoryMessage(const GLchar* message) {
   return m.find("out_of_memory") != std::string::npos || m.find("out of memory") != std::string::npos;
 }
 
-void GLAPIENTRY debugCallback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei,
-                              const GLchar* message, const void*) {
+void GLAPIENTRY debugCallback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei, const GLchar* message,
+                              const void*) {
   if (gTrapOutOfMemory && type == GL_DEBUG_TYPE_ERROR && isOutOfMemoryMessage(message)) {
     gSawOutOfMemory = true;
     PLOG_DEBUG("GL: {}", message);
@@ -53,15 +53,13 @@ void GLAPIENTRY debugCallback(GLenum source, GLenum type, GLuint id, GLenum seve
   }
 }
 
-[[noreturn]] void noContext(const std::string& what) {
-  throw Error("GL context", what, ExitCode::NoContext);
-}
+[[noreturn]] void noContext(const std::string& what) { throw Error("GL context", what, ExitCode::NoContext); }
 
 class EglContext final : public Context {
  public:
   EglContext() : Context(Backend::Egl) {
-    auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-        eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    auto getPlatformDisplay =
+        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
     // Mesa: surfaceless platform. NVIDIA: the device platform (first device).
     if (getPlatformDisplay) display_ = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr)) {
@@ -76,9 +74,15 @@ class EglContext final : public Context {
     }
     if (display_ == EGL_NO_DISPLAY) noContext("EGL: no surfaceless or device display could be initialised");
     if (!eglBindAPI(EGL_OPENGL_API)) noContext("EGL: OpenGL API not available");
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                              EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE, EGL_NONE};
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                              4,
+                              EGL_CONTEXT_MINOR_VERSION,
+                              5,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                              EGL_CONTEXT_OPENGL_DEBUG,
+                              EGL_TRUE,
+                              EGL_NONE};
     // EGL_KHR_no_config_context: no surface, so no config needed.
     context_ = eglCreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
     if (context_ == EGL_NO_CONTEXT) {
@@ -144,9 +148,17 @@ class OSMesaBackend final : public Context {
       if (!driver.empty() && driver != "llvmpipe" && driver != "softpipe")
         noContext("OSMesa: GALLIUM_DRIVER=" + driver + " is not one of OSMesa's drivers (llvmpipe, softpipe)");
     }
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
-                           OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                           OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           0,
+                           OSMESA_PROFILE,
+                           OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION,
+                           4,
+                           OSMESA_CONTEXT_MINOR_VERSION,
+                           5,
+                           0};
     context_ = osmesa().createContextAttribs(attribs, nullptr);
     if (!context_) noContext("OSMesa: cannot create a GL 4.5 core context");
     makeCurrent();
@@ -166,11 +178,12 @@ class OSMesaBackend final : public Context {
 
 }  // namespace
 
-
 std::unique_ptr<Context> Context::create(Backend backend) {
   std::unique_ptr<Context> c;
-  if (backend == Backend::Egl) c = std::make_unique<EglContext>();
-  else c = std::make_unique<OSMesaBackend>();
+  if (backend == Backend::Egl)
+    c = std::make_unique<EglContext>();
+  else
+    c = std::make_unique<OSMesaBackend>();
   return c;
 }
 
@@ -184,8 +197,8 @@ int Context::maxTextureSize() const {
 
 void Context::loadEntryPoints(void* (*getProc)(const char*)) {
   std::vector<std::string> missing;
-#define X(type, name)                                              \
-  penumbra::name = reinterpret_cast<type>(getProc(#name));         \
+#define X(type, name)                                      \
+  penumbra::name = reinterpret_cast<type>(getProc(#name)); \
   if (!penumbra::name) missing.push_back(#name);
 #include "gl/functions.inl"
 #undef X

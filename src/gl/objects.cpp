@@ -33,15 +33,16 @@ double mib(double bytes) { return bytes / 1048576.0; }
 void allocateOrThrow(const std::string& what, double bytes, const std::function<void()>& allocate) {
   if (limits().maxAllocationBytes > 0 && bytes > limits().maxAllocationBytes)
     throw Error("GPU memory", fmt::format("out of memory allocating {} ({:.0f} MiB): more than this software "
-                                          "renderer's {:.0f} MiB of system memory", what, mib(bytes),
-                                          mib(limits().maxAllocationBytes)));
+                                          "renderer's {:.0f} MiB of system memory",
+                                          what, mib(bytes), mib(limits().maxAllocationBytes)));
   if (!Context::tryAllocate(allocate, what.c_str()))
     throw Error("GPU memory", fmt::format("out of memory allocating {} ({:.0f} MiB)", what, mib(bytes)));
 }
 }  // namespace
 
 const char* toString(Kind k) {
-  static const char* const names[] = {"buffer", "texture", "framebuffer", "vertex array", "program", "sampler", "shader", "query"};
+  static const char* const names[] = {"buffer",  "texture", "framebuffer", "vertex array",
+                                      "program", "sampler", "shader",      "query"};
   return names[int(k)];
 }
 
@@ -56,15 +57,32 @@ namespace detail {
 void objectCreated(Kind k) { ++gLive[int(k)]; }
 void deleteObject(Kind k, GLuint id) {
   switch (k) {
-    case Kind::Buffer: glDeleteBuffers(1, &id); break;
-    case Kind::Texture: glDeleteTextures(1, &id); break;
-    case Kind::Framebuffer: glDeleteFramebuffers(1, &id); break;
-    case Kind::VertexArray: glDeleteVertexArrays(1, &id); break;
-    case Kind::Program: glDeleteProgram(id); break;
-    case Kind::Sampler: glDeleteSamplers(1, &id); break;
-    case Kind::Shader: glDeleteShader(id); break;
-    case Kind::Query: glDeleteQueries(1, &id); break;
-    case Kind::Count: return;
+    case Kind::Buffer:
+      glDeleteBuffers(1, &id);
+      break;
+    case Kind::Texture:
+      glDeleteTextures(1, &id);
+      break;
+    case Kind::Framebuffer:
+      glDeleteFramebuffers(1, &id);
+      break;
+    case Kind::VertexArray:
+      glDeleteVertexArrays(1, &id);
+      break;
+    case Kind::Program:
+      glDeleteProgram(id);
+      break;
+    case Kind::Sampler:
+      glDeleteSamplers(1, &id);
+      break;
+    case Kind::Shader:
+      glDeleteShader(id);
+      break;
+    case Kind::Query:
+      glDeleteQueries(1, &id);
+      break;
+    case Kind::Count:
+      return;
   }
   --gLive[int(k)];
 }
@@ -168,16 +186,26 @@ struct FormatInfo {
 };
 FormatInfo formatInfo(GLenum f) {
   switch (f) {
-    case GL_R32F: return {f, 1, 4};
-    case GL_R16F: return {f, 1, 2};
-    case GL_RG32F: return {f, 2, 8};
-    case GL_RGBA32F: return {f, 4, 16};
-    case GL_RGBA16F: return {f, 4, 8};
-    case GL_RGBA8: return {f, 4, 4};
-    case GL_DEPTH_COMPONENT32F: return {f, 1, 4};
-    case GL_R32UI: return {f, 1, 4};
-    case GL_RGBA32UI: return {f, 4, 16};
-    default: PENUMBRA_CHECK(false, "unknown texture format");
+    case GL_R32F:
+      return {f, 1, 4};
+    case GL_R16F:
+      return {f, 1, 2};
+    case GL_RG32F:
+      return {f, 2, 8};
+    case GL_RGBA32F:
+      return {f, 4, 16};
+    case GL_RGBA16F:
+      return {f, 4, 8};
+    case GL_RGBA8:
+      return {f, 4, 4};
+    case GL_DEPTH_COMPONENT32F:
+      return {f, 1, 4};
+    case GL_R32UI:
+      return {f, 1, 4};
+    case GL_RGBA32UI:
+      return {f, 4, 16};
+    default:
+      PENUMBRA_CHECK(false, "unknown texture format");
   }
 }
 GLenum pixelFormat(int channels) {
@@ -196,16 +224,26 @@ void setSampling(GLuint id) {
 namespace {
 const char* formatName(GLenum f) {
   switch (f) {
-    case GL_R32F: return "R32F";
-    case GL_R16F: return "R16F";
-    case GL_RG32F: return "RG32F";
-    case GL_RGBA32F: return "RGBA32F";
-    case GL_RGBA16F: return "RGBA16F";
-    case GL_RGBA8: return "RGBA8";
-    case GL_DEPTH_COMPONENT32F: return "DEPTH32F";
-    case GL_R32UI: return "R32UI";
-    case GL_RGBA32UI: return "RGBA32UI";
-    default: return "?";
+    case GL_R32F:
+      return "R32F";
+    case GL_R16F:
+      return "R16F";
+    case GL_RG32F:
+      return "RG32F";
+    case GL_RGBA32F:
+      return "RGBA32F";
+    case GL_RGBA16F:
+      return "RGBA16F";
+    case GL_RGBA8:
+      return "RGBA8";
+    case GL_DEPTH_COMPONENT32F:
+      return "DEPTH32F";
+    case GL_R32UI:
+      return "R32UI";
+    case GL_RGBA32UI:
+      return "RGBA32UI";
+    default:
+      return "?";
   }
 }
 
@@ -222,10 +260,11 @@ GLuint createTexture(GLenum target, GLenum fmt, int w, int h, int layers, Textur
   if (w > maxSize || h > maxSize)
     throw Error("GPU memory", fmt::format("{} exceeds this GL's {} ({}); use a smaller image or map", what,
                                           target == GL_TEXTURE_CUBE_MAP_ARRAY ? "GL_MAX_CUBE_MAP_TEXTURE_SIZE"
-                                                                             : "GL_MAX_TEXTURE_SIZE",
+                                                                              : "GL_MAX_TEXTURE_SIZE",
                                           maxSize));
   if (layers > l.maxArrayLayers)
-    throw Error("GPU memory", fmt::format("{} exceeds this GL's GL_MAX_ARRAY_TEXTURE_LAYERS ({})", what, l.maxArrayLayers));
+    throw Error("GPU memory",
+                fmt::format("{} exceeds this GL's GL_MAX_ARRAY_TEXTURE_LAYERS ({})", what, l.maxArrayLayers));
   GLuint id = 0;
   glCreateTextures(target, 1, &id);
   static_cast<Object<Kind::Texture>&>(owner) = Object<Kind::Texture>(id);  // deleted if storage fails
@@ -290,7 +329,8 @@ Image Texture::read(int channels, int layer) const {
   PENUMBRA_CHECK(layer < 0 || layers_ > 0, "layer of a 2D texture");
   if (layers_ > 0 && layer < 0) {  // all layers, stacked vertically
     Image all(w_, h_ * layers_, channels);
-    glGetTextureImage(id(), 0, pixelFormat(channels), GL_FLOAT, GLsizei(all.data.size() * sizeof(float)), all.data.data());
+    glGetTextureImage(id(), 0, pixelFormat(channels), GL_FLOAT, GLsizei(all.data.size() * sizeof(float)),
+                      all.data.data());
     Context::checkErrors("Texture::read");
     return all;
   }
@@ -338,21 +378,25 @@ Framebuffer::Framebuffer(const std::vector<Attachment>& colors, const Texture* d
   for (std::size_t i = 0; i < colors.size(); ++i) {
     const Texture& t = *colors[i].texture;
     GLenum at = GLenum(GL_COLOR_ATTACHMENT0 + i);
-    if (colors[i].layer >= 0) glNamedFramebufferTextureLayer(id, at, t.id(), 0, colors[i].layer);
-    else glNamedFramebufferTexture(id, at, t.id(), 0);
+    if (colors[i].layer >= 0)
+      glNamedFramebufferTextureLayer(id, at, t.id(), 0, colors[i].layer);
+    else
+      glNamedFramebufferTexture(id, at, t.id(), 0);
     bufs.push_back(at);
     w_ = t.width(), h_ = t.height();
   }
   glNamedFramebufferDrawBuffers(id, GLsizei(bufs.size()), bufs.data());
   if (depth) {
-    if (depthLayer >= 0) glNamedFramebufferTextureLayer(id, GL_DEPTH_ATTACHMENT, depth->id(), 0, depthLayer);
-    else glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth->id(), 0);
+    if (depthLayer >= 0)
+      glNamedFramebufferTextureLayer(id, GL_DEPTH_ATTACHMENT, depth->id(), 0, depthLayer);
+    else
+      glNamedFramebufferTexture(id, GL_DEPTH_ATTACHMENT, depth->id(), 0);
     w_ = depth->width(), h_ = depth->height();
   }
   const Limits& l = limits();
   if (w_ > l.maxViewport[0] || h_ > l.maxViewport[1])
-    throw Error("GPU memory", fmt::format("a {} x {} render target exceeds this GL's GL_MAX_VIEWPORT_DIMS ({} x {})", w_,
-                                          h_, l.maxViewport[0], l.maxViewport[1]));
+    throw Error("GPU memory", fmt::format("a {} x {} render target exceeds this GL's GL_MAX_VIEWPORT_DIMS ({} x {})",
+                                          w_, h_, l.maxViewport[0], l.maxViewport[1]));
   PENUMBRA_CHECK(glCheckNamedFramebufferStatus(id, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE,
                  "framebuffer incomplete");
 }
@@ -372,10 +416,11 @@ Framebuffer Framebuffer::empty(int width, int height, int layers) {
   const Limits& l = limits();
   if (width <= 0 || height <= 0 || width > l.maxFramebufferWidth || height > l.maxFramebufferHeight ||
       width > l.maxViewport[0] || height > l.maxViewport[1] || layers > l.maxFramebufferLayers)
-    throw Error("GPU memory", fmt::format("a {} x {} x {} framebuffer without attachments exceeds this GL's "
-                                          "GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT/LAYERS ({} x {} x {}); use a smaller image or map",
-                                          width, height, layers, l.maxFramebufferWidth, l.maxFramebufferHeight,
-                                          l.maxFramebufferLayers));
+    throw Error(
+        "GPU memory",
+        fmt::format("a {} x {} x {} framebuffer without attachments exceeds this GL's "
+                    "GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT/LAYERS ({} x {} x {}); use a smaller image or map",
+                    width, height, layers, l.maxFramebufferWidth, l.maxFramebufferHeight, l.maxFramebufferLayers));
   GLuint id = 0;
   glCreateFramebuffers(1, &id);
   Framebuffer f;

@@ -42,7 +42,10 @@ class Object {
   ~Object() { reset(); }
   Object(Object&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
   Object& operator=(Object&& o) noexcept {
-    if (this != &o) { reset(); id_ = std::exchange(o.id_, 0); }
+    if (this != &o) {
+      reset();
+      id_ = std::exchange(o.id_, 0);
+    }
     return *this;
   }
   Object(const Object&) = delete;
@@ -163,7 +166,7 @@ class Sampler : public Object<Kind::Sampler> {
 
 class VertexArray : public Object<Kind::VertexArray> {
  public:
-  VertexArray() = default;  // no GL object: members may be declared before a context exists
+  VertexArray() = default;      // no GL object: members may be declared before a context exists
   static VertexArray create();  // needs the current context
   // Float attribute `index` of `components` floats at `offset` in vertex buffer binding `binding`.
   VertexArray& attribute(GLuint index, int components, std::size_t offset, GLuint binding = 0);

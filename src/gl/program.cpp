@@ -22,7 +22,8 @@ const std::map<std::string, std::string>& embeddedShaders();
 std::string shaderSource(const std::string& file) {
   // Set and empty is a mistake (`PENUMBRA_SHADER_DIR= penumbra ...`), not the root folder.
   if (const char* dirs = std::getenv("PENUMBRA_SHADER_DIR")) {
-    if (!*dirs) throw Error("PENUMBRA_SHADER_DIR", "is set but empty: unset it for the built-in shaders, or name a folder");
+    if (!*dirs)
+      throw Error("PENUMBRA_SHADER_DIR", "is set but empty: unset it for the built-in shaders, or name a folder");
     // Folders separated by ':', searched in order (shaders live beside the code that runs them).
     std::stringstream list(dirs);
     for (std::string dir; std::getline(list, dir, ':');) {
@@ -75,7 +76,7 @@ void checkStorageBlockStages(const std::vector<std::string>& files, const std::v
   }
   if (!writer.empty() && declaring > 1)
     throw Error(files.front(), "storage block " + writer + " is writable while " + std::to_string(declaring) +
-                                               " stages declare storage blocks (shared/shared.h, storage bindings)");
+                                   " stages declare storage blocks (shared/shared.h, storage bindings)");
 }
 
 }  // namespace
@@ -121,7 +122,8 @@ Program::Program(const std::vector<std::string>& files, const std::vector<std::s
     char log[4096];
     glGetProgramInfoLog(prog, sizeof log, nullptr, log);
     std::string msg(log);
-    for (auto& c : msg) if (c == '\n') c = ' ';
+    for (auto& c : msg)
+      if (c == '\n') c = ' ';
     throw Error(files.front(), "link error: " + msg);
   }
   checkStorageBlockStages(files, sources);
@@ -134,8 +136,12 @@ void Program::set(const char* n, unsigned v) const { glProgramUniform1ui(id(), l
 void Program::set(const char* n, float v) const { glProgramUniform1f(id(), location(n), v); }
 void Program::set(const char* n, const glm::vec2& v) const { glProgramUniform2f(id(), location(n), v.x, v.y); }
 void Program::set(const char* n, const glm::ivec2& v) const { glProgramUniform2i(id(), location(n), v.x, v.y); }
-void Program::set(const char* n, const glm::vec3& v) const { glProgramUniform3fv(id(), location(n), 1, glm::value_ptr(v)); }
-void Program::set(const char* n, const glm::vec4& v) const { glProgramUniform4fv(id(), location(n), 1, glm::value_ptr(v)); }
+void Program::set(const char* n, const glm::vec3& v) const {
+  glProgramUniform3fv(id(), location(n), 1, glm::value_ptr(v));
+}
+void Program::set(const char* n, const glm::vec4& v) const {
+  glProgramUniform4fv(id(), location(n), 1, glm::value_ptr(v));
+}
 void Program::set(const char* n, const glm::mat4& v) const {
   glProgramUniformMatrix4fv(id(), location(n), 1, GL_FALSE, glm::value_ptr(v));
 }

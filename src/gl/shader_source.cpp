@@ -91,8 +91,10 @@ std::string nameLogLocations(const std::string& log, const std::vector<std::stri
     const long coded = std::stol(mesa ? m[3].str() : m[5].str());
     const std::size_t file = std::size_t(coded / kFileLines);
     out += log.substr(last, std::size_t(m.position(0)) - last) + m[1].str();
-    if (file < files.size()) out += files[file] + ":" + std::to_string(coded % kFileLines) + (mesa ? "(" + m[4].str() + ")" : "");
-    else out += m[0].str().substr(m[1].length());
+    if (file < files.size())
+      out += files[file] + ":" + std::to_string(coded % kFileLines) + (mesa ? "(" + m[4].str() + ")" : "");
+    else
+      out += m[0].str().substr(m[1].length());
     last = std::size_t(m.position(0) + m.length(0));
   }
   out += log.substr(last);

@@ -9,8 +9,8 @@ namespace penumbra::gl {
 namespace {
 
 // In the order of PipelineStatistics::ids_ and of PipelineCounts' fields.
-constexpr GLenum kTargets[] = {GL_PRIMITIVES_SUBMITTED_ARB,       GL_VERTEX_SHADER_INVOCATIONS_ARB,
-                               GL_GEOMETRY_SHADER_INVOCATIONS,    GL_CLIPPING_OUTPUT_PRIMITIVES_ARB,
+constexpr GLenum kTargets[] = {GL_PRIMITIVES_SUBMITTED_ARB,        GL_VERTEX_SHADER_INVOCATIONS_ARB,
+                               GL_GEOMETRY_SHADER_INVOCATIONS,     GL_CLIPPING_OUTPUT_PRIMITIVES_ARB,
                                GL_FRAGMENT_SHADER_INVOCATIONS_ARB, GL_COMPUTE_SHADER_INVOCATIONS_ARB};
 
 }  // namespace

@@ -32,8 +32,8 @@
 namespace penumbra {
 
 struct LightEnclosure {
-  std::string separatedBy;  // a closed opaque mesh between every sample and the camera, or empty
-  std::string straddled;    // a closed opaque mesh with samples in more than one of its cells, or empty
+  std::string separatedBy;              // a closed opaque mesh between every sample and the camera, or empty
+  std::string straddled;                // a closed opaque mesh with samples in more than one of its cells, or empty
   std::size_t samplesInOtherCells = 0;  // of `straddled`: samples not in the light centre's cell
 };
 

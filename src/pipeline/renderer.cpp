@@ -17,9 +17,7 @@
 
 namespace penumbra {
 
-glm::mat4 viewFromWorld(const Camera& camera) {
-  return glm::lookAt(camera.position, camera.target, camera.up);
-}
+glm::mat4 viewFromWorld(const Camera& camera) { return glm::lookAt(camera.position, camera.target, camera.up); }
 
 glm::mat4 clipFromViewReversedInfinite(const Camera& camera, float aspect) {
   // Reversed-Z infinite projection for glClipControl(..., GL_ZERO_TO_ONE): z_clip = near,
@@ -84,7 +82,7 @@ struct GVertex {
   glm::vec3 position;
   glm::vec3 normal;
   glm::vec2 uv;
-  float plane;  // dot(normal, a vertex): the plane the G-buffer intersects with the pixel's ray
+  float plane;        // dot(normal, a vertex): the plane the G-buffer intersects with the pixel's ray
   glm::vec3 shading;  // the corner's shading normal (geo::ensureShadingNormals), or the face's
 };
 }  // namespace
@@ -137,7 +135,8 @@ GpuScene::GpuScene(const Scene& scene, int width, int height, std::size_t maxVer
       glm::vec3 n = len > 0.0 ? glm::vec3(nd / len) : glm::vec3(0.0f, 1.0f, 0.0f);
       // The plane through the triangle's vertices with the float normal n: their mean offset.
       float plane = float((glm::dot(glm::dvec3(n), glm::dvec3(p[0])) + glm::dot(glm::dvec3(n), glm::dvec3(p[1])) +
-                           glm::dot(glm::dvec3(n), glm::dvec3(p[2]))) / 3.0);
+                           glm::dot(glm::dvec3(n), glm::dvec3(p[2]))) /
+                          3.0);
       for (int i = 0; i < 3; ++i) {
         // A missing, zero or non-finite vertex normal shades with the face's.
         glm::vec3 s = hasNormals ? mesh.normals[t[i]] : n;
@@ -166,14 +165,16 @@ GpuScene::GpuScene(const Scene& scene, int width, int height, std::size_t maxVer
     try {
       const int maxSize = gl::limits().maxTextureSize;
       if (maxSize > 0 && std::max(t.image.width, t.image.height) > maxSize)
-        throw Error("", fmt::format("{} x {} texels, more than this GL's {} a side", t.image.width, t.image.height, maxSize));
+        throw Error(
+            "", fmt::format("{} x {} texels, more than this GL's {} a side", t.image.width, t.image.height, maxSize));
       tex = gl::Texture::make2D(GL_RGBA32F, t.image.width, t.image.height);
       if (t.image.channels == 4) {
         tex.upload(t.image.data.data(), 4);
       } else {  // loaders give RGBA; tolerate RGB
         Image rgba(t.image.width, t.image.height, 4, 1.0f);
         for (std::size_t i = 0; i < t.image.pixelCount(); ++i)
-          for (int c = 0; c < std::min(3, t.image.channels); ++c) rgba.data[i * 4 + c] = t.image.data[i * t.image.channels + c];
+          for (int c = 0; c < std::min(3, t.image.channels); ++c)
+            rgba.data[i * 4 + c] = t.image.data[i * t.image.channels + c];
         tex.upload(rgba.data.data(), 4);
       }
     } catch (const Error& e) {
@@ -277,7 +278,9 @@ CpuGBuffer GpuScene::readGBuffer() const {
   std::size_t n = pos.pixelCount();
   g.position.resize(n), g.normal.resize(n), g.valid.resize(n);
   g.shadingNormal.resize(n), g.baseColor.resize(n), g.material.resize(n);
-  auto vec3At = [](const Image& im, std::size_t i) { return glm::vec3(im.data[i * 4], im.data[i * 4 + 1], im.data[i * 4 + 2]); };
+  auto vec3At = [](const Image& im, std::size_t i) {
+    return glm::vec3(im.data[i * 4], im.data[i * 4 + 1], im.data[i * 4 + 2]);
+  };
   for (std::size_t i = 0; i < n; ++i) {
     g.position[i] = vec3At(pos, i);
     g.normal[i] = vec3At(nrm, i);
@@ -290,7 +293,8 @@ CpuGBuffer GpuScene::readGBuffer() const {
 }
 
 std::size_t GpuScene::memoryBytes() const {
-  std::size_t bytes = position_.bytes() + normal_.bytes() + albedo_.bytes() + shading_.bytes() + material_.bytes() + depth_.bytes();
+  std::size_t bytes =
+      position_.bytes() + normal_.bytes() + albedo_.bytes() + shading_.bytes() + material_.bytes() + depth_.bytes();
   for (auto& c : chunks_) bytes += c.vertices.size();
   return bytes;
 }
@@ -311,8 +315,10 @@ Renderer::Renderer(gl::Context& context, const Scene& given, const RenderSetting
   const Scene& scene = scene_;
   const int maxSize = context.maxTextureSize();
   if (settings.width <= 0 || settings.height <= 0 || settings.width > maxSize || settings.height > maxSize)
-    throw Error("renderer", "image size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
-                             " outside 1.." + std::to_string(maxSize), ExitCode::Usage);
+    throw Error("renderer",
+                "image size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+                    " outside 1.." + std::to_string(maxSize),
+                ExitCode::Usage);
   if (scene.lights.empty()) throw Error(scene.sourcePath.empty() ? scene.name : scene.sourcePath, "scene has no light");
   gpu_ = std::make_unique<GpuScene>(scene, settings.width, settings.height, settings.maxVertexBufferBytes);
   color_ = gl::Texture::make2D(GL_RGBA32F, settings.width, settings.height);
@@ -370,7 +376,8 @@ std::size_t nonFinitePixels(const Image& im) {
   std::size_t bad = 0;
   for (std::size_t i = 0; i < im.pixelCount(); ++i) {
     bool finite = true;
-    for (int c = 0; c < im.channels; ++c) finite = finite && std::isfinite(im.data[i * std::size_t(im.channels) + std::size_t(c)]);
+    for (int c = 0; c < im.channels; ++c)
+      finite = finite && std::isfinite(im.data[i * std::size_t(im.channels) + std::size_t(c)]);
     bad += !finite;
   }
   return bad;
@@ -433,7 +440,9 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     LightSampleSet samples = makeLightSamples(scene_, light, settings_.sampling, settings_.time);
     // A NaN pose (or light) would make every sample fail the horizon test: a finite, wrongly
     // dark image. Refused here, before any technique sees it.
-    const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    const auto finite = [](const glm::vec3& v) {
+      return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
     if (!finite(light.position) || !std::all_of(samples.positions.begin(), samples.positions.end(), finite))
       throw Error(name, fmt::format("light '{}': its position or light samples are NaN or infinite", light.name));
     std::vector<glm::vec4> lum(samples.luminance.size());
@@ -453,8 +462,10 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     LightResult lr;
     lr.samples = samples.count;
     CpuShading own;
-    LightPass pass{scene_, light, int(li), samples, *gpu_, timer, cpuGBuffer, visibility_,
-                   wantSamples ? &perSample_ : nullptr, &lr.perSample, &lr.visibility, &own};
+    LightPass pass{scene_,        light,          int(li),
+                   samples,       *gpu_,          timer,
+                   cpuGBuffer,    visibility_,    wantSamples ? &perSample_ : nullptr,
+                   &lr.perSample, &lr.visibility, &own};
     gpu_->bindGBuffer();
     const LightEnclosure* enclosure = nullptr;
     if (settings_.cullSeparatedLights && technique.cullsSeparatedLights()) {
@@ -464,11 +475,13 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
               scene_, nearPlaneReach(scene_.camera, double(settings_.width) / double(settings_.height)));
         enclosure = &enclosures_->classify(int(li), light, samples);
       });
-      if (enclosure->separatedBy.empty() && !enclosure->straddled.empty() && warned_.insert({technique.serial(), li}).second)
-        PLOG_WARN("{}: light '{}' has {} of {} samples on the other side of closed mesh '{}' from its centre: the "
-                  "technique sees the occluders from the centre, on one side of that surface only (light leaks "
-                  "through it; compare measures how much)",
-                  name, light.name, enclosure->samplesInOtherCells, samples.positions.size(), enclosure->straddled);
+      if (enclosure->separatedBy.empty() && !enclosure->straddled.empty() &&
+          warned_.insert({technique.serial(), li}).second)
+        PLOG_WARN(
+            "{}: light '{}' has {} of {} samples on the other side of closed mesh '{}' from its centre: the "
+            "technique sees the occluders from the centre, on one side of that surface only (light leaks "
+            "through it; compare measures how much)",
+            name, light.name, enclosure->samplesInOtherCells, samples.positions.size(), enclosure->straddled);
     }
     if (enclosure && !enclosure->separatedBy.empty()) {
       ++culledLights;  // visibility and per-sample results stay cleared: 0
@@ -479,7 +492,8 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     gl::Context::checkErrors("visibility");
 
     // Interleaved sampling (DCS paper 5.2, Algorithm 2): the gather filter over the K x K sets.
-    const bool filter = settings_.interleaveFilter && samples.pattern == PixelPattern::Interleaved && samples.interleaveK > 1;
+    const bool filter =
+        settings_.interleaveFilter && samples.pattern == PixelPattern::Interleaved && samples.interleaveK > 1;
     // Filters `source` into the bound framebuffer (blend state is the caller's).
     auto runFilter = [&](const gl::Texture& source) {
       glDisable(GL_DEPTH_TEST);
@@ -514,7 +528,8 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       return im.width == settings_.width && im.height == settings_.height && im.channels == 3;
     };
     if (technique.shadesLights() && own.radiance.pixelCount() == 0)
-      throw Error(name, fmt::format("light '{}': the technique shades its lights but gave no shaded image", light.name));
+      throw Error(name,
+                  fmt::format("light '{}': the technique shades its lights but gave no shaded image", light.name));
     if (technique.shadesLights()) {
       if (!rgbImage(own.radiance) || (own.radianceVariance.pixelCount() && !rgbImage(own.radianceVariance)))
         throw Error(name, fmt::format("light '{}': the technique's shaded image or its variance is not {}x{} RGB",
@@ -529,56 +544,57 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
       if (exact) {
         const CpuGBuffer& g = cpuGBuffer();
         const Image u = timer.time("exact unshadowed", [&] {
-          return shading::unshadowedIntegral(g, scene_, light, settings_.time, shading::IntegratorOptions{.lightColour = false});
+          return shading::unshadowedIntegral(g, scene_, light, settings_.time,
+                                             shading::IntegratorOptions{.lightColour = false});
         });
         exactUnshadowed_.upload(u.data.data(), 3);
       }
       timer.time("shading", [&] {
-      const gl::Program& prog = shade_;
-      // Eq. 6 and the ratio estimator with interleaving: the light's term is shaded apart (from
-      // the unfiltered per-sample results), then filtered into the image. Divergence from
-      // Heitz et al. 2018, who filter the ratio: the unshadowed factor is smooth, so filtering
-      // the product differs from it only where U varies within the K x K gather.
-      const bool separate = sumsSamples && filter;
-      if (separate) {
-        lightColorFbo_.bind();
-        const float zero[4] = {0, 0, 0, 0};
-        glClearNamedFramebufferfv(lightColorFbo_.id(), GL_COLOR, 0, zero);
-      } else {
-        colorFbo_.bind();
-      }
-      glDisable(GL_DEPTH_TEST);
-      glEnable(GL_BLEND);
-      glBlendEquation(GL_FUNC_ADD);
-      glBlendFunc(GL_ONE, GL_ONE);
-      gpu_->bindGBuffer();
-      posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
-      lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
-      if (wantSamples) perSample_.bind(PENUMBRA_UNIT_SAMPLE_VIS);
-      (ratio ? visibility_ : *vis).bind(PENUMBRA_UNIT_VISIBILITY);
-      prog.use();
-      setLightUniforms(prog, light, samples);
-      prog.set("eyePosition", gpu_->cameraPosition());
-      if (exact) exactUnshadowed_.bind(PENUMBRA_UNIT_UNSHADOWED);
-      if (ratio) {
-        prog.set("ratioFromSamples", wantSamples ? 1 : 0);
-        prog.set("ltcSize", float(ltc_.width()));
-        ltc_.bind(PENUMBRA_UNIT_LTC);
-        const Prefiltered* chain = prefilteredFor(light);
-        prog.set("lightPrefiltered", chain ? 1 : 0);
-        if (chain) {
-          chain->texture.bind(PENUMBRA_UNIT_LIGHT_PREFILTERED);
-          prog.set("prefilterSigma0", chain->sigma0);
-          prog.set("prefilterLevels", chain->levels);
+        const gl::Program& prog = shade_;
+        // Eq. 6 and the ratio estimator with interleaving: the light's term is shaded apart (from
+        // the unfiltered per-sample results), then filtered into the image. Divergence from
+        // Heitz et al. 2018, who filter the ratio: the unshadowed factor is smooth, so filtering
+        // the product differs from it only where U varies within the K x K gather.
+        const bool separate = sumsSamples && filter;
+        if (separate) {
+          lightColorFbo_.bind();
+          const float zero[4] = {0, 0, 0, 0};
+          glClearNamedFramebufferfv(lightColorFbo_.id(), GL_COLOR, 0, zero);
+        } else {
+          colorFbo_.bind();
         }
-      }
-      emptyVao_.bind();
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-      if (separate) {
-        colorFbo_.bind();
-        runFilter(lightColor_);
-      }
-      glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ONE);
+        gpu_->bindGBuffer();
+        posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
+        lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
+        if (wantSamples) perSample_.bind(PENUMBRA_UNIT_SAMPLE_VIS);
+        (ratio ? visibility_ : *vis).bind(PENUMBRA_UNIT_VISIBILITY);
+        prog.use();
+        setLightUniforms(prog, light, samples);
+        prog.set("eyePosition", gpu_->cameraPosition());
+        if (exact) exactUnshadowed_.bind(PENUMBRA_UNIT_UNSHADOWED);
+        if (ratio) {
+          prog.set("ratioFromSamples", wantSamples ? 1 : 0);
+          prog.set("ltcSize", float(ltc_.width()));
+          ltc_.bind(PENUMBRA_UNIT_LTC);
+          const Prefiltered* chain = prefilteredFor(light);
+          prog.set("lightPrefiltered", chain ? 1 : 0);
+          if (chain) {
+            chain->texture.bind(PENUMBRA_UNIT_LIGHT_PREFILTERED);
+            prog.set("prefilterSigma0", chain->sigma0);
+            prog.set("prefilterLevels", chain->levels);
+          }
+        }
+        emptyVao_.bind();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        if (separate) {
+          colorFbo_.bind();
+          runFilter(lightColor_);
+        }
+        glDisable(GL_BLEND);
       });
     }
     timer.harness("readback", [&] {
@@ -611,7 +627,8 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
   result.color = timer.harness("readback", [&] { return color_.read(3); });
   for (std::size_t i = 0; i < cpuRadiance.data.size(); ++i) result.color.data[i] += cpuRadiance.data[i];
   if (std::size_t bad = nonFinitePixels(result.color))
-    throw Error(name, fmt::format("{} of {} pixels of the shaded image are NaN or infinite", bad, result.color.pixelCount()));
+    throw Error(name,
+                fmt::format("{} of {} pixels of the shaded image are NaN or infinite", bad, result.color.pixelCount()));
   // Comparisons mask background pixels with it (RenderSettings::gbufferResults).
   if (settings_.gbufferResults) cpuGBuffer();
   result.statistics = technique.statistics();

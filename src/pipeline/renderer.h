@@ -13,9 +13,9 @@
 //    and disk lights (shading/ltc.h, the table built in from luts/ltc_ggx.lut); for textured
 //    rect and disk lights both are those integrals times the emission prefiltered for each lobe
 //    (Heitz et al. 2016 section 5.3, shading/prefiltered_light.h); else (sphere lights' LTC,
-//    textured spheres, points) the unshadowed sum over the pixel's samples; times the shadow ratio sum_k w_k T_k / sum_k w_k, w_k = f L_k cos cos / r^2 of
-//    sample k, from the per-sample results, or V / V_unshadowed (eq. 2 over its unshadowed
-//    value) for techniques that give only V.
+//    textured spheres, points) the unshadowed sum over the pixel's samples; times the shadow ratio sum_k w_k T_k /
+//    sum_k w_k, w_k = f L_k cos cos / r^2 of sample k, from the per-sample results, or V / V_unshadowed (eq. 2 over its
+//    unshadowed value) for techniques that give only V.
 // All use the material's BRDF (shading/shaders/shading.h penumbraBrdf), the same function the reference uses.
 #pragma once
 
@@ -47,9 +47,9 @@ class Enclosures;
 // of the closed forms and the LTC: slow, but no measurement then depends on the LTC's fit.
 enum class ShadingMode { Modulate, PerSample, Ratio, RatioExact };
 inline constexpr Named<ShadingMode> kShadingModeNames[] = {{ShadingMode::Ratio, "ratio"},
-                                                            {ShadingMode::RatioExact, "ratio-exact"},
-                                                            {ShadingMode::Modulate, "modulate"},
-                                                            {ShadingMode::PerSample, "per-sample"}};
+                                                           {ShadingMode::RatioExact, "ratio-exact"},
+                                                           {ShadingMode::Modulate, "modulate"},
+                                                           {ShadingMode::PerSample, "per-sample"}};
 inline const char* toString(ShadingMode m) { return nameOf(kShadingModeNames, m); }
 
 struct RenderSettings {
@@ -88,7 +88,7 @@ struct LightResult {
   std::vector<float> perSample;  // [pixel * N + k] transmittance, empty if not provided
   int samples = 0;
   std::vector<std::uint8_t> unshadowed;  // Technique::unshadowedPixels() for this light
-  Image visibilityVariance;  // a technique's own noise (CpuShading::visibilityVariance); empty: none
+  Image visibilityVariance;              // a technique's own noise (CpuShading::visibilityVariance); empty: none
 };
 
 struct FrameResult {
@@ -97,8 +97,8 @@ struct FrameResult {
   // itself and knows its own noise (the converged reference); empty: none.
   Image colorVariance;
   std::vector<LightResult> lights;
-  CpuGBuffer gbuffer;  // empty unless RenderSettings::gbufferResults or the technique read it
-  StageTimer timer;   // the technique's stages and, apart (StageKind::Harness), the harness's
+  CpuGBuffer gbuffer;           // empty unless RenderSettings::gbufferResults or the technique read it
+  StageTimer timer;             // the technique's stages and, apart (StageKind::Harness), the harness's
   std::size_t memoryBytes = 0;  // pipeline + technique render targets
   std::vector<std::pair<std::string, double>> statistics;  // Technique::statistics()
 };
@@ -155,7 +155,7 @@ class GpuScene {
   glm::vec3 cameraPos_;
   std::vector<Chunk> chunks_;
   std::vector<Draw> draws_;
-  bool allOpaque_ = true;  // every material of opacity 1: one draw covers every (opaque) occluder
+  bool allOpaque_ = true;                      // every material of opacity 1: one draw covers every (opaque) occluder
   std::vector<gl::Texture> materialTextures_;  // parallel to scene.textures
   gl::Texture position_, normal_, albedo_, shading_, material_, depth_;
   gl::Framebuffer fbo_;
@@ -186,7 +186,7 @@ class Renderer {
   gl::Texture filtered_, lightColor_;  // interleaved sampling: filtered visibility, eq. 6 light term
   gl::Framebuffer colorFbo_, filteredFbo_, lightColorFbo_;
   gl::Texture exactUnshadowed_;  // ratio-exact: one light's unshadowed term
-  gl::Texture ltc_;  // ratio shading: the LTC GGX table (shading/ltc.h), two layers, linear filtering
+  gl::Texture ltc_;              // ratio shading: the LTC GGX table (shading/ltc.h), two layers, linear filtering
   // Ratio shading: textured rect and disk lights' prefiltered emission (shading/prefiltered_light.h),
   // one layer a level, by emission texture and support (disk or not); made on first use.
   struct Prefiltered {
@@ -198,10 +198,10 @@ class Renderer {
   const Prefiltered* prefilteredFor(const Light& light);
   gl::Program shade_, filter_;  // shade_: pipeline_shade.frag for settings.shading
   gl::VertexArray emptyVao_;
-  std::uint64_t prepared_ = 0;  // Technique::serial() of the technique prepared last
-  std::unique_ptr<Enclosures> enclosures_;  // made when a technique culls lights (pipeline/enclosure.h)
+  std::uint64_t prepared_ = 0;                              // Technique::serial() of the technique prepared last
+  std::unique_ptr<Enclosures> enclosures_;                  // made when a technique culls lights (pipeline/enclosure.h)
   std::set<std::pair<std::uint64_t, std::size_t>> warned_;  // (technique, light) named as straddling
-  std::unique_ptr<gl::PipelineStatistics> statistics_;  // null where the GL has none
+  std::unique_ptr<gl::PipelineStatistics> statistics_;      // null where the GL has none
 };
 
 // Camera matrices shared by the pipeline and the reference (so both see the same pixels).

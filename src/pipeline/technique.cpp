@@ -16,7 +16,8 @@ namespace penumbra {
 
 ParamSpec ParamSpec::integer(std::string key, int fallback, int lo, int hi, std::string meaning) {
   ParamSpec p;
-  p.key = std::move(key), p.type = Type::Integer, p.fallback = fallback, p.lo = lo, p.hi = hi, p.meaning = std::move(meaning);
+  p.key = std::move(key), p.type = Type::Integer, p.fallback = fallback, p.lo = lo, p.hi = hi,
+  p.meaning = std::move(meaning);
   return p;
 }
 ParamSpec ParamSpec::number(std::string key, double fallback, double lo, double hi, std::string meaning) {
@@ -29,7 +30,8 @@ ParamSpec ParamSpec::boolean(std::string key, bool fallback, std::string meaning
   p.type = Type::Boolean;
   return p;
 }
-ParamSpec ParamSpec::choice(std::string key, std::string fallback, std::vector<std::string> choices, std::string meaning) {
+ParamSpec ParamSpec::choice(std::string key, std::string fallback, std::vector<std::string> choices,
+                            std::string meaning) {
   PENUMBRA_CHECK(std::find(choices.begin(), choices.end(), fallback) != choices.end(), "choice default not a choice");
   ParamSpec p = integer(std::move(key), 0, 0, 0, std::move(meaning));
   p.type = Type::Choice, p.text = std::move(fallback), p.choices = std::move(choices);
@@ -58,34 +60,48 @@ ParamSpec ParamSpec::shown(std::string rule) const {
 std::string ParamSpec::defaultText() const {
   if (!shownDefault.empty()) return shownDefault;
   switch (type) {
-    case Type::Integer: case Type::Number: return fmt::format("{}", fallback);
-    case Type::Boolean: return fallback != 0.0 ? "1" : "0";
-    case Type::Choice: return text;
-    case Type::Text: return text.empty() ? "(none)" : text;
+    case Type::Integer:
+    case Type::Number:
+      return fmt::format("{}", fallback);
+    case Type::Boolean:
+      return fallback != 0.0 ? "1" : "0";
+    case Type::Choice:
+      return text;
+    case Type::Text:
+      return text.empty() ? "(none)" : text;
   }
   return {};
 }
 std::string ParamSpec::rangeText() const {
   switch (type) {
-    case Type::Integer: case Type::Number: return fmt::format("[{}, {}]", lo, hi);
-    case Type::Boolean: return "0/1";
+    case Type::Integer:
+    case Type::Number:
+      return fmt::format("[{}, {}]", lo, hi);
+    case Type::Boolean:
+      return "0/1";
     case Type::Choice: {
       std::string out;
       for (auto& c : choices) out += (out.empty() ? "" : "|") + c;
       return out;
     }
-    case Type::Text: return "path";
+    case Type::Text:
+      return "path";
   }
   return {};
 }
 
 const char* toString(TechniqueFamily f) {
   switch (f) {
-    case TechniqueFamily::ExactPerSample: return "exact per sample";
-    case TechniqueFamily::MultiView: return "multi-view maps";
-    case TechniqueFamily::SingleMap: return "single map";
-    case TechniqueFamily::Denoised: return "denoised rays";
-    case TechniqueFamily::Hard: return "hard / unshadowed";
+    case TechniqueFamily::ExactPerSample:
+      return "exact per sample";
+    case TechniqueFamily::MultiView:
+      return "multi-view maps";
+    case TechniqueFamily::SingleMap:
+      return "single map";
+    case TechniqueFamily::Denoised:
+      return "denoised rays";
+    case TechniqueFamily::Hard:
+      return "hard / unshadowed";
   }
   return "?";
 }
@@ -149,7 +165,8 @@ bool TechniqueParams::boolean(const ParamSpec& spec) const {
 }
 
 std::string TechniqueParams::text(const ParamSpec& spec) const {
-  PENUMBRA_CHECK(spec.type == ParamSpec::Type::Choice || spec.type == ParamSpec::Type::Text, "text read of a value parameter");
+  PENUMBRA_CHECK(spec.type == ParamSpec::Type::Choice || spec.type == ParamSpec::Type::Text,
+                 "text read of a value parameter");
   const std::string* v = find(spec.key);
   if (!v) return spec.text;
   if (spec.type == ParamSpec::Type::Text) return readString(KeyValue::ofText(*v), place(spec));
@@ -161,8 +178,9 @@ void TechniqueParams::checkConsumed() const {
     if (std::find(consumed_.begin(), consumed_.end(), k) == consumed_.end()) {
       std::string known;
       for (auto& n : known_) known += (known.empty() ? "" : ", ") + n;
-      throw Error(origin(k), "no technique of this run has a parameter '" + k + "' (" +
-                                 (known.empty() ? "they take no parameters" : "known: " + known) + ")",
+      throw Error(origin(k),
+                  "no technique of this run has a parameter '" + k + "' (" +
+                      (known.empty() ? "they take no parameters" : "known: " + known) + ")",
                   ExitCode::Usage);
     }
 }

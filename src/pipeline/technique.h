@@ -22,7 +22,9 @@
 namespace penumbra {
 
 class GpuScene;  // uploaded geometry + G-buffer, see renderer.h
-namespace gl { class Texture; }
+namespace gl {
+class Texture;
+}
 
 // What a technique that shades a light itself (the converged reference: its own samples, not the
 // pass's set) hands back: the light's outgoing radiance (RGB), which the pipeline adds to the
@@ -193,19 +195,21 @@ enum class TechniqueFamily {
   Hard,            // unshadowed or hard shadows from the light centre (none, hard-sv)
 };
 inline constexpr TechniqueFamily kTechniqueFamilies[] = {TechniqueFamily::ExactPerSample, TechniqueFamily::MultiView,
-                                                        TechniqueFamily::SingleMap, TechniqueFamily::Denoised,
-                                                        TechniqueFamily::Hard};
+                                                         TechniqueFamily::SingleMap, TechniqueFamily::Denoised,
+                                                         TechniqueFamily::Hard};
 const char* toString(TechniqueFamily f);
 
 // A technique by name: what the table (techniques/registry.h) holds and what compare is handed.
 struct TechniqueInfo {
   std::string name;
-  std::string description;  // one line for `penumbra list`
+  std::string description;        // one line for `penumbra list`
   std::vector<ParamSpec> params;  // every parameter it reads, with its defaults
   std::function<std::unique_ptr<Technique>(const TechniqueArgs&)> create;
   TechniqueFamily family = TechniqueFamily::ExactPerSample;
   // create() with `given` read through this technique's declarations.
-  std::unique_ptr<Technique> make(const TechniqueParams& given) const { return create(TechniqueArgs(given, params, name)); }
+  std::unique_ptr<Technique> make(const TechniqueParams& given) const {
+    return create(TechniqueArgs(given, params, name));
+  }
 };
 
 // The table of techniques is a layer above: techniques/registry.h.

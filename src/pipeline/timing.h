@@ -32,7 +32,7 @@ struct Timing {
   std::map<std::string, Spread> stages;  // "prepare" (once per scene) left out
   Spread total;                          // of `stages`
   std::map<std::string, Spread> harnessStages;
-  Spread harness;                        // of `harnessStages`
+  Spread harness;          // of `harnessStages`
   double prepareMs = 0.0;  // the once-per-scene stage (the longest seen)
   FrameResult last;        // the last timed frame
   // The median of a stage the timed frames recorded. A name they did not record is an error
@@ -62,7 +62,9 @@ inline std::optional<double> findStatistic(const FrameResult& f, const std::stri
   return std::nullopt;
 }
 // ... 0 if the technique does not report it.
-inline double frameStatistic(const FrameResult& f, const std::string& key) { return findStatistic(f, key).value_or(0.0); }
+inline double frameStatistic(const FrameResult& f, const std::string& key) {
+  return findStatistic(f, key).value_or(0.0);
+}
 
 // Calls render(0) `warmup` times, then render(i) for i = 0..frames-1 (at least one), and
 // gives each timed frame to onFrame(i, frame) before it is kept as Timing::last. Stage spreads
@@ -100,7 +102,8 @@ Timing timeRenders(int frames, int warmup, Render&& render, OnFrame&& onFrame) {
 
 // The same frame `frames` times on one renderer, after `warmup` untimed ones.
 inline Timing timeFrames(Renderer& renderer, Technique& technique, int frames, int warmup) {
-  return timeRenders(frames, warmup, [&](int) { return renderer.render(technique); }, [](int, const FrameResult&) {});
+  return timeRenders(
+      frames, warmup, [&](int) { return renderer.render(technique); }, [](int, const FrameResult&) {});
 }
 
 }  // namespace penumbra

@@ -124,8 +124,7 @@ unsigned threadCount(int requested) {
 
 void checkGBuffer(const CpuGBuffer& g) {
   const std::size_t n = std::size_t(g.width) * g.height;
-  PENUMBRA_CHECK(g.width >= 0 && g.height >= 0 && g.position.size() == n && g.normal.size() == n &&
-                     g.valid.size() == n,
+  PENUMBRA_CHECK(g.width >= 0 && g.height >= 0 && g.position.size() == n && g.normal.size() == n && g.valid.size() == n,
                  "CpuGBuffer arrays do not match width x height");
 }
 
@@ -149,8 +148,7 @@ struct EmbreeReference::Impl {
     const RTCError code = rtcGetDeviceError(device);
     if (code != RTC_ERROR_NONE)
       throw Error("embree",
-                  std::string(what) + ": " +
-                      (lastError.empty() ? "error " + std::to_string(int(code)) : lastError));
+                  std::string(what) + ": " + (lastError.empty() ? "error " + std::to_string(int(code)) : lastError));
   }
 
   // Transmittances of the rays in s.rays (ray j has id j) into out[j].
@@ -207,20 +205,15 @@ struct EmbreeReference::Impl {
   }
 };
 
-EmbreeReference::EmbreeReference(const Scene& scene, int threads)
-    : impl_(std::make_unique<Impl>()) {
+EmbreeReference::EmbreeReference(const Scene& scene, int threads) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.threads = threadCount(threads);
   const std::string config = "threads=" + std::to_string(m.threads);
   m.device = rtcNewDevice(config.c_str());
   if (!m.device)
-    throw Error("embree", "cannot create device (error " +
-                              std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    throw Error("embree", "cannot create device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
   rtcSetDeviceErrorFunction(
-      m.device,
-      [](void* user, RTCError, const char* msg) {
-        static_cast<Impl*>(user)->lastError = msg ? msg : "";
-      },
+      m.device, [](void* user, RTCError, const char* msg) { static_cast<Impl*>(user)->lastError = msg ? msg : ""; },
       &m);
 
   m.scene = rtcNewScene(m.device);
@@ -240,10 +233,10 @@ EmbreeReference::EmbreeReference(const Scene& scene, int threads)
       PENUMBRA_CHECK(t.x < nv && t.y < nv && t.z < nv, "triangle index out of range in " + sm.name);
 
     RTCGeometry g = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
-    auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), nt));
+    auto* vb = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
+    auto* ib = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), nt));
     if (!vb || !ib) {
       rtcReleaseGeometry(g);
       m.throwIfError(sm.name.c_str());
@@ -277,30 +270,33 @@ VisibilityResult EmbreeReference::sameSamples(const CpuGBuffer& gbuf, const Ligh
   checkGBuffer(gbuf);
   const int n = samples.count;
   const std::size_t total = std::size_t(samples.setCount) * n;
-  PENUMBRA_CHECK(n >= 1 && samples.setCount >= 1 && samples.positions.size() == total &&
-                     samples.luminance.size() == total,
-                 "LightSampleSet arrays do not match count x setCount");
+  PENUMBRA_CHECK(
+      n >= 1 && samples.setCount >= 1 && samples.positions.size() == total && samples.luminance.size() == total,
+      "LightSampleSet arrays do not match count x setCount");
   VisibilityResult out;
   out.samples = n;
   out.visibility = Image(gbuf.width, gbuf.height, 3, 0.0f);
   out.perSample.assign(std::size_t(gbuf.width) * gbuf.height * n, 0.0f);
   const Impl& m = *impl_;
   PassProgress progress("ray tracer (same samples)", gbuf.height);
-  m.rays += parallelRows(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
-    Scratch scratch;
-    std::vector<int> sampleOf;
-    std::vector<float> tr;
-    for (int x = 0; x < gbuf.width; ++x) {
-      const std::size_t i = std::size_t(y) * gbuf.width + x;
-      if (!gbuf.valid[i]) continue;  // no surface: visibility 0
-      const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
-      const glm::vec3 p = gbuf.position[i], nrm = gbuf.normal[i];
-      const glm::vec3 v = m.tracePixel(p, nrm, gbuf.camera.value_or(p + nrm), &samples.positions[first],
-                                       &samples.luminance[first], n, &out.perSample[i * n], scratch, sampleOf, tr,
-                                       rayCount);
-      for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
-    }
-  }, &progress);
+  m.rays += parallelRows(
+      gbuf.height, m.threads,
+      [&](int y, std::uint64_t& rayCount) {
+        Scratch scratch;
+        std::vector<int> sampleOf;
+        std::vector<float> tr;
+        for (int x = 0; x < gbuf.width; ++x) {
+          const std::size_t i = std::size_t(y) * gbuf.width + x;
+          if (!gbuf.valid[i]) continue;  // no surface: visibility 0
+          const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
+          const glm::vec3 p = gbuf.position[i], nrm = gbuf.normal[i];
+          const glm::vec3 v =
+              m.tracePixel(p, nrm, gbuf.camera.value_or(p + nrm), &samples.positions[first], &samples.luminance[first],
+                           n, &out.perSample[i * n], scratch, sampleOf, tr, rayCount);
+          for (int c = 0; c < 3; ++c) out.visibility.at(x, y, c) = v[c];
+        }
+      },
+      &progress);
   return out;
 }
 
@@ -321,39 +317,44 @@ VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light&
   std::vector<std::uint8_t> capped(n, 0);
   const Impl& m = *impl_;
   PassProgress progress("converged reference", gbuf.height);
-  m.rays += parallelRows(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
-    Scratch scratch;
-    const shading::SegmentTracer trace = [&](const glm::vec3& o, const glm::vec3* targets, int count, float* tr) {
-      scratch.reset(std::size_t(count));
-      for (int j = 0; j < count; ++j) scratch.rays.push_back(makeRay(o, targets[j] - o, unsigned(j)));
-      m.traceStream(scratch, tr);
-    };
-    for (int x = 0; x < gbuf.width; ++x) {
-      const std::size_t i = std::size_t(y) * gbuf.width + x;
-      if (!gbuf.valid[i]) continue;  // no surface: visibility 0
-      shading::SurfacePoint sp;
-      sp.p = gbuf.position[i], sp.ng = gbuf.normal[i];
-      sp.eye = gbuf.camera.value_or(sp.p + sp.ng);
-      sp.origin = shared::penumbraShadowOrigin(sp.p, sp.ng, sp.eye);
-      if (shaded) {
-        const glm::vec3& mat = gbuf.material[i];
-        sp.shaded = true, sp.ns = gbuf.shadingNormal[i], sp.baseColor = gbuf.baseColor[i];
-        sp.metallic = mat.x, sp.roughness = mat.y, sp.model = int(mat.z + 0.5f);
-      }
-      // Seeded by the pixel index: decorrelated (section 5.1) and independent of the thread that
-      // computes it. `seed` picks another family of sets (a second estimate, for the noise).
-      const std::uint32_t pixelSeed =
-          seed == 0 ? std::uint32_t(i) : shared::penumbraHash(std::uint32_t(i) ^ shared::penumbraHash(seed));
-      const shading::PixelEstimate e = integrator.estimate(sp, pixelSeed, trace);
-      rayCount += e.rays;
-      samples[i] = e.samples, capped[i] = e.capped;
-      for (int c = 0; c < 3; ++c) {
-        out.visibility.at(x, y, c) = float(e.visibility[c]);
-        out.visibilityVariance.at(x, y, c) = float(e.visibilityVariance[c]);
-        if (shaded) out.radiance.at(x, y, c) = float(e.radiance[c]), out.radianceVariance.at(x, y, c) = float(e.radianceVariance[c]);
-      }
-    }
-  }, &progress);
+  m.rays += parallelRows(
+      gbuf.height, m.threads,
+      [&](int y, std::uint64_t& rayCount) {
+        Scratch scratch;
+        const shading::SegmentTracer trace = [&](const glm::vec3& o, const glm::vec3* targets, int count, float* tr) {
+          scratch.reset(std::size_t(count));
+          for (int j = 0; j < count; ++j) scratch.rays.push_back(makeRay(o, targets[j] - o, unsigned(j)));
+          m.traceStream(scratch, tr);
+        };
+        for (int x = 0; x < gbuf.width; ++x) {
+          const std::size_t i = std::size_t(y) * gbuf.width + x;
+          if (!gbuf.valid[i]) continue;  // no surface: visibility 0
+          shading::SurfacePoint sp;
+          sp.p = gbuf.position[i], sp.ng = gbuf.normal[i];
+          sp.eye = gbuf.camera.value_or(sp.p + sp.ng);
+          sp.origin = shared::penumbraShadowOrigin(sp.p, sp.ng, sp.eye);
+          if (shaded) {
+            const glm::vec3& mat = gbuf.material[i];
+            sp.shaded = true, sp.ns = gbuf.shadingNormal[i], sp.baseColor = gbuf.baseColor[i];
+            sp.metallic = mat.x, sp.roughness = mat.y, sp.model = int(mat.z + 0.5f);
+          }
+          // Seeded by the pixel index: decorrelated (section 5.1) and independent of the thread that
+          // computes it. `seed` picks another family of sets (a second estimate, for the noise).
+          const std::uint32_t pixelSeed =
+              seed == 0 ? std::uint32_t(i) : shared::penumbraHash(std::uint32_t(i) ^ shared::penumbraHash(seed));
+          const shading::PixelEstimate e = integrator.estimate(sp, pixelSeed, trace);
+          rayCount += e.rays;
+          samples[i] = e.samples, capped[i] = e.capped;
+          for (int c = 0; c < 3; ++c) {
+            out.visibility.at(x, y, c) = float(e.visibility[c]);
+            out.visibilityVariance.at(x, y, c) = float(e.visibilityVariance[c]);
+            if (shaded)
+              out.radiance.at(x, y, c) = float(e.radiance[c]),
+                                    out.radianceVariance.at(x, y, c) = float(e.radianceVariance[c]);
+          }
+        }
+      },
+      &progress);
   std::int64_t surface = 0, total = 0;
   out.samples = std::numeric_limits<int>::max();
   for (std::size_t i = 0; i < n; ++i) {
@@ -367,7 +368,7 @@ VisibilityResult EmbreeReference::converged(const CpuGBuffer& gbuf, const Light&
 }
 
 SparseResult EmbreeReference::sparseSamples(const CpuGBuffer& gbuf, const LightSampleSet& samples, int spp,
-                                           std::uint32_t rotation) const {
+                                            std::uint32_t rotation) const {
   checkGBuffer(gbuf);
   const int n = samples.count;
   PENUMBRA_CHECK(spp >= 1 && spp <= n, "sparseSamples: spp outside 1..N");
@@ -377,61 +378,65 @@ SparseResult EmbreeReference::sparseSamples(const CpuGBuffer& gbuf, const LightS
   out.blocker.assign(std::size_t(gbuf.width) * gbuf.height, 0.0f);
   const Impl& m = *impl_;
   PassProgress progress("sparse rays (raytrace-denoised)", gbuf.height);
-  m.rays += parallelRows(gbuf.height, m.threads, [&](int y, std::uint64_t& rayCount) {
-    Scratch scratch;
-    std::vector<float> tr;
-    std::vector<int> sampleOf, above;
-    for (int x = 0; x < gbuf.width; ++x) {
-      const std::size_t i = std::size_t(y) * gbuf.width + x;
-      if (!gbuf.valid[i]) continue;
-      const glm::vec3 p = gbuf.position[i], nrm = gbuf.normal[i];
-      const glm::vec3 o = shared::penumbraShadowOrigin(p, nrm, gbuf.camera.value_or(p + nrm));
-      const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
-      const std::uint32_t h = shared::penumbraHash(std::uint32_t(i) ^ 0x9e3779b9u);
-      // The rotation runs over the samples above the horizon only: a sample below it is 0 in
-      // the unshadowed term too, and tracing one told nothing (such a pixel kept ratio 1 and lit
-      // the inside of a closed box, hard case 35).
-      above.clear();
-      for (int k = 0; k < n; ++k)
-        if (glm::dot(nrm, samples.positions[first + k] - p) > 0.0f) above.push_back(k);
-      const int candidates = int(above.size()), traced = std::min(spp, candidates);
-      scratch.reset(std::size_t(traced));
-      sampleOf.clear();
-      for (int j = 0; j < traced; ++j) {
-        const int k = above[(h + rotation + std::uint32_t(j)) % std::uint32_t(candidates)];
-        const glm::vec3& xk = samples.positions[first + k];
-        scratch.rays.push_back(makeRay(o, xk - o, unsigned(scratch.rays.size())));
-        sampleOf.push_back(k);
-      }
-      tr.assign(scratch.rays.size(), 0.0f);
-      m.traceStream(scratch, tr.data());
-      rayCount += scratch.rays.size();
-      glm::dvec3 lit(0.0), all(0.0);
-      double distance = 0.0;
-      int blocked = 0;
-      for (std::size_t j = 0; j < sampleOf.size(); ++j) {
-        const glm::dvec3 l(samples.luminance[first + sampleOf[j]]);
-        lit += l * double(tr[j]);
-        all += l;
-        if (tr[j] < 1.0f) {  // the nearest occluder along it
-          const glm::vec3 xk = samples.positions[first + sampleOf[j]];
-          RTCRayHit rh;
-          rh.ray = makeRay(o, xk - o, 0);
-          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          RTCIntersectContext ctx;
-          rtcInitIntersectContext(&ctx);
-          rtcIntersect1(m.scene, &ctx, &rh);
-          ++rayCount;
-          if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-            distance += double(rh.ray.tfar) * double(glm::length(glm::vec3(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z)));
-            ++blocked;
+  m.rays += parallelRows(
+      gbuf.height, m.threads,
+      [&](int y, std::uint64_t& rayCount) {
+        Scratch scratch;
+        std::vector<float> tr;
+        std::vector<int> sampleOf, above;
+        for (int x = 0; x < gbuf.width; ++x) {
+          const std::size_t i = std::size_t(y) * gbuf.width + x;
+          if (!gbuf.valid[i]) continue;
+          const glm::vec3 p = gbuf.position[i], nrm = gbuf.normal[i];
+          const glm::vec3 o = shared::penumbraShadowOrigin(p, nrm, gbuf.camera.value_or(p + nrm));
+          const std::size_t first = std::size_t(samples.setForPixel(x, y)) * n;
+          const std::uint32_t h = shared::penumbraHash(std::uint32_t(i) ^ 0x9e3779b9u);
+          // The rotation runs over the samples above the horizon only: a sample below it is 0 in
+          // the unshadowed term too, and tracing one told nothing (such a pixel kept ratio 1 and lit
+          // the inside of a closed box, hard case 35).
+          above.clear();
+          for (int k = 0; k < n; ++k)
+            if (glm::dot(nrm, samples.positions[first + k] - p) > 0.0f) above.push_back(k);
+          const int candidates = int(above.size()), traced = std::min(spp, candidates);
+          scratch.reset(std::size_t(traced));
+          sampleOf.clear();
+          for (int j = 0; j < traced; ++j) {
+            const int k = above[(h + rotation + std::uint32_t(j)) % std::uint32_t(candidates)];
+            const glm::vec3& xk = samples.positions[first + k];
+            scratch.rays.push_back(makeRay(o, xk - o, unsigned(scratch.rays.size())));
+            sampleOf.push_back(k);
           }
+          tr.assign(scratch.rays.size(), 0.0f);
+          m.traceStream(scratch, tr.data());
+          rayCount += scratch.rays.size();
+          glm::dvec3 lit(0.0), all(0.0);
+          double distance = 0.0;
+          int blocked = 0;
+          for (std::size_t j = 0; j < sampleOf.size(); ++j) {
+            const glm::dvec3 l(samples.luminance[first + sampleOf[j]]);
+            lit += l * double(tr[j]);
+            all += l;
+            if (tr[j] < 1.0f) {  // the nearest occluder along it
+              const glm::vec3 xk = samples.positions[first + sampleOf[j]];
+              RTCRayHit rh;
+              rh.ray = makeRay(o, xk - o, 0);
+              rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+              RTCIntersectContext ctx;
+              rtcInitIntersectContext(&ctx);
+              rtcIntersect1(m.scene, &ctx, &rh);
+              ++rayCount;
+              if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+                distance +=
+                    double(rh.ray.tfar) * double(glm::length(glm::vec3(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z)));
+                ++blocked;
+              }
+            }
+          }
+          for (int c = 0; c < 3; ++c) out.ratio.at(x, y, c) = all[c] > 0.0 ? float(lit[c] / all[c]) : 1.0f;
+          out.blocker[i] = blocked > 0 ? float(distance / blocked) : 0.0f;
         }
-      }
-      for (int c = 0; c < 3; ++c) out.ratio.at(x, y, c) = all[c] > 0.0 ? float(lit[c] / all[c]) : 1.0f;
-      out.blocker[i] = blocked > 0 ? float(distance / blocked) : 0.0f;
-    }
-  }, &progress);
+      },
+      &progress);
   return out;
 }
 

@@ -195,22 +195,19 @@ LightMap makeLightMap(const Scene& scene, const Light& light, float time) {
       break;
     case LightShape::Rect:
       if (bad(s.x) || bad(s.y))
-        throw Error(light.name, "rect light size must be positive and finite, got " +
-                                    std::to_string(s.x) + " x " + std::to_string(s.y));
+        throw Error(light.name, "rect light size must be positive and finite, got " + std::to_string(s.x) + " x " +
+                                    std::to_string(s.y));
       m.area = double(s.x) * s.y;
       break;
     case LightShape::Disk:
     case LightShape::Sphere:
-      if (bad(s.x))
-        throw Error(light.name,
-                    "light radius must be positive and finite, got " + std::to_string(s.x));
+      if (bad(s.x)) throw Error(light.name, "light radius must be positive and finite, got " + std::to_string(s.x));
       m.area = kPi * double(s.x) * s.x;
       break;
   }
   if (!light.emissionFrames.empty()) {
     const int frame = light.frameAt(time);
-    const int tex =
-        (frame >= 0 && frame < int(light.emissionFrames.size())) ? light.emissionFrames[frame] : -1;
+    const int tex = (frame >= 0 && frame < int(light.emissionFrames.size())) ? light.emissionFrames[frame] : -1;
     if (tex < 0 || tex >= int(scene.textures.size()))
       throw Error(light.name, "emission texture index " + std::to_string(tex) + " out of range");
     const Image& img = scene.textures[tex].image;
@@ -229,8 +226,7 @@ struct SetTransform {
 };
 
 // Maps one unit-square point (+ radial coordinate for spheres) to the light and appends it.
-void appendSample(const LightMap& m, glm::dvec2 unit, double radial, const SetTransform& tf,
-                  LightSampleSet& out) {
+void appendSample(const LightMap& m, glm::dvec2 unit, double radial, const SetTransform& tf, LightSampleSet& out) {
   const Light& light = *m.light;
   glm::dvec3 p = m.c;
   glm::dvec2 uv{0.5};
@@ -257,8 +253,7 @@ void appendSample(const LightMap& m, glm::dvec2 unit, double radial, const SetTr
       const double u = fract(unit.x + tf.angle / (2.0 * kPi));
       const double z = 1.0 - 2.0 * unit.y, sinTheta = std::sqrt(std::max(0.0, 1.0 - z * z));
       const double phi = 2.0 * kPi * u;
-      const glm::dvec3 dir =
-          sinTheta * std::cos(phi) * m.t + sinTheta * std::sin(phi) * m.b + z * m.n;
+      const glm::dvec3 dir = sinTheta * std::cos(phi) * m.t + sinTheta * std::sin(phi) * m.b + z * m.n;
       p += double(light.size.x) * std::cbrt(radial) * dir;
       uv = {u, std::acos(std::clamp(z, -1.0, 1.0)) / kPi};  // longitude / latitude
       break;
@@ -269,8 +264,8 @@ void appendSample(const LightMap& m, glm::dvec2 unit, double radial, const SetTr
   out.luminance.push_back(m.texture ? emissionAt(*m.texture, uv) : glm::vec3(1.0f));
 }
 
-void appendSet(const LightMap& m, const std::vector<glm::dvec2>& unit,
-               const std::vector<double>& radial, const SetTransform& tf, LightSampleSet& out) {
+void appendSet(const LightMap& m, const std::vector<glm::dvec2>& unit, const std::vector<double>& radial,
+               const SetTransform& tf, LightSampleSet& out) {
   for (std::size_t k = 0; k < unit.size(); ++k) appendSample(m, unit[k], radial[k], tf, out);
 }
 
@@ -283,8 +278,7 @@ void fillRadiometry(const LightMap& m, LightSampleSet& out) {
 
 void checkCount(int count, int max, const char* where) {
   if (count < 1 || count > max)
-    throw Error(where, "sample count must be in 1.." + std::to_string(max) + ", got " +
-                           std::to_string(count));
+    throw Error(where, "sample count must be in 1.." + std::to_string(max) + ", got " + std::to_string(count));
 }
 
 }  // namespace
@@ -309,34 +303,27 @@ const Image* lightEmissionTexture(const Scene& scene, const Light& light, float 
   return makeLightMap(scene, light, time).texture;
 }
 
-
 int LightSampleSet::setForPixel(int x, int y) const {
   return int(shared::penumbraSetForPixel(std::uint32_t(x), std::uint32_t(y), std::uint32_t(pattern),
-                                         std::uint32_t(setCount), std::uint32_t(interleaveK),
-                                         seed));
+                                         std::uint32_t(setCount), std::uint32_t(interleaveK), seed));
 }
 
 std::vector<glm::vec2> unitSquareSamples(SampleStrategy strategy, int count, std::uint32_t seed) {
   checkCount(count, kMaxSingleSetCount, "samples");
   std::vector<glm::vec2> out;
   out.reserve(count);
-  for (const glm::dvec2& p : unitPoints(strategy, count, seed))
-    out.push_back({unitFloat(p.x), unitFloat(p.y)});
+  for (const glm::dvec2& p : unitPoints(strategy, count, seed)) out.push_back({unitFloat(p.x), unitFloat(p.y)});
   return out;
 }
 
-LightSampleSet makeLightSamples(const Scene& scene, const Light& light,
-                                const SamplingParams& params, float time) {
+LightSampleSet makeLightSamples(const Scene& scene, const Light& light, const SamplingParams& params, float time) {
   checkCount(params.count, PENUMBRA_MAX_SAMPLES, "samples");
   if (params.pattern == PixelPattern::Decorrelated &&
       (params.decorrelatedSets < 1 || params.decorrelatedSets > kMaxDecorrelatedSets))
-    throw Error("decorrelated sets", "decorrelated set count must be in 1.." +
-                              std::to_string(kMaxDecorrelatedSets) + ", got " +
-                              std::to_string(params.decorrelatedSets));
-  if (params.pattern == PixelPattern::Interleaved &&
-      (params.interleaveK < 1 || params.interleaveK > kMaxInterleaveK))
-    throw Error("interleave K", "interleave tile size K must be in 1.." +
-                                    std::to_string(kMaxInterleaveK) + ", got " +
+    throw Error("decorrelated sets", "decorrelated set count must be in 1.." + std::to_string(kMaxDecorrelatedSets) +
+                                         ", got " + std::to_string(params.decorrelatedSets));
+  if (params.pattern == PixelPattern::Interleaved && (params.interleaveK < 1 || params.interleaveK > kMaxInterleaveK))
+    throw Error("interleave K", "interleave tile size K must be in 1.." + std::to_string(kMaxInterleaveK) + ", got " +
                                     std::to_string(params.interleaveK));
   const LightMap m = makeLightMap(scene, light, time);
 
@@ -365,8 +352,7 @@ LightSampleSet makeLightSamples(const Scene& scene, const Light& light,
     // K*K independently seeded sets (section 5.2); set j uses seed stream j.
     for (int j = 0; j < out.setCount; ++j) {
       const std::uint32_t s = std::uint32_t(streamSeed(params.seed, kStreamPoints, j + 1));
-      appendSet(m, unitPoints(params.strategy, out.count, s), radialCoordinates(out.count, s), {},
-                out);
+      appendSet(m, unitPoints(params.strategy, out.count, s), radialCoordinates(out.count, s), {}, out);
     }
   } else {
     // Set 0 is the base set; decorrelated set j is it rotated (section 5.1, "randomly rotating
@@ -392,8 +378,8 @@ LightSampleSet makeLightSamples(const Scene& scene, const Light& light,
   return out;
 }
 
-LightSampleSet makeLightSampleSet(const Scene& scene, const Light& light, SampleStrategy strategy,
-                                  int count, std::uint32_t seed, float time) {
+LightSampleSet makeLightSampleSet(const Scene& scene, const Light& light, SampleStrategy strategy, int count,
+                                  std::uint32_t seed, float time) {
   checkCount(count, kMaxSingleSetCount, "reference-samples");
   const LightMap m = makeLightMap(scene, light, time);
   LightSampleSet out;

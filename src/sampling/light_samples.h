@@ -87,8 +87,8 @@ LightSampleSet makeLightSamples(const Scene& scene, const Light& light, const Sa
 // correlated, one set). The converged reference makes a fresh one per pixel. Throws
 // penumbra::Error("reference-samples", ...) for a bad count, and like makeLightSamples for the
 // light.
-LightSampleSet makeLightSampleSet(const Scene& scene, const Light& light, SampleStrategy strategy,
-                                  int count, std::uint32_t seed, float time = 0.0f);
+LightSampleSet makeLightSampleSet(const Scene& scene, const Light& light, SampleStrategy strategy, int count,
+                                  std::uint32_t seed, float time = 0.0f);
 
 // The emission texture of `light` at `time` (its frame at that time), null for an untextured
 // light; throws like makeLightSamples for a bad light or texture.

@@ -16,9 +16,7 @@ Json vec(glm::vec3 v) { return Json::array({v.x, v.y, v.z}); }
 
 // Radiance that gives irradiance ~pi straight below a light of `area` at `distance`, so a
 // white diffuse floor there shades to about its albedo.
-float unitIrradianceRadiance(float distance, float area) {
-  return glm::pi<float>() * distance * distance / area;
-}
+float unitIrradianceRadiance(float distance, float area) { return glm::pi<float>() * distance * distance / area; }
 
 std::uint32_t hash(std::uint32_t x) {
   x ^= x >> 16;
@@ -48,8 +46,7 @@ Image stainedGlassImage(int size) {
   for (int j = 0; j < kGrid; ++j) {
     for (int i = 0; i < kGrid; ++i) {
       const std::uint32_t id = std::uint32_t(j * kGrid + i);
-      const glm::vec2 jitter(unitHash(2 * id + 1) * 0.7f + 0.15f,
-                             unitHash(2 * id + 2) * 0.7f + 0.15f);
+      const glm::vec2 jitter(unitHash(2 * id + 1) * 0.7f + 0.15f, unitHash(2 * id + 2) * 0.7f + 0.15f);
       seeds.push_back((glm::vec2(i, j) + jitter) * cell);
       colors.push_back(palette[hash(id + 101) % kColors]);
     }

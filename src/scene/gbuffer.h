@@ -22,8 +22,8 @@ struct CpuGBuffer {
   std::vector<glm::vec3> shadingNormal;  // unit, on the geometric normal's side
   std::vector<glm::vec3> baseColor;      // linear, the texture applied
   std::vector<glm::vec3> material;       // metallic, roughness, BRDF model (PENUMBRA_BRDF_*)
-  std::optional<glm::vec3> camera;  // the view the G-buffer was rendered from, if any
-  glm::dvec3 origin{0.0};           // Scene::origin of the scene it was rendered from
+  std::optional<glm::vec3> camera;       // the view the G-buffer was rendered from, if any
+  glm::dvec3 origin{0.0};                // Scene::origin of the scene it was rendered from
 };
 
 }  // namespace penumbra

@@ -66,25 +66,37 @@ struct AccessorView {
 int componentBytes(int type) {
   switch (type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
   }
 }
 
 int typeComponents(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 0;
+    case TINYGLTF_TYPE_SCALAR:
+      return 1;
+    case TINYGLTF_TYPE_VEC2:
+      return 2;
+    case TINYGLTF_TYPE_VEC3:
+      return 3;
+    case TINYGLTF_TYPE_VEC4:
+      return 4;
+    case TINYGLTF_TYPE_MAT2:
+      return 4;
+    case TINYGLTF_TYPE_MAT3:
+      return 9;
+    case TINYGLTF_TYPE_MAT4:
+      return 16;
+    default:
+      return 0;
   }
 }
 
@@ -103,11 +115,9 @@ AccessorView viewAccessor(const Loader& L, int index, const std::string& role,
   }
   const tinygltf::Accessor& a = L.gltf.accessors[std::size_t(index)];
   bool typeOk = false;
-  for (const auto& [type, component] : types)
-    typeOk = typeOk || (a.type == type && a.componentType == component);
+  for (const auto& [type, component] : types) typeOk = typeOk || (a.type == type && a.componentType == component);
   if (!typeOk) {
-    L.fail(what + ": unsupported type/componentType " + std::to_string(a.type) + "/" +
-           std::to_string(a.componentType));
+    L.fail(what + ": unsupported type/componentType " + std::to_string(a.type) + "/" + std::to_string(a.componentType));
   }
   if (a.count == 0) L.fail(what + ": count is 0");
   if (a.sparse.isSparse) throw SkipPrimitive{what + " is sparse (not supported)"};
@@ -121,32 +131,28 @@ AccessorView viewAccessor(const Loader& L, int index, const std::string& role,
   }
   const std::vector<unsigned char>& data = L.gltf.buffers[std::size_t(v.buffer)].data;
   if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset) {
-    L.fail("bufferView " + std::to_string(a.bufferView) + " overruns buffer " +
-           std::to_string(v.buffer));
+    L.fail("bufferView " + std::to_string(a.bufferView) + " overruns buffer " + std::to_string(v.buffer));
   }
   const std::size_t component = std::size_t(componentBytes(a.componentType));
   const std::size_t element = component * std::size_t(typeComponents(a.type));
   const std::size_t stride = v.byteStride ? v.byteStride : element;
   if (stride < element) {
-    L.fail(what + ": byteStride " + std::to_string(stride) + " is smaller than an element (" +
-           std::to_string(element) + " bytes)");
+    L.fail(what + ": byteStride " + std::to_string(stride) + " is smaller than an element (" + std::to_string(element) +
+           " bytes)");
   }
   if ((v.byteOffset + a.byteOffset) % component != 0 || stride % component != 0) {
-    L.fail(what + ": offset " + std::to_string(v.byteOffset + a.byteOffset) + " or stride " +
-           std::to_string(stride) + " is not a multiple of the component size " +
-           std::to_string(component));
+    L.fail(what + ": offset " + std::to_string(v.byteOffset + a.byteOffset) + " or stride " + std::to_string(stride) +
+           " is not a multiple of the component size " + std::to_string(component));
   }
   // The last element ends at offset + stride * (count - 1) + element: the stride's padding
   // after the last element need not be there.
   const std::size_t available = v.byteLength;
   if (a.byteOffset > available || element > available - a.byteOffset ||
       a.count - 1 > (available - a.byteOffset - element) / stride) {
-    const long double needed =
-        (long double)a.byteOffset + (long double)stride * (long double)(a.count - 1) + element;
+    const long double needed = (long double)a.byteOffset + (long double)stride * (long double)(a.count - 1) + element;
     L.fail(what + ": needs " + std::to_string((unsigned long long)needed) + " bytes (offset " +
-           std::to_string(a.byteOffset) + ", stride " + std::to_string(stride) + ", count " +
-           std::to_string(a.count) + ") but bufferView " + std::to_string(a.bufferView) + " has " +
-           std::to_string(v.byteLength));
+           std::to_string(a.byteOffset) + ", stride " + std::to_string(stride) + ", count " + std::to_string(a.count) +
+           ") but bufferView " + std::to_string(a.bufferView) + " has " + std::to_string(v.byteLength));
   }
   AccessorView out;
   out.data = data.data() + v.byteOffset + a.byteOffset;
@@ -166,20 +172,23 @@ float readComponent(const AccessorView& a, std::size_t i, int c) {
       std::memcpy(&f, p + 4 * c, 4);
       return f;
     }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return float(p[c]) / 255.0f;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return float(p[c]) / 255.0f;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
       std::uint16_t u;
       std::memcpy(&u, p + 2 * c, 2);
       return float(u) / 65535.0f;
     }
-    default: return 0.0f;
+    default:
+      return 0.0f;
   }
 }
 
 std::uint32_t readIndex(const AccessorView& a, std::size_t i) {
   const unsigned char* p = a.data + i * a.stride;
   switch (a.componentType) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return p[0];
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
       std::uint16_t u;
       std::memcpy(&u, p, 2);
@@ -203,8 +212,7 @@ struct Primitive {
 Primitive convertPrimitive(Loader& L, const tinygltf::Primitive& p, const std::string& name) {
   Primitive out;
   const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
-  if (mode > TINYGLTF_MODE_TRIANGLE_FAN)
-    L.fail(name + ": unknown primitive mode " + std::to_string(mode));
+  if (mode > TINYGLTF_MODE_TRIANGLE_FAN) L.fail(name + ": unknown primitive mode " + std::to_string(mode));
   if (mode < TINYGLTF_MODE_TRIANGLES) {
     static const char* kNames[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
     L.warn(name + ": " + kNames[mode] + " primitive ignored (casts no shadow)");
@@ -225,16 +233,16 @@ Primitive convertPrimitive(Loader& L, const tinygltf::Primitive& p, const std::s
     return out;
   }
   try {
-    const AccessorView pos = viewAccessor(L, position->second, name + " POSITION",
-                                          {{TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT}});
+    const AccessorView pos =
+        viewAccessor(L, position->second, name + " POSITION", {{TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT}});
     geo::TriangleMesh& m = out.mesh;
     m.positions.resize(pos.count);
     for (std::size_t i = 0; i < pos.count; ++i) {
       for (int c = 0; c < 3; ++c) m.positions[i][c] = readComponent(pos, i, c);
     }
     if (const auto it = p.attributes.find("NORMAL"); it != p.attributes.end()) {
-      const AccessorView nrm = viewAccessor(L, it->second, name + " NORMAL",
-                                            {{TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT}});
+      const AccessorView nrm =
+          viewAccessor(L, it->second, name + " NORMAL", {{TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT}});
       if (nrm.count != pos.count) {
         L.warn(name + ": NORMAL count differs from POSITION; normals ignored");
       } else {
@@ -245,11 +253,10 @@ Primitive convertPrimitive(Loader& L, const tinygltf::Primitive& p, const std::s
       }
     }
     if (const auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end()) {
-      const AccessorView uv =
-          viewAccessor(L, it->second, name + " TEXCOORD_0",
-                       {{TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_FLOAT},
-                        {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
-                        {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}});
+      const AccessorView uv = viewAccessor(L, it->second, name + " TEXCOORD_0",
+                                           {{TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_FLOAT},
+                                            {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
+                                            {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}});
       if (uv.count != pos.count) {
         L.warn(name + ": TEXCOORD_0 count differs from POSITION; texture coordinates ignored");
       } else {
@@ -261,11 +268,10 @@ Primitive convertPrimitive(Loader& L, const tinygltf::Primitive& p, const std::s
     }
     std::vector<std::uint32_t> indices;
     if (p.indices >= 0) {
-      const AccessorView idx =
-          viewAccessor(L, p.indices, name + " indices",
-                       {{TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
-                        {TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                        {TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}});
+      const AccessorView idx = viewAccessor(L, p.indices, name + " indices",
+                                            {{TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
+                                             {TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                                             {TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}});
       indices.resize(idx.count);
       for (std::size_t i = 0; i < idx.count; ++i) indices[i] = readIndex(idx, i);
     } else {
@@ -275,8 +281,7 @@ Primitive convertPrimitive(Loader& L, const tinygltf::Primitive& p, const std::s
     const std::size_t n = indices.size();
     if (mode == TINYGLTF_MODE_TRIANGLES) {
       if (n % 3 != 0) {
-        L.fail(name + ": TRIANGLES primitive with " + std::to_string(n) +
-               " indices (not a multiple of 3)");
+        L.fail(name + ": TRIANGLES primitive with " + std::to_string(n) + " indices (not a multiple of 3)");
       }
       for (std::size_t i = 0; i < n; i += 3) {
         m.triangles.push_back({indices[i], indices[i + 1], indices[i + 2]});
@@ -297,8 +302,8 @@ Primitive convertPrimitive(Loader& L, const tinygltf::Primitive& p, const std::s
     std::size_t outOfRange = 0;
     for (std::uint32_t i : indices) outOfRange += i >= pos.count ? 1 : 0;
     if (outOfRange > 0) {
-      L.warn(name + ": " + std::to_string(outOfRange) + " indices >= vertex count " +
-             std::to_string(pos.count) + "; their triangles are dropped");
+      L.warn(name + ": " + std::to_string(outOfRange) + " indices >= vertex count " + std::to_string(pos.count) +
+             "; their triangles are dropped");
     }
   } catch (const SkipPrimitive& skip) {
     L.warn(name + ": " + skip.why + "; primitive dropped");
@@ -341,8 +346,8 @@ void convertMaterials(Loader& L) {
     if (!std::isfinite(alpha) || !std::isfinite(m.baseColor.x + m.baseColor.y + m.baseColor.z)) {
       L.fail(what + ": baseColorFactor is not finite");
     }
-    if (glm::any(glm::lessThan(m.baseColor, glm::vec3(0.0f))) || glm::any(glm::greaterThan(m.baseColor, glm::vec3(1.0f))) ||
-        alpha < 0.0f || alpha > 1.0f)
+    if (glm::any(glm::lessThan(m.baseColor, glm::vec3(0.0f))) ||
+        glm::any(glm::greaterThan(m.baseColor, glm::vec3(1.0f))) || alpha < 0.0f || alpha > 1.0f)
       L.warn(what + ": baseColorFactor outside [0, 1], clamped");
     m.baseColor = glm::clamp(m.baseColor, 0.0f, 1.0f);
     alpha = std::clamp(alpha, 0.0f, 1.0f);
@@ -350,8 +355,10 @@ void convertMaterials(Loader& L) {
     for (const auto& [name, ext] : g.extensions)
       if (name != "KHR_materials_emissive_strength")
         L.warn(what + ": extension " + name + " is not used" +
-               (name == "KHR_materials_pbrSpecularGlossiness" ? " (shaded as metallic-roughness from its base factors)" : ""));
-    if (g.emissiveFactor.size() == 3 && (g.emissiveFactor[0] != 0.0 || g.emissiveFactor[1] != 0.0 || g.emissiveFactor[2] != 0.0))
+               (name == "KHR_materials_pbrSpecularGlossiness" ? " (shaded as metallic-roughness from its base factors)"
+                                                              : ""));
+    if (g.emissiveFactor.size() == 3 &&
+        (g.emissiveFactor[0] != 0.0 || g.emissiveFactor[1] != 0.0 || g.emissiveFactor[2] != 0.0))
       L.warn(what + ": emissiveFactor is not used (surfaces do not emit; lights do)");
     m.alphaCutoff = float(g.alphaCutoff);
     if (g.alphaMode == "MASK") {
@@ -383,8 +390,8 @@ void convertMaterials(Loader& L) {
       if (const auto it = textureOfImage.find(key); it != textureOfImage.end()) return it->second;
       const tinygltf::Image& img = L.gltf.images[std::size_t(image)];
       Texture t;
-      t.source = L.path + (img.uri.empty() || img.uri.rfind("data:", 0) == 0 ? "#image" + std::to_string(image)
-                                                                            : "#" + img.uri);
+      t.source = L.path +
+                 (img.uri.empty() || img.uri.rfind("data:", 0) == 0 ? "#image" + std::to_string(image) : "#" + img.uri);
       std::string why = "no data";
       const bool readable = !img.image.empty() && encodedImageSize(img.image, t.width, t.height, why);
       if (!readable || (L.options.decodeTextures && !decodeGltfImage(img.image, t.image, why, srgb))) {
@@ -405,7 +412,8 @@ void convertMaterials(Loader& L) {
     // The specification's BRDF (Appendix B); factors default to 1 (tinygltf fills them in).
     m.brdf = BrdfModel::MetallicRoughness;
     const double metallic = g.pbrMetallicRoughness.metallicFactor, roughness = g.pbrMetallicRoughness.roughnessFactor;
-    if (!std::isfinite(metallic) || !std::isfinite(roughness)) L.fail(what + ": metallicFactor or roughnessFactor is not finite");
+    if (!std::isfinite(metallic) || !std::isfinite(roughness))
+      L.fail(what + ": metallicFactor or roughnessFactor is not finite");
     m.metallic = std::clamp(float(metallic), 0.0f, 1.0f);
     m.roughness = std::clamp(float(roughness), 0.0f, 1.0f);
     // Linear data (the specification: "texture ... MUST be ... linear"): not sRGB-decoded.
@@ -463,8 +471,8 @@ std::vector<int> checkHierarchy(const Loader& L) {
       }
       if (std::size_t(c) == i) L.fail("node " + std::to_string(i) + " is its own child");
       if (parent[std::size_t(c)] >= 0) {
-        L.fail("node " + std::to_string(c) + " has two parents (nodes " +
-               std::to_string(parent[std::size_t(c)]) + " and " + std::to_string(i) + ")");
+        L.fail("node " + std::to_string(c) + " has two parents (nodes " + std::to_string(parent[std::size_t(c)]) +
+               " and " + std::to_string(i) + ")");
       }
       parent[std::size_t(c)] = int(i);
     }
@@ -489,7 +497,8 @@ void addLight(Loader& L, Light light, const glm::dmat4& world, const std::string
   Light placed = transformLight(light, glm::mat4(world));
   // A light definition used by several nodes: each placed light is named by its node too (names
   // must differ: they name a light's files and rows).
-  const bool taken = std::any_of(L.out.lights.begin(), L.out.lights.end(), [&](const Light& l) { return l.name == what; });
+  const bool taken =
+      std::any_of(L.out.lights.begin(), L.out.lights.end(), [&](const Light& l) { return l.name == what; });
   placed.name = taken ? what + "@" + node : what;
   L.out.lights.push_back(std::move(placed));
 }
@@ -506,8 +515,8 @@ void nodeLights(Loader& L, std::size_t index, const glm::dmat4& world, const std
     if (top != L.json.end() && top->contains(name) && (*top)[name].contains("lights")) {
       lights = &(*top)[name]["lights"];
     }
-    if (!e->is_object() || !e->contains("light") || !(*e)["light"].is_number_unsigned() ||
-        !lights || !lights->is_array() || (*e)["light"].get<std::size_t>() >= lights->size()) {
+    if (!e->is_object() || !e->contains("light") || !(*e)["light"].is_number_unsigned() || !lights ||
+        !lights->is_array() || (*e)["light"].get<std::size_t>() >= lights->size()) {
       L.fail(label + ": " + name + " light reference is invalid");
     }
     defs = lights;
@@ -638,9 +647,10 @@ void checkMemoryNeeds(Loader& L, const std::vector<int>& roots) {
     for (const tinygltf::Primitive& p : gltf.meshes[std::size_t(node.mesh)].primitives)
       triangles += declaredTriangles(gltf, p);
   }
-  checkMemory(L.path, fmt::format("placing {:.0f} triangles ({} mesh instances on {} nodes)", triangles,
-                                  instances, gltf.nodes.size()),
-              triangles * kCleanBytesPerTriangle);
+  checkMemory(
+      L.path,
+      fmt::format("placing {:.0f} triangles ({} mesh instances on {} nodes)", triangles, instances, gltf.nodes.size()),
+      triangles * kCleanBytesPerTriangle);
   if (!L.options.decodeTextures) return;
   std::vector<bool> used(gltf.images.size(), false);
   auto use = [&](int texture) {
@@ -695,22 +705,19 @@ Model loadGltf(const std::string& path, const LoadOptions& options) {
     std::size_t dropped = 0;
     // Iterative traversal: a deep chain of nodes must not exhaust the stack.
     std::vector<std::pair<int, glm::dmat4>> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it)
-      stack.push_back({*it, glm::dmat4(1.0)});
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0)});
     while (!stack.empty()) {
       const auto [index, parentWorld] = stack.back();
       stack.pop_back();
       const tinygltf::Node& node = gltf.nodes[std::size_t(index)];
-      const std::string label =
-          "node " + std::to_string(index) + (node.name.empty() ? "" : " '" + node.name + "'");
+      const std::string label = "node " + std::to_string(index) + (node.name.empty() ? "" : " '" + node.name + "'");
       const glm::dmat4 world = parentWorld * localMatrix(node);
       if (!usable(world)) {
         L.warn(label + ": singular or non-finite transform; node and its children dropped");
         ++dropped;
         continue;
       }
-      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
-        stack.push_back({*c, world});
+      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world});
       nodeLights(L, std::size_t(index), world, label);
       if (node.mesh < 0) continue;
       if (std::size_t(node.mesh) >= gltf.meshes.size()) {
@@ -718,9 +725,8 @@ Model loadGltf(const std::string& path, const LoadOptions& options) {
       }
       const tinygltf::Mesh& mesh = gltf.meshes[std::size_t(node.mesh)];
       for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-        const std::string name =
-            L.file + "#" + (mesh.name.empty() ? "mesh " + std::to_string(node.mesh) : mesh.name) +
-            (mesh.primitives.size() > 1 ? "/" + std::to_string(p) : "");
+        const std::string name = L.file + "#" + (mesh.name.empty() ? "mesh " + std::to_string(node.mesh) : mesh.name) +
+                                 (mesh.primitives.size() > 1 ? "/" + std::to_string(p) : "");
         const auto key = std::make_pair(node.mesh, int(p));
         auto it = primitives.find(key);
         if (it == primitives.end()) {

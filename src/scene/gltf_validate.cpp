@@ -38,8 +38,7 @@ const char* const kDataUriHeaders[] = {"data:application/octet-stream;base64,",
                                        "data:text/plain;base64,"};
 
 std::uint32_t readU32(const unsigned char* p) {
-  return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 |
-         std::uint32_t(p[3]) << 24;
+  return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
 }
 
 std::vector<unsigned char> readBinary(const std::string& path) {
@@ -86,8 +85,8 @@ long long base64DecodedSize(const std::string& s, std::size_t start) {
   std::size_t padding = 0;
   for (std::size_t i = start; i < s.size(); ++i) {
     const char c = s[i];
-    const bool alpha = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                       c == '+' || c == '/';
+    const bool alpha =
+        (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '+' || c == '/';
     if (c == '=') {
       if (i + 2 < s.size()) return -1;
       ++padding;
@@ -110,8 +109,7 @@ bool sandboxFileExists(const std::string& path, void* user) {
 
 std::string sandboxExpand(const std::string& path, void*) { return path; }
 
-bool sandboxRead(std::vector<unsigned char>* out, std::string* err, const std::string& path,
-                 void* user) {
+bool sandboxRead(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   const auto* box = static_cast<const Sandbox*>(user);
   if (!isInsideFolder(path, box->folder)) {
     if (err) *err += "'" + path + "' is outside the glTF file's folder";
@@ -139,8 +137,8 @@ bool sandboxWrite(std::string* err, const std::string&, const std::vector<unsign
 
 // Keeps images encoded: only base-colour textures are decoded later, and a broken normal map
 // must not fail the load.
-bool keepEncoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
-                 const unsigned char* bytes, int size, void*) {
+bool keepEncoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                 int size, void*) {
   image->image.assign(bytes, bytes + size);
   image->as_is = true;
   return true;
@@ -214,8 +212,7 @@ struct Checker {
       if (size <= 0) fail(what + ": data URI is not valid base64");
       return std::uint64_t(size);
     }
-    fail(what + ": unsupported data URI '" +
-         uri.substr(0, std::min<std::size_t>(40, uri.find(','))) +
+    fail(what + ": unsupported data URI '" + uri.substr(0, std::min<std::size_t>(40, uri.find(','))) +
          "' (base64 octet-stream, gltf-buffer or image only)");
   }
 
@@ -223,14 +220,12 @@ struct Checker {
   std::string externalFile(const std::string& uri, const std::string& what) const {
     const std::string decoded = urlDecode(uri);
     if (std::string why = relativePathProblem(decoded); !why.empty()) {
-      fail(what + ": uri '" + uri + "' " + why +
-           " (only files next to the glTF file, no network, no '..')");
+      fail(what + ": uri '" + uri + "' " + why + " (only files next to the glTF file, no network, no '..')");
     }
     const std::string file = (fs::path(folder) / decoded).lexically_normal().string();
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) return {};
-    if (!isInsideFolder(file, folder))
-      fail(what + ": uri '" + uri + "' resolves outside " + folder);
+    if (!isInsideFolder(file, folder)) fail(what + ": uri '" + uri + "' resolves outside " + folder);
     return file;
   }
 
@@ -258,8 +253,7 @@ struct Checker {
       } else if (uri->get<std::string>().rfind("data:", 0) == 0) {
         const std::uint64_t size = dataUriSize(uri->get<std::string>(), what);
         if (size != length) {
-          fail(what + " declares " + std::to_string(length) + " bytes but its data URI holds " +
-               std::to_string(size));
+          fail(what + " declares " + std::to_string(length) + " bytes but its data URI holds " + std::to_string(size));
         }
       } else {
         const std::string file = externalFile(uri->get<std::string>(), what);
@@ -267,8 +261,8 @@ struct Checker {
         std::error_code ec;
         const std::uint64_t size = fs::file_size(file, ec);
         if (ec || size != length) {
-          fail(what + " declares " + std::to_string(length) + " bytes but '" +
-               uri->get<std::string>() + "' has " + std::to_string(size));
+          fail(what + " declares " + std::to_string(length) + " bytes but '" + uri->get<std::string>() + "' has " +
+               std::to_string(size));
         }
       }
       sizes.push_back(length);
@@ -292,9 +286,8 @@ struct Checker {
       }
       const std::uint64_t size = bufferSizes[buffer];
       if (offset > size || length > size - offset) {
-        fail(what + " (offset " + std::to_string(offset) + ", length " + std::to_string(length) +
-             ") overruns buffer " + std::to_string(buffer) + " (" + std::to_string(size) +
-             " bytes)");
+        fail(what + " (offset " + std::to_string(offset) + ", length " + std::to_string(length) + ") overruns buffer " +
+             std::to_string(buffer) + " (" + std::to_string(size) + " bytes)");
       }
       if (unsignedField(v, "byteStride", stride) && (stride < 4 || stride > 252 || stride % 4)) {
         fail(what + ": 'byteStride' must be a multiple of 4 in [4, 252]");
@@ -340,15 +333,27 @@ struct Checker {
       const auto it = object.find(p.key);
       if (it == object.end()) continue;
       const Json& v = *it;
-      auto index = [](const Json& x) { return x.is_number_unsigned() || (x.is_number_integer() && x.get<long long>() >= 0); };
+      auto index = [](const Json& x) {
+        return x.is_number_unsigned() || (x.is_number_integer() && x.get<long long>() >= 0);
+      };
       bool ok = false;
       std::string expected;
       switch (p.kind) {
-        case Kind::Index: ok = index(v), expected = "a non-negative integer"; break;
-        case Kind::Number: ok = v.is_number(), expected = "a number"; break;
-        case Kind::Boolean: ok = v.is_boolean(), expected = "true or false"; break;
-        case Kind::String: ok = v.is_string(), expected = "a string"; break;
-        case Kind::Object: ok = v.is_object(), expected = "an object"; break;
+        case Kind::Index:
+          ok = index(v), expected = "a non-negative integer";
+          break;
+        case Kind::Number:
+          ok = v.is_number(), expected = "a number";
+          break;
+        case Kind::Boolean:
+          ok = v.is_boolean(), expected = "true or false";
+          break;
+        case Kind::String:
+          ok = v.is_string(), expected = "a string";
+          break;
+        case Kind::Object:
+          ok = v.is_object(), expected = "an object";
+          break;
         case Kind::Indices:
           ok = v.is_array() && std::all_of(v.begin(), v.end(), index), expected = "an array of non-negative integers";
           break;
@@ -369,18 +374,36 @@ struct Checker {
         for (std::size_t i = 0; i < items->size(); ++i)
           checkProperties((*items)[i], std::string(key) + "[" + std::to_string(i) + "]", properties);
     };
-    each("accessors", {{"bufferView", K::Index}, {"byteOffset", K::Index}, {"componentType", K::Index},
-                       {"normalized", K::Boolean}, {"count", K::Index}, {"type", K::String}, {"max", K::Numbers},
-                       {"min", K::Numbers}, {"sparse", K::Object}, {"name", K::String}});
-    each("bufferViews", {{"buffer", K::Index}, {"byteOffset", K::Index}, {"byteLength", K::Index},
-                         {"byteStride", K::Index}, {"target", K::Index}, {"name", K::String}});
+    each("accessors", {{"bufferView", K::Index},
+                       {"byteOffset", K::Index},
+                       {"componentType", K::Index},
+                       {"normalized", K::Boolean},
+                       {"count", K::Index},
+                       {"type", K::String},
+                       {"max", K::Numbers},
+                       {"min", K::Numbers},
+                       {"sparse", K::Object},
+                       {"name", K::String}});
+    each("bufferViews", {{"buffer", K::Index},
+                         {"byteOffset", K::Index},
+                         {"byteLength", K::Index},
+                         {"byteStride", K::Index},
+                         {"target", K::Index},
+                         {"name", K::String}});
     each("buffers", {{"uri", K::String}, {"byteLength", K::Index}, {"name", K::String}});
     each("images", {{"uri", K::String}, {"mimeType", K::String}, {"bufferView", K::Index}, {"name", K::String}});
     each("textures", {{"sampler", K::Index}, {"source", K::Index}, {"name", K::String}});
     each("samplers", {{"magFilter", K::Index}, {"minFilter", K::Index}, {"wrapS", K::Index}, {"wrapT", K::Index}});
-    each("nodes", {{"camera", K::Index}, {"children", K::Indices}, {"skin", K::Index}, {"matrix", K::Numbers, 16},
-                   {"mesh", K::Index}, {"rotation", K::Numbers, 4}, {"scale", K::Numbers, 3},
-                   {"translation", K::Numbers, 3}, {"weights", K::Numbers}, {"name", K::String},
+    each("nodes", {{"camera", K::Index},
+                   {"children", K::Indices},
+                   {"skin", K::Index},
+                   {"matrix", K::Numbers, 16},
+                   {"mesh", K::Index},
+                   {"rotation", K::Numbers, 4},
+                   {"scale", K::Numbers, 3},
+                   {"translation", K::Numbers, 3},
+                   {"weights", K::Numbers},
+                   {"name", K::String},
                    {"extensions", K::Object}});
     each("scenes", {{"nodes", K::Indices}, {"name", K::String}});
     each("materials", {{"name", K::String}, {"extensions", K::Object}});
@@ -392,8 +415,12 @@ struct Checker {
         for (std::size_t k = 0; k < primitives.size(); ++k) {
           const std::string what = mesh + ".primitives[" + std::to_string(k) + "]";
           if (!primitives[k].is_object()) fail(what + " must be an object, got " + shownJson(primitives[k]));
-          checkProperties(primitives[k], what, {{"attributes", K::Object}, {"indices", K::Index}, {"material", K::Index},
-                                                {"mode", K::Index}, {"extensions", K::Object}});
+          checkProperties(primitives[k], what,
+                          {{"attributes", K::Object},
+                           {"indices", K::Index},
+                           {"material", K::Index},
+                           {"mode", K::Index},
+                           {"extensions", K::Object}});
           if (const auto a = primitives[k].find("attributes"); a != primitives[k].end())
             for (const auto& [name, value] : a->items())
               checkProperties(*a, what + ".attributes", {{name.c_str(), K::Index}});
@@ -418,8 +445,8 @@ struct Checker {
         if (it->is_array())
           for (const Json& x : *it) ok = ok && x.is_number();
         if (!ok)
-          fail(at + "'" + key + "' must be " + (count == 1 ? std::string("a number") : std::to_string(count) + " numbers") +
-               ", got " + shownJson(*it));
+          fail(at + "'" + key + "' must be " +
+               (count == 1 ? std::string("a number") : std::to_string(count) + " numbers") + ", got " + shownJson(*it));
       };
       auto textureInfo = [&](const Json& o, const char* key, const std::string& at) {
         const auto it = o.find(key);
@@ -456,8 +483,8 @@ struct Checker {
   }
 
   void checkTopLevel() const {
-    for (const char* key : {"accessors", "animations", "cameras", "materials", "meshes", "nodes",
-                            "samplers", "scenes", "skins", "textures"}) {
+    for (const char* key : {"accessors", "animations", "cameras", "materials", "meshes", "nodes", "samplers", "scenes",
+                            "skins", "textures"}) {
       arrayOf(key);
     }
     if (const auto it = doc.find("scene"); it != doc.end() && !it->is_number_unsigned()) {
@@ -475,8 +502,8 @@ struct Checker {
 };
 
 // Returns the JSON chunk of a GLB after checking the container; sets binBytes (0: none).
-std::string checkGlb(const std::string& path, std::vector<unsigned char>& bytes,
-                     std::uint64_t& binBytes, std::vector<std::string>& warnings) {
+std::string checkGlb(const std::string& path, std::vector<unsigned char>& bytes, std::uint64_t& binBytes,
+                     std::vector<std::string>& warnings) {
   const std::uint64_t size = bytes.size();
   if (size < 20) throw Error(path, "truncated GLB: " + std::to_string(size) + " bytes");
   if (readU32(bytes.data()) != kGlbMagic) throw Error(path, "not a GLB file (bad magic)");
@@ -484,18 +511,17 @@ std::string checkGlb(const std::string& path, std::vector<unsigned char>& bytes,
   if (version != 2) throw Error(path, "GLB version " + std::to_string(version) + " (expected 2)");
   const std::uint64_t length = readU32(&bytes[8]);
   if (length > size) {
-    throw Error(path, "GLB header declares " + std::to_string(length) + " bytes but the file has " +
-                          std::to_string(size));
+    throw Error(path,
+                "GLB header declares " + std::to_string(length) + " bytes but the file has " + std::to_string(size));
   }
   if (length < size) {
-    warnings.push_back(path + ": " + std::to_string(size - length) +
-                       " bytes after the GLB's declared length ignored");
+    warnings.push_back(path + ": " + std::to_string(size - length) + " bytes after the GLB's declared length ignored");
   }
   const std::uint64_t jsonLength = readU32(&bytes[12]);
   if (readU32(&bytes[16]) != kChunkJson) throw Error(path, "first GLB chunk is not JSON");
   if (jsonLength == 0 || 20 + jsonLength > length) {
-    throw Error(path, "GLB JSON chunk length " + std::to_string(jsonLength) +
-                          " does not fit in the file (" + std::to_string(length) + " bytes)");
+    throw Error(path, "GLB JSON chunk length " + std::to_string(jsonLength) + " does not fit in the file (" +
+                          std::to_string(length) + " bytes)");
   }
   const std::uint64_t binStart = 20 + jsonLength;
   binBytes = 0;
@@ -507,13 +533,11 @@ std::string checkGlb(const std::string& path, std::vector<unsigned char>& bytes,
       throw Error(path, "second GLB chunk is not BIN");
     }
     if (binLength > length - binStart - 8) {
-      throw Error(path, "GLB BIN chunk length " + std::to_string(binLength) +
-                            " exceeds the file (" + std::to_string(length - binStart - 8) +
-                            " bytes left)");
+      throw Error(path, "GLB BIN chunk length " + std::to_string(binLength) + " exceeds the file (" +
+                            std::to_string(length - binStart - 8) + " bytes left)");
     }
     if (binLength == 0 || binLength % 4 != 0) {
-      throw Error(path, "GLB BIN chunk length " + std::to_string(binLength) +
-                            " is not a positive multiple of 4");
+      throw Error(path, "GLB BIN chunk length " + std::to_string(binLength) + " is not a positive multiple of 4");
     }
     binBytes = binLength;
   }
@@ -542,15 +566,13 @@ void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& j
   const bool glb = bytes.size() >= 4 && readU32(bytes.data()) == kGlbMagic;
   if (!glb && lowerExtension(path) == ".glb") throw Error(path, "not a GLB file (bad magic)");
   std::uint64_t binBytes = 0;
-  const std::string text =
-      glb ? checkGlb(path, bytes, binBytes, warnings) : std::string(bytes.begin(), bytes.end());
+  const std::string text = glb ? checkGlb(path, bytes, binBytes, warnings) : std::string(bytes.begin(), bytes.end());
 
   json = parseJsonDocument(text, path, "glTF");  // refuses repeated keys, which tinygltf would drop
   if (!json.is_object()) throw Error(path, "the glTF JSON is not an object");
   std::error_code ec;
   const fs::path parent = fs::path(path).parent_path();
-  const std::string folder =
-      fs::absolute(parent.empty() ? fs::path(".") : parent, ec).lexically_normal().string();
+  const std::string folder = fs::absolute(parent.empty() ? fs::path(".") : parent, ec).lexically_normal().string();
   Checker check{path, folder, json, warnings, binBytes, glb};
   try {
     check.checkVersion();
@@ -566,20 +588,17 @@ void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& j
 
   Sandbox sandbox{folder};
   tinygltf::TinyGLTF loader;
-  loader.SetFsCallbacks(
-      {&sandboxFileExists, &sandboxExpand, &sandboxRead, &sandboxWrite, &sandbox});
+  loader.SetFsCallbacks({&sandboxFileExists, &sandboxExpand, &sandboxRead, &sandboxWrite, &sandbox});
   loader.SetImageLoader(&keepEncoded, nullptr);
   std::string err, warn;
   bool ok = false;
   if (glb) {
-    ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                     static_cast<unsigned int>(bytes.size()), folder);
+    ok =
+        loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), folder);
   } else {
-    ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(),
-                                    static_cast<unsigned int>(text.size()), folder);
+    ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(), static_cast<unsigned int>(text.size()), folder);
   }
-  if (!ok)
-    throw Error(path, "tinygltf: " + (err.empty() ? std::string("load failed") : firstLines(err)));
+  if (!ok) throw Error(path, "tinygltf: " + (err.empty() ? std::string("load failed") : firstLines(err)));
   if (!warn.empty()) warnings.push_back(path + ": tinygltf: " + firstLines(warn));
 }
 
@@ -598,15 +617,13 @@ bool encodedImageSize(const std::vector<unsigned char>& encoded, int& width, int
         continue;
       }
       const unsigned char marker = b[i + 1];
-      const bool sof =
-          marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+      const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
       if (sof) {
         h = b[i + 5] << 8 | b[i + 6];
         w = b[i + 7] << 8 | b[i + 8];
         break;
       }
-      if (marker == 0xD8 || marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7) ||
-          marker == 0xFF) {
+      if (marker == 0xD8 || marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7) || marker == 0xFF) {
         i += marker == 0xFF ? 1 : 2;
         continue;
       }
@@ -638,8 +655,8 @@ bool decodeGltfImage(const std::vector<unsigned char>& encoded, Image& out, std:
   const std::size_t n = encoded.size();
   tinygltf::Image decoded;
   std::string err, warn;
-  if (!tinygltf::LoadImageData(&decoded, 0, &err, &warn, 0, 0, b, int(n), nullptr) ||
-      decoded.width <= 0 || decoded.height <= 0 || decoded.component < 1 || decoded.component > 4) {
+  if (!tinygltf::LoadImageData(&decoded, 0, &err, &warn, 0, 0, b, int(n), nullptr) || decoded.width <= 0 ||
+      decoded.height <= 0 || decoded.component < 1 || decoded.component > 4) {
     why = "cannot decode: " + firstLines(err);
     return false;
   }

@@ -23,13 +23,34 @@ class DuplicateKeyChecker {
   DuplicateKeyChecker(Json& result, const std::string& path, const std::string& root)
       : dom_(result, /*allow_exceptions=*/true), path_(path), root_(root) {}
 
-  bool null() { value(); return dom_.null(); }
-  bool boolean(bool v) { value(); return dom_.boolean(v); }
-  bool number_integer(Json::number_integer_t v) { value(); return dom_.number_integer(v); }
-  bool number_unsigned(Json::number_unsigned_t v) { value(); return dom_.number_unsigned(v); }
-  bool number_float(Json::number_float_t v, const Json::string_t& s) { value(); return dom_.number_float(v, s); }
-  bool string(Json::string_t& v) { value(); return dom_.string(v); }
-  bool binary(Json::binary_t& v) { value(); return dom_.binary(v); }
+  bool null() {
+    value();
+    return dom_.null();
+  }
+  bool boolean(bool v) {
+    value();
+    return dom_.boolean(v);
+  }
+  bool number_integer(Json::number_integer_t v) {
+    value();
+    return dom_.number_integer(v);
+  }
+  bool number_unsigned(Json::number_unsigned_t v) {
+    value();
+    return dom_.number_unsigned(v);
+  }
+  bool number_float(Json::number_float_t v, const Json::string_t& s) {
+    value();
+    return dom_.number_float(v, s);
+  }
+  bool string(Json::string_t& v) {
+    value();
+    return dom_.string(v);
+  }
+  bool binary(Json::binary_t& v) {
+    value();
+    return dom_.binary(v);
+  }
   bool start_object(std::size_t n) {
     value();
     checkDepth();
@@ -47,14 +68,20 @@ class DuplicateKeyChecker {
     }
     return dom_.key(k);
   }
-  bool end_object() { stack_.pop_back(); return dom_.end_object(); }
+  bool end_object() {
+    stack_.pop_back();
+    return dom_.end_object();
+  }
   bool start_array(std::size_t n) {
     value();
     checkDepth();
     stack_.push_back({true, -1, {}, {}});
     return dom_.start_array(n);
   }
-  bool end_array() { stack_.pop_back(); return dom_.end_array(); }
+  bool end_array() {
+    stack_.pop_back();
+    return dom_.end_array();
+  }
   template <class Exception>
   bool parse_error(std::size_t position, const std::string& token, const Exception& e) {
     return dom_.parse_error(position, token, e);
@@ -84,8 +111,10 @@ class DuplicateKeyChecker {
     std::string p;
     for (std::size_t i = 0; i < stack_.size(); ++i) {
       const Frame& f = stack_[i];
-      if (f.array) p += "[" + std::to_string(f.index) + "]";
-      else if (i + 1 < stack_.size() || !f.key.empty()) p += (p.empty() ? "" : ".") + f.key;
+      if (f.array)
+        p += "[" + std::to_string(f.index) + "]";
+      else if (i + 1 < stack_.size() || !f.key.empty())
+        p += (p.empty() ? "" : ".") + f.key;
     }
     return p;
   }
@@ -105,9 +134,12 @@ std::size_t jsonNestingDepth(const std::string& text) {
   bool inString = false, escaped = false;
   for (const char c : text) {
     if (inString) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') inString = false;
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        inString = false;
     } else if (c == '"') {
       inString = true;
     } else if (c == '[' || c == '{') {

@@ -73,8 +73,7 @@ bool isGeometryExtension(const std::string& extension);  // lower-case, with the
 // Procedural shapes, centred on the origin, +Y up, counter-clockwise seen from outside.
 geo::TriangleMesh makeBox(glm::vec3 size);
 geo::TriangleMesh makeSphere(float radius, int segments, int rings);
-geo::TriangleMesh makeCylinder(float radius, float height, int segments, bool topCap,
-                               bool bottomCap);
+geo::TriangleMesh makeCylinder(float radius, float height, int segments, bool topCap, bool bottomCap);
 // Open, single-sided, in the XZ plane facing +Y.
 geo::TriangleMesh makeQuad(glm::vec2 size);
 geo::TriangleMesh makeQuad(const glm::vec3 corners[4]);  // corners counter-clockwise from the front
@@ -140,8 +139,8 @@ Image stainedGlassImage(int size);
 
 // Resolves a file reference from a scene document: a path relative to `baseDir` that stays
 // inside it, or "assimp:<path>" under /usr/share/assimp/models. Throws Error(where, ...).
-std::string resolveSceneReference(const std::string& reference, const std::string& baseDir,
-                                  const std::string& where, const std::string& context);
+std::string resolveSceneReference(const std::string& reference, const std::string& baseDir, const std::string& where,
+                                  const std::string& context);
 
 // Why `path` (already percent-decoded) is not a plain relative path inside its folder, or ""
 // if it is: no scheme, not absolute, no "..", no shell metacharacters.

@@ -62,8 +62,8 @@ std::string nameList(const std::vector<std::string>& names) {
 }
 
 // Why `reference` (relative to `folder`) may not be read, or "" with `resolved` set.
-std::string referenceProblem(const std::string& reference, const fs::path& folder,
-                             const std::string& root, std::string& resolved) {
+std::string referenceProblem(const std::string& reference, const fs::path& folder, const std::string& root,
+                             std::string& resolved) {
   if (std::string why = relativePathProblem(reference); !why.empty()) return why;
   resolved = (folder / reference).lexically_normal().string();
   if (std::string why = fileProblem(resolved); !why.empty()) return why + " (" + resolved + ")";
@@ -80,8 +80,7 @@ struct MtlReader {
 
   int texture(const std::string& mtl, const std::string& context, const std::string& reference) {
     std::string resolved;
-    const std::string why =
-        referenceProblem(reference, fs::path(mtl).parent_path(), objFolder, resolved);
+    const std::string why = referenceProblem(reference, fs::path(mtl).parent_path(), objFolder, resolved);
     if (!why.empty()) {
       model.warnings.push_back(mtl + ": " + context + ": map_Kd '" + reference + "' " + why +
                                "; the material has no texture");
@@ -94,8 +93,8 @@ struct MtlReader {
     } catch (const MemoryError&) {
       throw;  // a texture too large for memory stops the run; an unreadable one is dropped
     } catch (const Error& e) {
-      model.warnings.push_back(mtl + ": " + context + ": map_Kd '" + reference +
-                               "' cannot be read (" + e.what() + "); the material has no texture");
+      model.warnings.push_back(mtl + ": " + context + ": map_Kd '" + reference + "' cannot be read (" + e.what() +
+                               "); the material has no texture");
       return -1;
     }
     const int index = int(model.textures.size());
@@ -108,8 +107,7 @@ struct MtlReader {
     std::error_code ec;
     const auto size = fs::file_size(mtl, ec);
     if (ec || size > kMaxMtlBytes) {
-      model.warnings.push_back(mtl + ": " + (ec ? "cannot read: " + ec.message()
-                                                : std::string("larger than 64 MiB")) +
+      model.warnings.push_back(mtl + ": " + (ec ? "cannot read: " + ec.message() : std::string("larger than 64 MiB")) +
                                "; its materials are not read");
       return;
     }
@@ -125,7 +123,7 @@ struct MtlReader {
     // once per file); Ns, the Blinn-Phong exponent, gives GGX alpha = sqrt(2 / (Ns + 2)) (Walter
     // et al. 2007, eq. 33's Beckmann-Phong correspondence), roughness = sqrt(alpha).
     glm::vec3 ks(0.0f);
-    float ns = -1.0f;  // -1: not given (roughness 1)
+    float ns = -1.0f;                   // -1: not given (roughness 1)
     std::vector<std::string> specular;  // materials whose Ks was mapped
     std::string currentName;
     const auto finishMaterial = [&] {
@@ -141,9 +139,8 @@ struct MtlReader {
       if (!hasD) {
         m.opacity = 1.0f - tr;
       } else if (std::abs(m.opacity - (1.0f - tr)) > 1e-6f) {
-        model.warnings.push_back(mtl + ": material '" + currentName + "': d " +
-                                 std::to_string(m.opacity) + " and Tr " + std::to_string(tr) +
-                                 " disagree; d is used");
+        model.warnings.push_back(mtl + ": material '" + currentName + "': d " + std::to_string(m.opacity) + " and Tr " +
+                                 std::to_string(tr) + " disagree; d is used");
       }
       m.alphaMode = m.opacity < 1.0f ? AlphaMode::Blend : AlphaMode::Opaque;
     };
@@ -161,8 +158,7 @@ struct MtlReader {
         ks = glm::vec3(0.0f), ns = -1.0f;
         currentName = rest;
         if (materialByName.count(rest)) {
-          model.warnings.push_back(mtl + ": material '" + rest +
-                                   "' is defined again; the first definition is used");
+          model.warnings.push_back(mtl + ": material '" + rest + "' is defined again; the first definition is used");
           current = -1;
           continue;
         }
@@ -175,8 +171,7 @@ struct MtlReader {
       }
       const std::string context = "material '" + currentName + "'";
       if (current < 0) {
-        if (currentName.empty())
-          model.warnings.push_back(mtl + ": '" + key + "' before any newmtl ignored");
+        if (currentName.empty()) model.warnings.push_back(mtl + ": '" + key + "' before any newmtl ignored");
         continue;
       }
       Material& m = model.materials[std::size_t(current)];
@@ -210,14 +205,13 @@ struct MtlReader {
         // "d -halo 0.5": the halo form (opacity by view angle) is read as plain d, warned.
         float value = 0.0f;
         const bool halo = key == "d" && t.size() == 2 && t[0] == "-halo";
-        if (t.empty() || t.size() > 2 || (t.size() == 2 && !halo) || !parseFloat(t.back(), value) ||
-            value < 0.0f || value > 1.0f) {
+        if (t.empty() || t.size() > 2 || (t.size() == 2 && !halo) || !parseFloat(t.back(), value) || value < 0.0f ||
+            value > 1.0f) {
           model.warnings.push_back(mtl + ": " + context + ": " + key + " '" + rest +
                                    "' is not a number in [0, 1]; ignored");
           continue;
         }
-        if (halo)
-          model.warnings.push_back(mtl + ": " + context + ": d -halo is read as d " + t.back());
+        if (halo) model.warnings.push_back(mtl + ": " + context + ": d -halo is read as d " + t.back());
         if (key == "d") {
           m.opacity = value;
           m.alphaMode = value < 1.0f ? AlphaMode::Blend : AlphaMode::Opaque;
@@ -244,13 +238,17 @@ struct MtlReader {
     }
     finishMaterial();
     if (!specular.empty())
-      model.warnings.push_back(mtl + ": Ks is read as a dielectric specular lobe (F0 0.04, roughness from Ns); "
-                               "its strength and colour are not used, in " + std::to_string(specular.size()) +
-                               " material" + (specular.size() == 1 ? "" : "s") + " (" + nameList(specular) + ")");
+      model.warnings.push_back(mtl +
+                               ": Ks is read as a dielectric specular lobe (F0 0.04, roughness from Ns); "
+                               "its strength and colour are not used, in " +
+                               std::to_string(specular.size()) + " material" + (specular.size() == 1 ? "" : "s") +
+                               " (" + nameList(specular) + ")");
     for (const auto& [key, names] : unused)
-      model.warnings.push_back(mtl + ": '" + key + "' not used (penumbra reads Kd, Ks, Ns, map_Kd, d and "
-                               "Tr), in " + std::to_string(names.size()) + " material" +
-                               (names.size() == 1 ? "" : "s") + " (" + nameList(names) + ")");
+      model.warnings.push_back(mtl + ": '" + key +
+                               "' not used (penumbra reads Kd, Ks, Ns, map_Kd, d and "
+                               "Tr), in " +
+                               std::to_string(names.size()) + " material" + (names.size() == 1 ? "" : "s") + " (" +
+                               nameList(names) + ")");
   }
 };
 
@@ -259,8 +257,7 @@ struct MtlReader {
 // when that file exists.
 std::vector<std::string> libraryNames(const std::string& statement, const fs::path& folder) {
   std::error_code ec;
-  if (statement.find_first_of(" \t") == std::string::npos ||
-      fs::is_regular_file(folder / statement, ec))
+  if (statement.find_first_of(" \t") == std::string::npos || fs::is_regular_file(folder / statement, ec))
     return {statement};
   return tokens(statement);
 }
@@ -276,10 +273,8 @@ Model loadObjModel(const std::string& path, const LoadOptions& options) {
   for (const std::string& statement : obj.libraries) {
     for (const std::string& lib : libraryNames(statement, folder)) {
       std::string resolved;
-      if (const std::string why = referenceProblem(lib, folder, reader.objFolder, resolved);
-          !why.empty()) {
-        model.warnings.push_back(path + ": mtllib '" + lib + "': " + why +
-                                 "; its materials are not read");
+      if (const std::string why = referenceProblem(lib, folder, reader.objFolder, resolved); !why.empty()) {
+        model.warnings.push_back(path + ": mtllib '" + lib + "': " + why + "; its materials are not read");
         continue;
       }
       if (std::find(libraries.begin(), libraries.end(), resolved) != libraries.end()) continue;
@@ -294,16 +289,14 @@ Model loadObjModel(const std::string& path, const LoadOptions& options) {
     sm.report = part.report;
     sm.material = -1;  // the object's material or the default
     if (!part.material.empty()) {
-      if (const auto it = reader.materialByName.find(part.material);
-          it != reader.materialByName.end()) {
+      if (const auto it = reader.materialByName.find(part.material); it != reader.materialByName.end()) {
         sm.material = it->second;
       } else {
-        model.warnings.push_back(
-            path + ": usemtl '" + part.material + "': " +
-            (libraries.empty() ? std::string("no material library was read")
-                               : "no such material in " + nameList(libraries)) +
-            "; its " + std::to_string(sm.report.triangles) +
-            " triangles use the object's or the default material");
+        model.warnings.push_back(path + ": usemtl '" + part.material + "': " +
+                                 (libraries.empty() ? std::string("no material library was read")
+                                                    : "no such material in " + nameList(libraries)) +
+                                 "; its " + std::to_string(sm.report.triangles) +
+                                 " triangles use the object's or the default material");
       }
     }
     if (sm.mesh.triangles.empty()) {
@@ -311,8 +304,7 @@ Model loadObjModel(const std::string& path, const LoadOptions& options) {
       continue;
     }
     // Vertices copied for the silhouette mesh change nothing loaded: counted, not warned.
-    if (sm.report.worthWarning())
-      model.warnings.push_back(sm.name + ": " + sm.report.summary());
+    if (sm.report.worthWarning()) model.warnings.push_back(sm.name + ": " + sm.report.summary());
     model.meshes.push_back(std::move(sm));
   }
   return model;

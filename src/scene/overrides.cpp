@@ -19,8 +19,8 @@ void applyOverrides(Json& doc, const std::vector<std::string>& overrides) {
     // Mitsuba -D style: JSON when it parses ("2", "[1,2]", "true", "\"s\""), a string otherwise;
     // nesting bounded as in files (a 130 KB "[[[...]]]" crashed the messages quoting it).
     if (jsonNestingDepth(text) > kMaxJsonDepth)
-      throw Error("override", "'" + abbreviate(key) + "': the value is nested deeper than " + std::to_string(kMaxJsonDepth) +
-                               " arrays and objects");
+      throw Error("override", "'" + abbreviate(key) + "': the value is nested deeper than " +
+                                  std::to_string(kMaxJsonDepth) + " arrays and objects");
     Json value = Json::parse(text, nullptr, /*allow_exceptions=*/false);
     if (value.is_discarded()) value = text;
 
@@ -35,20 +35,18 @@ void applyOverrides(Json& doc, const std::vector<std::string>& overrides) {
       if (node->is_array()) {
         const bool numeric = part.find_first_not_of("0123456789") == std::string::npos;
         if (!numeric || part.size() > 9) {
-          throw Error("override", "'" + key + "': '" + walked + "' is an array, '" + part +
-                                   "' is not an index");
+          throw Error("override", "'" + key + "': '" + walked + "' is an array, '" + part + "' is not an index");
         }
         const std::size_t i = std::stoul(part);
         if (i >= node->size()) {
-          throw Error("override", "'" + key + "': index " + part + " out of range ('" + walked +
-                                   "' has " + std::to_string(node->size()) + " elements)");
+          throw Error("override", "'" + key + "': index " + part + " out of range ('" + walked + "' has " +
+                                      std::to_string(node->size()) + " elements)");
         }
         node = &(*node)[i];
       } else if (node->is_object()) {
         node = &(*node)[part];
       } else {
-        throw Error("override", "'" + key + "': '" + walked + "' is " + node->type_name() +
-                                 ", not an object or array");
+        throw Error("override", "'" + key + "': '" + walked + "' is " + node->type_name() + ", not an object or array");
       }
       walked += (walked.empty() ? "" : ".") + part;
       if (dot == std::string::npos) break;

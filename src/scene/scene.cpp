@@ -21,10 +21,14 @@ using detail::Json;
 
 float Light::area() const {
   switch (shape) {
-    case LightShape::Rect: return size.x * size.y;
-    case LightShape::Disk: return glm::pi<float>() * size.x * size.x;
-    case LightShape::Sphere: return 4.0f * glm::pi<float>() * size.x * size.x;
-    case LightShape::Point: return 0.0f;
+    case LightShape::Rect:
+      return size.x * size.y;
+    case LightShape::Disk:
+      return glm::pi<float>() * size.x * size.x;
+    case LightShape::Sphere:
+      return 4.0f * glm::pi<float>() * size.x * size.x;
+    case LightShape::Point:
+      return 0.0f;
   }
   return 0.0f;
 }
@@ -32,9 +36,12 @@ float Light::area() const {
 float Light::penumbraHalfSize() const {
   switch (shape) {
     case LightShape::Rect:
-    case LightShape::Disk: return 0.5f * std::sqrt(area());
-    case LightShape::Sphere: return 0.5f * std::sqrt(glm::pi<float>()) * size.x;
-    case LightShape::Point: return 0.0f;
+    case LightShape::Disk:
+      return 0.5f * std::sqrt(area());
+    case LightShape::Sphere:
+      return 0.5f * std::sqrt(glm::pi<float>()) * size.x;
+    case LightShape::Point:
+      return 0.0f;
   }
   return 0.0f;
 }
@@ -140,15 +147,12 @@ geo::TriangleMesh makeBox(glm::vec3 size) {
   for (int i = 0; i < 8; ++i) {
     m.positions.push_back({(i & 1) ? h.x : -h.x, (i & 2) ? h.y : -h.y, (i & 4) ? h.z : -h.z});
   }
-  auto corner = [](glm::ivec3 s) {
-    return std::uint32_t((s.x > 0 ? 1 : 0) | (s.y > 0 ? 2 : 0) | (s.z > 0 ? 4 : 0));
-  };
+  auto corner = [](glm::ivec3 s) { return std::uint32_t((s.x > 0 ? 1 : 0) | (s.y > 0 ? 2 : 0) | (s.z > 0 ? 4 : 0)); };
   // Each face: outward normal n and in-plane axes u, v with u x v = n, so the corner order
   // (-u,-v), (+u,-v), (+u,+v), (-u,+v) is counter-clockwise seen from outside.
   const glm::ivec3 faces[6][3] = {
-      {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
-      {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}}, {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
-      {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}},
+      {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},
+      {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}}, {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {0, 1, 0}, {1, 0, 0}},
   };
   for (const auto& f : faces) {
     const glm::ivec3 n = f[0], u = f[1], v = f[2];
@@ -191,8 +195,7 @@ geo::TriangleMesh makeSphere(float radius, int segments, int rings) {
   return m;
 }
 
-geo::TriangleMesh makeCylinder(float radius, float height, int segments, bool topCap,
-                               bool bottomCap) {
+geo::TriangleMesh makeCylinder(float radius, float height, int segments, bool topCap, bool bottomCap) {
   geo::TriangleMesh m;
   const float pi = glm::pi<float>();
   const float h = 0.5f * height;
@@ -269,13 +272,10 @@ void transformMesh(geo::TriangleMesh& mesh, const glm::mat4& m) {
 
 std::size_t placeMesh(geo::TriangleMesh& mesh, geo::MeshReport& report, const glm::mat4& m) {
   transformMesh(mesh, m);
-  const auto finite = [](const glm::vec3& p) {
-    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-  };
+  const auto finite = [](const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); };
   bool allFinite = true;
   for (const glm::uvec3& t : mesh.triangles)
-    allFinite = allFinite && finite(mesh.positions[t.x]) && finite(mesh.positions[t.y]) &&
-                finite(mesh.positions[t.z]);
+    allFinite = allFinite && finite(mesh.positions[t.x]) && finite(mesh.positions[t.y]) && finite(mesh.positions[t.z]);
   if (allFinite) return 0;  // the common case: the report of the cleaned mesh still holds
   const std::size_t before = report.droppedTotal();
   geo::cleanMesh(mesh, report);
@@ -308,14 +308,12 @@ Light transformLight(const Light& light, const glm::mat4& m) {
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return ext;
 }
 
 bool isGeometryExtension(const std::string& ext) {
-  return ext == ".gltf" || ext == ".glb" || ext == ".obj" || ext == ".ply" || ext == ".off" ||
-         ext == ".stl";
+  return ext == ".gltf" || ext == ".glb" || ext == ".obj" || ext == ".ply" || ext == ".off" || ext == ".stl";
 }
 
 std::string relativePathProblem(const std::string& path) {
@@ -358,8 +356,8 @@ bool isInsideFolder(const std::string& path, const std::string& folder) {
   return true;
 }
 
-std::string resolveSceneReference(const std::string& reference, const std::string& baseDir,
-                                  const std::string& where, const std::string& context) {
+std::string resolveSceneReference(const std::string& reference, const std::string& baseDir, const std::string& where,
+                                  const std::string& context) {
   static const std::string kAssimpPrefix = "assimp:";
   static const std::string kAssimpRoot = "/usr/share/assimp/models";
   std::string root = baseDir.empty() ? "." : baseDir;
@@ -375,14 +373,14 @@ std::string resolveSceneReference(const std::string& reference, const std::strin
     }
   }
   if (std::string why = relativePathProblem(relative); !why.empty()) {
-    throw Error(where, context + ": path '" + reference + "' " + why +
-                           " (paths are relative to the scene file's folder)");
+    throw Error(where,
+                context + ": path '" + reference + "' " + why + " (paths are relative to the scene file's folder)");
   }
   const std::string resolved = (fs::path(root) / relative).lexically_normal().string();
   if (const std::string why = fileProblem(resolved); !why.empty()) {
-    throw Error(where, context + ": '" + reference + "' " +
-                           (why == "no such file" ? "not found (looked for " + resolved + ")"
-                                                  : "(" + resolved + ") " + why));
+    throw Error(where,
+                context + ": '" + reference + "' " +
+                    (why == "no such file" ? "not found (looked for " + resolved + ")" : "(" + resolved + ") " + why));
   }
   if (!isInsideFolder(resolved, root)) {
     throw Error(where, context + ": '" + reference + "' resolves outside " + root);
@@ -404,8 +402,7 @@ Texture readTextureFile(const std::string& path, std::vector<std::string>& warni
     int sanitized = 0;
     t.image = readExr(path, &sanitized);
     if (sanitized > 0)
-      warnings.push_back(path + ": replaced " + std::to_string(sanitized) +
-                         " non-finite texels with 0");
+      warnings.push_back(path + ": replaced " + std::to_string(sanitized) + " non-finite texels with 0");
   } else {
     t.image = readTexture(path, /*srgb=*/true);
   }
@@ -418,8 +415,7 @@ Model loadGeometryFile(const std::string& path, const LoadOptions& options) {
   if (ext == ".gltf" || ext == ".glb") return loadGltf(path, options);
   if (ext == ".obj") return loadObjModel(path, options);
   if (!isGeometryExtension(ext)) {
-    throw Error(path, "unsupported geometry format '" + ext +
-                          "' (expected .gltf, .glb, .obj, .ply, .off or .stl)");
+    throw Error(path, "unsupported geometry format '" + ext + "' (expected .gltf, .glb, .obj, .ply, .off or .stl)");
   }
   Model model;
   SceneMesh sm;
@@ -479,8 +475,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     doc = detail::bareGeometryDocument(fs::path(path).filename().string(), lo, hi);
     doc["name"] = stem;
   } else {
-    throw Error(path, "unsupported scene file '" + ext +
-                          "' (expected .json, .gltf, .glb, .obj, .ply, .off or .stl)");
+    throw Error(path, "unsupported scene file '" + ext + "' (expected .json, .gltf, .glb, .obj, .ply, .off or .stl)");
   }
   detail::applyOverrides(doc, overrides);
   Scene scene = detail::interpretScene(doc, path, folderOf(path), options);

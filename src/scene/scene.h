@@ -19,8 +19,8 @@
 namespace penumbra {
 
 struct Texture {
-  std::string source;      // file it came from, for messages
-  Image image;             // linear RGBA float; empty when loaded without pixels (LoadOptions)
+  std::string source;         // file it came from, for messages
+  Image image;                // linear RGBA float; empty when loaded without pixels (LoadOptions)
   int width = 0, height = 0;  // the sides the file declares, decoded or not
 };
 

@@ -54,10 +54,14 @@ struct Context {
 KeyValue keyValueOf(const Json& v) {
   KeyValue k;
   k.shown = shownJson(v);
-  if (v.is_number_integer()) k.kind = KeyValue::Kind::Integer, k.number = v.get<double>();
-  else if (v.is_number()) k.kind = KeyValue::Kind::Number, k.number = v.get<double>();
-  else if (v.is_boolean()) k.kind = KeyValue::Kind::Boolean, k.boolean = v.get<bool>();
-  else if (v.is_string()) k.kind = KeyValue::Kind::String, k.text = v.get<std::string>();
+  if (v.is_number_integer())
+    k.kind = KeyValue::Kind::Integer, k.number = v.get<double>();
+  else if (v.is_number())
+    k.kind = KeyValue::Kind::Number, k.number = v.get<double>();
+  else if (v.is_boolean())
+    k.kind = KeyValue::Kind::Boolean, k.boolean = v.get<bool>();
+  else if (v.is_string())
+    k.kind = KeyValue::Kind::String, k.text = v.get<std::string>();
   return k;
 }
 
@@ -148,9 +152,7 @@ class Fields {
   std::set<std::string> used_;
 };
 
-bool isFinite(glm::vec3 v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
+bool isFinite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 std::string describe(const std::string& base, int index, const std::string& name) {
   std::string s = base + "[" + std::to_string(index) + "]";
@@ -213,8 +215,7 @@ void readMaterial(Context& ctx, const Json& item, int index) {
   if (glm::any(glm::lessThan(m.baseColor, glm::vec3(0.0f)))) {
     ctx.fail(f.at("baseColor"), "components must be >= 0");
   }
-  if (f.has("texture"))
-    m.baseColorTexture = loadTexture(ctx, f.string("texture", ""), f.at("texture"));
+  if (f.has("texture")) m.baseColorTexture = loadTexture(ctx, f.string("texture", ""), f.at("texture"));
   m.opacity = f.number("opacity", 1.0f);
   if (m.opacity < 0.0f || m.opacity > 1.0f) {
     ctx.fail(f.at("opacity"), "must be in [0, 1], got " + Fields::fmtFloat(m.opacity));
@@ -242,7 +243,12 @@ glm::mat4 rotationDegrees(float degrees, const glm::vec3& axis) {
   const double turns = double(degrees) / 90.0;
   if (turns != std::nearbyint(turns)) return glm::rotate(glm::mat4(1.0f), glm::radians(degrees), axis);
   const int quarter = int(std::fmod(std::fmod(turns, 4.0) + 4.0, 4.0));
-  const float c = quarter == 0 ? 1.0f : quarter == 2 ? -1.0f : 0.0f, s = quarter == 1 ? 1.0f : quarter == 3 ? -1.0f : 0.0f;
+  const float c = quarter == 0   ? 1.0f
+                  : quarter == 2 ? -1.0f
+                                 : 0.0f,
+              s = quarter == 1   ? 1.0f
+                  : quarter == 3 ? -1.0f
+                                 : 0.0f;
   // Rodrigues, as glm::rotate: R = c I + s [a]x + (1 - c) a a^T.
   glm::mat4 r(1.0f);
   for (int j = 0; j < 3; ++j)
@@ -276,12 +282,13 @@ glm::mat4 readTransform(Context& ctx, Fields& f) {
     } else {
       const glm::vec3 deg = f.toVec(*v, f.at("rotate"), 3);
       // Degrees about X, then Y, then Z (R = Rz Ry Rx).
-      rotation = rotationDegrees(deg.z, {0, 0, 1}) * rotationDegrees(deg.y, {0, 1, 0}) * rotationDegrees(deg.x, {1, 0, 0});
+      rotation =
+          rotationDegrees(deg.z, {0, 0, 1}) * rotationDegrees(deg.y, {0, 1, 0}) * rotationDegrees(deg.x, {1, 0, 0});
     }
   }
   const glm::vec3 translate = f.vec3("translate", glm::vec3(0.0f));
-  const glm::mat4 world = glm::translate(glm::mat4(1.0f), translate) * rotation *
-                          glm::scale(glm::mat4(1.0f), scale) * matrix;
+  const glm::mat4 world =
+      glm::translate(glm::mat4(1.0f), translate) * rotation * glm::scale(glm::mat4(1.0f), scale) * matrix;
   const float det = glm::determinant(glm::mat3(world));
   if (!std::isfinite(det) || std::abs(det) < 1e-24f) {
     ctx.fail(f.context(), "the transform is singular (zero scale or degenerate matrix)");
@@ -334,9 +341,10 @@ geo::TriangleMesh readShape(Context& ctx, Fields& f, const std::string& shape) {
   // this process cannot hold is refused before it is built (4096 x 4096 segments: 33.5 M
   // triangles, 5.4 GiB to build and clean).
   auto fits = [&](double triangles, const std::string& what) {
-    checkMemory(ctx.where, f.context() + ": " + shape + " of " + what + " (" +
-                               fmt::format("{:.1f} M triangles", triangles / 1e6) + ")",
-                triangles * kCleanBytesPerTriangle);
+    checkMemory(
+        ctx.where,
+        f.context() + ": " + shape + " of " + what + " (" + fmt::format("{:.1f} M triangles", triangles / 1e6) + ")",
+        triangles * kCleanBytesPerTriangle);
   };
   if (shape == "sphere") {
     const float radius = f.positive("radius", 0.5f);
@@ -351,8 +359,7 @@ geo::TriangleMesh readShape(Context& ctx, Fields& f, const std::string& shape) {
     const int seg = segments(32);
     const std::string caps = f.string("caps", "both");
     if (caps != "both" && caps != "top" && caps != "bottom" && caps != "none") {
-      ctx.fail(f.at("caps"),
-               "expected \"both\", \"top\", \"bottom\" or \"none\", got '" + caps + "'");
+      ctx.fail(f.at("caps"), "expected \"both\", \"top\", \"bottom\" or \"none\", got '" + caps + "'");
     }
     bool top = caps == "both" || caps == "top", bottom = caps == "both" || caps == "bottom";
     if (f.boolean("open_bottom", false)) bottom = false;
@@ -362,8 +369,7 @@ geo::TriangleMesh readShape(Context& ctx, Fields& f, const std::string& shape) {
     const float radius = f.positive("radius", 0.5f);
     return makeDisk(radius, segments(32));
   }
-  ctx.fail(f.at("shape"),
-           "unknown shape '" + shape + "' (expected box, plane, quad, sphere, cylinder or disk)");
+  ctx.fail(f.at("shape"), "unknown shape '" + shape + "' (expected box, plane, quad, sphere, cylinder or disk)");
 }
 
 int withOpacity(Context& ctx, int material, float opacity) {
@@ -387,13 +393,15 @@ const Context::Placed& placeModel(Context& ctx, const std::string& path) {
   for (SceneMesh& m : model->meshes) {
     // The file's own normals: a zero or non-finite one shades its corners with the face's
     // normal (the G-buffer's rule), said once per mesh rather than repaired in silence.
-    const std::size_t bad = std::size_t(std::count_if(m.mesh.normals.begin(), m.mesh.normals.end(), [](const glm::vec3& n) {
-      const float length = glm::length(n);
-      return !(length > 0.0f) || !std::isfinite(length);
-    }));
+    const std::size_t bad =
+        std::size_t(std::count_if(m.mesh.normals.begin(), m.mesh.normals.end(), [](const glm::vec3& n) {
+          const float length = glm::length(n);
+          return !(length > 0.0f) || !std::isfinite(length);
+        }));
     if (bad > 0)
-      ctx.warn(fmt::format("{}: {} of its {} vertex normals are zero or not finite: their corners shade with the face's normal",
-                           m.name, bad, m.mesh.normals.size()));
+      ctx.warn(fmt::format(
+          "{}: {} of its {} vertex normals are zero or not finite: their corners shade with the face's normal", m.name,
+          bad, m.mesh.normals.size()));
     geo::ensureShadingNormals(m.mesh);  // once per file, not per instance
   }
   Context::Placed placed;
@@ -421,8 +429,8 @@ void readObject(Context& ctx, const Json& item, int index) {
       std::string known;
       for (const auto& [k, v] : ctx.materialByName) known += (known.empty() ? "" : ", ") + k;
       ctx.fail(f.at("material"), "unknown material '" + m + "' (" +
-                                     (known.empty() ? "the scene's \"materials\" defines none"
-                                                    : "known: " + known) + ")");
+                                     (known.empty() ? "the scene's \"materials\" defines none" : "known: " + known) +
+                                     ")");
     }
     material = it->second;
   }
@@ -436,24 +444,21 @@ void readObject(Context& ctx, const Json& item, int index) {
   const std::string label = name.empty() ? "objects[" + std::to_string(index) + "]" : name;
 
   std::vector<SceneMesh> placed;
-  if (f.has("file") && f.has("shape"))
-    ctx.fail(f.context(), "give \"file\" or \"shape\", not both");
+  if (f.has("file") && f.has("shape")) ctx.fail(f.context(), "give \"file\" or \"shape\", not both");
   if (f.has("file")) {
-    const std::string path =
-        resolveSceneReference(f.string("file", ""), ctx.baseDir, ctx.where, f.at("file"));
+    const std::string path = resolveSceneReference(f.string("file", ""), ctx.baseDir, ctx.where, f.at("file"));
     const Context::Placed& model = placeModel(ctx, path);
     for (const SceneMesh& source : model.model->meshes) {
       SceneMesh m = source;
       m.name = label + "/" + source.name;
       if (const std::size_t n = placeMesh(m.mesh, m.report, world)) {
-        ctx.warn(ctx.where + ": " + f.context() + ": " + std::to_string(n) + " triangles of " +
-                 source.name + " dropped: the transform takes them beyond float range");
+        ctx.warn(ctx.where + ": " + f.context() + ": " + std::to_string(n) + " triangles of " + source.name +
+                 " dropped: the transform takes them beyond float range");
       }
-      m.material = material >= 0          ? material
-                   : source.material >= 0 ? model.materialBase + source.material
-                                          : 0;
+      m.material = material >= 0 ? material : source.material >= 0 ? model.materialBase + source.material : 0;
       if (m.mesh.triangles.empty())
-        ctx.warn(ctx.where + ": " + f.context() + ": " + source.name + " has no triangle left (every one was dropped: "
+        ctx.warn(ctx.where + ": " + f.context() + ": " + source.name +
+                 " has no triangle left (every one was dropped: "
                  "`penumbra info` counts why)");
       placed.push_back(std::move(m));
     }
@@ -472,8 +477,10 @@ void readObject(Context& ctx, const Json& item, int index) {
     // A size of 1e-45, collinear quad corners, a transform that flattens the shape: triangles
     // without area in float, all dropped; the object would vanish without a word.
     if (m.mesh.triangles.empty())
-      ctx.fail(f.context(), "no triangle of the " + f.string("shape", "") + " has an area in float (its size, corners or "
-                            "transform collapse it): all " + std::to_string(m.report.inputFaces) + " dropped");
+      ctx.fail(f.context(), "no triangle of the " + f.string("shape", "") +
+                                " has an area in float (its size, corners or "
+                                "transform collapse it): all " +
+                                std::to_string(m.report.inputFaces) + " dropped");
     geo::ensureShadingNormals(m.mesh);
     m.material = material >= 0 ? material : 0;
     placed.push_back(std::move(m));
@@ -508,8 +515,7 @@ void readLight(Context& ctx, const Json& item, int index) {
   else if (type == "point")
     light.shape = LightShape::Point;
   else
-    ctx.fail(f.at("type"),
-             "unknown light type '" + type + "' (expected rect, disk, sphere or point)");
+    ctx.fail(f.at("type"), "unknown light type '" + type + "' (expected rect, disk, sphere or point)");
 
   light.position = f.vec3("position", light.position);
   light.color = f.scalarOrVec("color", light.color, 3);
@@ -520,18 +526,15 @@ void readLight(Context& ctx, const Json& item, int index) {
   if (light.intensity < 0.0f) ctx.fail(f.at("intensity"), "must be >= 0");
 
   if (light.shape == LightShape::Rect || light.shape == LightShape::Disk) {
-    if (f.has("normal") && f.has("target"))
-      ctx.fail(f.context(), "give \"normal\" or \"target\", not both");
+    if (f.has("normal") && f.has("target")) ctx.fail(f.context(), "give \"normal\" or \"target\", not both");
     if (f.has("target")) {
-      light.normal = unitOrFail(ctx, f.vec3("target", {}) - light.position,
-                                f.at("target") + " (minus position)");
+      light.normal = unitOrFail(ctx, f.vec3("target", {}) - light.position, f.at("target") + " (minus position)");
     } else {
       light.normal = unitOrFail(ctx, f.vec3("normal", light.normal), f.at("normal"));
     }
   }
   if (light.shape != LightShape::Point) {
-    if (f.has("tangent") && f.has("up"))
-      ctx.fail(f.context(), "give \"tangent\" or \"up\", not both");
+    if (f.has("tangent") && f.has("up")) ctx.fail(f.context(), "give \"tangent\" or \"up\", not both");
     const glm::vec3 n = light.normal;
     glm::vec3 t;
     if (f.has("tangent")) {
@@ -542,15 +545,14 @@ void readLight(Context& ctx, const Json& item, int index) {
       t = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
     }
     t -= glm::dot(t, n) * n;
-    light.tangent = unitOrFail(
-        ctx, t, f.has("up") ? f.at("up") : f.at("tangent") + " (projected onto the light's plane)");
+    light.tangent =
+        unitOrFail(ctx, t, f.has("up") ? f.at("up") : f.at("tangent") + " (projected onto the light's plane)");
   }
 
   if (light.shape == LightShape::Rect) {
     light.size = glm::vec2(f.scalarOrVec("size", glm::vec3(1.0f), 2));
     if (!(light.size.x > 0.0f && light.size.y > 0.0f)) {
-      ctx.fail(f.at("size"), "an area light needs a positive size, got [" +
-                                 Fields::fmtFloat(light.size.x) + ", " +
+      ctx.fail(f.at("size"), "an area light needs a positive size, got [" + Fields::fmtFloat(light.size.x) + ", " +
                                  Fields::fmtFloat(light.size.y) + "]");
     }
   } else if (light.shape != LightShape::Point) {
@@ -562,13 +564,11 @@ void readLight(Context& ctx, const Json& item, int index) {
   }
 
   if (light.shape != LightShape::Point) {
-    if (f.has("texture") && f.has("frames"))
-      ctx.fail(f.context(), "give \"texture\" or \"frames\", not both");
+    if (f.has("texture") && f.has("frames")) ctx.fail(f.context(), "give \"texture\" or \"frames\", not both");
     if (f.has("texture")) {
       light.emissionFrames.push_back(loadTexture(ctx, f.string("texture", ""), f.at("texture")));
     } else if (const Json* frames = f.get("frames")) {
-      if (!frames->is_array() || frames->empty())
-        ctx.fail(f.at("frames"), "expected a list of texture paths");
+      if (!frames->is_array() || frames->empty()) ctx.fail(f.at("frames"), "expected a list of texture paths");
       for (std::size_t i = 0; i < frames->size(); ++i) {
         const std::string context = f.at("frames") + "[" + std::to_string(i) + "]";
         if (!(*frames)[i].is_string()) ctx.fail(context, "expected a path");
@@ -583,7 +583,8 @@ void readLight(Context& ctx, const Json& item, int index) {
   // An emission texture's negative texels (an EXR may hold them) gave visibility layers of -5.
   for (const int t : light.emissionFrames) {
     const Image& image = ctx.scene.textures[std::size_t(t)].image;
-    const std::size_t negative = std::size_t(std::count_if(image.data.begin(), image.data.end(), [](float v) { return v < 0.0f; }));
+    const std::size_t negative =
+        std::size_t(std::count_if(image.data.begin(), image.data.end(), [](float v) { return v < 0.0f; }));
     if (negative > 0)
       ctx.fail(f.at(f.has("texture") ? "texture" : "frames"),
                fmt::format("'{}' has {} negative values (a light cannot emit negative radiance)",
@@ -616,10 +617,11 @@ void readCamera(Context& ctx, const Json& item) {
   const double pixel = 2.0 * std::tan(double(c.fovY) * 3.14159265358979323846 / 360.0) / double(ctx.scene.height);
   const double step = 4.0 * std::ldexp(1.0, -23);
   if (pixel < step)
-    ctx.fail("camera.fov", fmt::format("{:.3g} degrees: a pixel of the {}-row image would span {:.3g} of the distance it "
-                                       "looks at, below the {:.3g} float resolves; at least {:.3g} degrees",
-                                       c.fovY, ctx.scene.height, pixel, step,
-                                       2.0 * std::atan(step * double(ctx.scene.height) / 2.0) * 360.0 / 3.14159265358979323846));
+    ctx.fail("camera.fov",
+             fmt::format("{:.3g} degrees: a pixel of the {}-row image would span {:.3g} of the distance it "
+                         "looks at, below the {:.3g} float resolves; at least {:.3g} degrees",
+                         c.fovY, ctx.scene.height, pixel, step,
+                         2.0 * std::atan(step * double(ctx.scene.height) / 2.0) * 360.0 / 3.14159265358979323846));
   if (!(c.zNear > 0.0f)) ctx.fail("camera.near", "must be positive");
 }
 
@@ -644,22 +646,24 @@ std::string lightExtentProblem(const Light& l) {
   const double centre = std::max({c.x, c.y, c.z});
   const double reach = centre + reachOfSize;
   const double maxReach = std::sqrt(double(std::numeric_limits<float>::max()) / 12.0);
-  const std::string size = l.shape == LightShape::Rect ? fmt::format("size [{:g}, {:g}]", w, h)
-                                                       : fmt::format("radius {:g}", w);
+  const std::string size =
+      l.shape == LightShape::Rect ? fmt::format("size [{:g}, {:g}]", w, h) : fmt::format("radius {:g}", w);
   if (reach > maxReach)
-    return fmt::format("{} is beyond what float can hold: the light reaches {:.3g} from the "
-                       "origin, and squared distances across it overflow float above "
-                       "sqrt(FLT_MAX / 12) = {:.3g}",
-                       size, reach, maxReach);
+    return fmt::format(
+        "{} is beyond what float can hold: the light reaches {:.3g} from the "
+        "origin, and squared distances across it overflow float above "
+        "sqrt(FLT_MAX / 12) = {:.3g}",
+        size, reach, maxReach);
   const float centreF = float(centre);
   const double ulp = double(std::nextafter(centreF, std::numeric_limits<float>::infinity()) - centreF);
   const double area = double(l.area());
   if (halfMin < 4.0 * ulp || !(area >= double(std::numeric_limits<float>::min())))
-    return fmt::format("{} is below what float resolves at the light's position: its samples "
-                       "would collapse onto its centre (half-extent {:.3g}; 4 float spacings at "
-                       "|position| {:.3g} are {:.3g}; area {:.3g}); use a point light or a larger "
-                       "size",
-                       size, halfMin, centre, 4.0 * ulp, area);
+    return fmt::format(
+        "{} is below what float resolves at the light's position: its samples "
+        "would collapse onto its centre (half-extent {:.3g}; 4 float spacings at "
+        "|position| {:.3g} are {:.3g}; area {:.3g}); use a point light or a larger "
+        "size",
+        size, halfMin, centre, 4.0 * ulp, area);
   return {};
 }
 
@@ -681,10 +685,10 @@ Scene interpretScene(const Json& doc, const std::string& where, const std::strin
 
   if (const Json* v = f.get("resolution")) {
     const glm::vec3 r = f.toVec(*v, "resolution", 2);
-    if (r.x != std::floor(r.x) || r.y != std::floor(r.y) || r.x < 1 || r.y < 1 ||
-        r.x > kMaxResolution || r.y > kMaxResolution) {
-      ctx.fail("resolution", "expected two integers in [1, " + std::to_string(kMaxResolution) +
-                                 "], got " + shownJson(*v));
+    if (r.x != std::floor(r.x) || r.y != std::floor(r.y) || r.x < 1 || r.y < 1 || r.x > kMaxResolution ||
+        r.y > kMaxResolution) {
+      ctx.fail("resolution",
+               "expected two integers in [1, " + std::to_string(kMaxResolution) + "], got " + shownJson(*v));
     }
     scene.width = int(r.x);
     scene.height = int(r.y);
@@ -708,8 +712,9 @@ Scene interpretScene(const Json& doc, const std::string& where, const std::strin
     // Bounds near float's range (a huge but finite model) cannot be framed: say so rather than
     // report the computed camera's Inf as if the user had written it.
     if (!isFinite(0.5f * (hi - lo)) || !isFinite(hi - lo) || !isFinite(0.5f * (lo + hi))) {
-      ctx.fail("camera", "the scene's bounds are too large to frame automatically; give a "
-                         "\"camera\"");
+      ctx.fail("camera",
+               "the scene's bounds are too large to frame automatically; give a "
+               "\"camera\"");
     }
     readCamera(ctx, framingCamera(lo, hi));
   }
@@ -723,8 +728,10 @@ Scene interpretScene(const Json& doc, const std::string& where, const std::strin
       farthest = std::max(farthest, glm::length(corner - glm::dvec3(scene.camera.position)));
     }
     if (double(scene.camera.zNear) >= farthest)
-      ctx.fail("camera.near", fmt::format("{} is beyond every object (the farthest point of the scene's bounds is {:.6g} "
-                                          "from the camera): nothing would be drawn", scene.camera.zNear, farthest));
+      ctx.fail("camera.near",
+               fmt::format("{} is beyond every object (the farthest point of the scene's bounds is {:.6g} "
+                           "from the camera): nothing would be drawn",
+                           scene.camera.zNear, farthest));
   }
   f.finish();
 
@@ -735,8 +742,7 @@ Scene interpretScene(const Json& doc, const std::string& where, const std::strin
     const Light& l = scene.lights[i];
     const std::string context = describe("lights", int(i), l.name);
     const bool finite = isFinite(l.position) && isFinite(l.normal) && isFinite(l.tangent) &&
-                        isFinite(glm::vec3(l.size, 0.0f)) && isFinite(l.color) &&
-                        std::isfinite(l.intensity);
+                        isFinite(glm::vec3(l.size, 0.0f)) && isFinite(l.color) && std::isfinite(l.intensity);
     if (!finite) ctx.fail(context, "has a NaN or infinite parameter");
     // glTF lights too (the scene file's own are refused as read): a light cannot emit negative
     // radiance.

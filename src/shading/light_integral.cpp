@@ -54,7 +54,8 @@ bool chord(const glm::dvec3& p, const glm::dvec3& w, const glm::dvec3& c, double
 
 LightIntegrator::LightIntegrator(const Scene& scene, const Light& light, float time, const IntegratorOptions& o)
     : scene_(scene), light_(light), time_(time), o_(o) {
-  if (o.batch < 1 || o.batch > 65536) throw Error("reference-batch", "must be 1..65536, got " + std::to_string(o.batch));
+  if (o.batch < 1 || o.batch > 65536)
+    throw Error("reference-batch", "must be 1..65536, got " + std::to_string(o.batch));
   if (o.minSamples < 1 || o.maxSamples < o.minSamples)
     throw Error("reference-samples", "need 1 <= minimum <= maximum, got " + std::to_string(o.minSamples) + " and " +
                                          std::to_string(o.maxSamples));
@@ -72,10 +73,18 @@ LightIntegrator::LightIntegrator(const Scene& scene, const Light& light, float t
   scale_ = (o.lightColour ? glm::dvec3(light.color) * double(light.intensity) : glm::dvec3(1.0)) *
            (light.shape == LightShape::Sphere ? 3.0 / (4.0 * radius_) : 1.0);
   switch (light.shape) {
-    case LightShape::Rect: density_ = 1.0 / (double(light.size.x) * light.size.y); break;
-    case LightShape::Disk: density_ = 1.0 / (kPi * radius_ * radius_); break;
-    case LightShape::Sphere: density_ = 3.0 / (4.0 * kPi * radius_ * radius_ * radius_); break;
-    case LightShape::Point: density_ = 1.0; break;
+    case LightShape::Rect:
+      density_ = 1.0 / (double(light.size.x) * light.size.y);
+      break;
+    case LightShape::Disk:
+      density_ = 1.0 / (kPi * radius_ * radius_);
+      break;
+    case LightShape::Sphere:
+      density_ = 3.0 / (4.0 * kPi * radius_ * radius_ * radius_);
+      break;
+    case LightShape::Point:
+      density_ = 1.0;
+      break;
   }
 }
 
@@ -122,8 +131,12 @@ glm::dvec3 LightIntegrator::emission(const glm::dvec3& x) const {
   const glm::dvec3 q = x - c_;
   glm::dvec2 uv(0.5);
   switch (light_.shape) {
-    case LightShape::Rect: uv = {glm::dot(q, t_) / light_.size.x + 0.5, glm::dot(q, b_) / light_.size.y + 0.5}; break;
-    case LightShape::Disk: uv = 0.5 + 0.5 * glm::dvec2(glm::dot(q, t_), glm::dot(q, b_)) / radius_; break;
+    case LightShape::Rect:
+      uv = {glm::dot(q, t_) / light_.size.x + 0.5, glm::dot(q, b_) / light_.size.y + 0.5};
+      break;
+    case LightShape::Disk:
+      uv = 0.5 + 0.5 * glm::dvec2(glm::dot(q, t_), glm::dot(q, b_)) / radius_;
+      break;
     case LightShape::Sphere: {
       const double len = glm::length(q);
       const glm::dvec3 d = len > 0.0 ? q / len : n_;
@@ -131,7 +144,8 @@ glm::dvec3 LightIntegrator::emission(const glm::dvec3& x) const {
       uv = {u - std::floor(u), std::acos(std::clamp(glm::dot(d, n_), -1.0, 1.0)) / kPi};
       break;
     }
-    case LightShape::Point: break;
+    case LightShape::Point:
+      break;
   }
   return texture_ ? scale_ * glm::dvec3(emissionAt(*texture_, uv)) : scale_;
 }
@@ -167,7 +181,8 @@ PixelEstimate LightIntegrator::estimate(const SurfacePoint& s, std::uint32_t see
     l = d / std::sqrt(r2);
     const double cosS = std::max(glm::dot(glm::dvec3(s.ns), l), 0.0);
     const double cosL = oneSided ? std::max(-glm::dot(n_, l), 0.0) : 1.0;
-    const glm::vec3 f = shared::penumbraBrdf(s.ns, glm::vec3(v), glm::vec3(l), s.baseColor, s.metallic, s.roughness, s.model);
+    const glm::vec3 f =
+        shared::penumbraBrdf(s.ns, glm::vec3(v), glm::vec3(l), s.baseColor, s.metallic, s.roughness, s.model);
     return glm::dvec3(f) * (cosS * cosL / r2);
   };
 
@@ -257,21 +272,24 @@ Image unshadowedIntegral(const CpuGBuffer& g, const Scene& scene, const Light& l
   };
   Image out(g.width, g.height, 3, 0.0f);
   PassProgress progress("exact unshadowed term", g.height);
-  parallelRows(g.height, 0, [&](int y, std::uint64_t&) {
-    for (int x = 0; x < g.width; ++x) {
-      const std::size_t i = std::size_t(y) * g.width + x;
-      if (!g.valid[i]) continue;
-      SurfacePoint sp;
-      sp.p = g.position[i], sp.ng = g.normal[i], sp.eye = g.camera.value_or(sp.p + sp.ng), sp.origin = sp.p;
-      sp.shaded = true, sp.ns = g.shadingNormal[i], sp.baseColor = g.baseColor[i];
-      sp.metallic = g.material[i].x, sp.roughness = g.material[i].y, sp.model = int(g.material[i].z + 0.5f);
-      // Seeds of their own: not the converged reference's (which seeds by the pixel index), so
-      // that comparing the two measures both estimates, not one.
-      const std::uint32_t seed = shared::penumbraHash(std::uint32_t(i) ^ 0x6a09e667u);
-      const glm::dvec3 r = integrator.estimate(sp, seed, unoccluded).radiance;
-      for (int c = 0; c < 3; ++c) out.at(x, y, c) = float(r[c]);
-    }
-  }, &progress);
+  parallelRows(
+      g.height, 0,
+      [&](int y, std::uint64_t&) {
+        for (int x = 0; x < g.width; ++x) {
+          const std::size_t i = std::size_t(y) * g.width + x;
+          if (!g.valid[i]) continue;
+          SurfacePoint sp;
+          sp.p = g.position[i], sp.ng = g.normal[i], sp.eye = g.camera.value_or(sp.p + sp.ng), sp.origin = sp.p;
+          sp.shaded = true, sp.ns = g.shadingNormal[i], sp.baseColor = g.baseColor[i];
+          sp.metallic = g.material[i].x, sp.roughness = g.material[i].y, sp.model = int(g.material[i].z + 0.5f);
+          // Seeds of their own: not the converged reference's (which seeds by the pixel index), so
+          // that comparing the two measures both estimates, not one.
+          const std::uint32_t seed = shared::penumbraHash(std::uint32_t(i) ^ 0x6a09e667u);
+          const glm::dvec3 r = integrator.estimate(sp, seed, unoccluded).radiance;
+          for (int c = 0; c < 3; ++c) out.at(x, y, c) = float(r[c]);
+        }
+      },
+      &progress);
   return out;
 }
 

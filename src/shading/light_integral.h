@@ -31,10 +31,10 @@
 namespace penumbra::shading {
 
 struct IntegratorOptions {
-  int minSamples = 2048;   // light samples per pixel at least (the visibility buffer's)
-  int batch = 256;         // samples of each strategy per batch
-  int maxSamples = 65536;  // light samples per pixel at most
-  double target = 1e-3;    // the radiance's standard error relative to its largest channel
+  int minSamples = 2048;     // light samples per pixel at least (the visibility buffer's)
+  int batch = 256;           // samples of each strategy per batch
+  int maxSamples = 65536;    // light samples per pixel at most
+  double target = 1e-3;      // the radiance's standard error relative to its largest channel
   bool brdfSampling = true;  // false: light samples only (the old converged reference)
   bool lightColour = true;   // false: the radiance without the light's colour and intensity
 };
@@ -52,8 +52,8 @@ struct SurfacePoint {
 struct PixelEstimate {
   glm::dvec3 visibility{0.0}, visibilityVariance{0.0};  // eq. 2 (light samples) and its mean's variance
   glm::dvec3 radiance{0.0}, radianceVariance{0.0};      // colour * intensity included
-  int samples = 0;       // light samples (and as many BRDF samples)
-  bool capped = false;   // stopped at maxSamples short of the target
+  int samples = 0;                                      // light samples (and as many BRDF samples)
+  bool capped = false;                                  // stopped at maxSamples short of the target
   std::uint64_t rays = 0;
 };
 
@@ -69,8 +69,8 @@ class LightIntegrator {
 
  private:
   struct Hit {
-    glm::dvec3 x;            // the light point
-    double density = 0.0;    // of the BRDF strategy in the light's measure, per unit p(w)
+    glm::dvec3 x;          // the light point
+    double density = 0.0;  // of the BRDF strategy in the light's measure, per unit p(w)
   };
   bool hitLight(const glm::dvec3& p, const glm::dvec3& w, double u, Hit& hit) const;
   double brdfToMeasure(const glm::dvec3& p, const glm::dvec3& x) const;

@@ -71,7 +71,8 @@ LtcTable parseLtcTable(const std::string& bytes, const std::string& name) {
   t.minv.resize(cells);
   t.terms.resize(cells);
   std::memcpy(t.minv.data(), bytes.data() + in.tellg(), cells * sizeof(glm::vec4));
-  std::memcpy(t.terms.data(), bytes.data() + std::size_t(in.tellg()) + cells * sizeof(glm::vec4), cells * sizeof(glm::vec4));
+  std::memcpy(t.terms.data(), bytes.data() + std::size_t(in.tellg()) + cells * sizeof(glm::vec4),
+              cells * sizeof(glm::vec4));
   h.checkChecksum(payloadOf(t));
   for (const auto* v : {&t.minv, &t.terms})
     for (const glm::vec4& x : *v)
@@ -91,8 +92,9 @@ LtcTable readLtcTable(const std::string& path) {
 const LtcTable& builtinLtcTable() {
   static const LtcTable table = [] {
     if (kEmbeddedLtcGgxSize == 0)
-      throw Error("luts/ltc_ggx.lut", "this build has no LTC table (the file was missing at build time); "
-                                      "fit it with the LUT tool (luts/README.md) and rebuild");
+      throw Error("luts/ltc_ggx.lut",
+                  "this build has no LTC table (the file was missing at build time); "
+                  "fit it with the LUT tool (luts/README.md) and rebuild");
     return parseLtcTable(std::string(reinterpret_cast<const char*>(kEmbeddedLtcGgx), kEmbeddedLtcGgxSize),
                          "luts/ltc_ggx.lut (built in)");
   }();

@@ -55,9 +55,9 @@ struct LtcFitOptions {
 };
 
 struct LtcTable {
-  LtcFitOptions fit;               // what made it (threads not stored)
-  std::vector<glm::vec4> minv;     // [t * N + a]
-  std::vector<glm::vec4> terms;    // [t * N + a]: norm, fresnel, relative L1 error, objective
+  LtcFitOptions fit;             // what made it (threads not stored)
+  std::vector<glm::vec4> minv;   // [t * N + a]
+  std::vector<glm::vec4> terms;  // [t * N + a]: norm, fresnel, relative L1 error, objective
   int size() const { return fit.size; }
   bool empty() const { return minv.empty(); }
 };

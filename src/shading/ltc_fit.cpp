@@ -55,8 +55,8 @@ Cell cellOf(int n, int a, int t) {
 
 // The true lobe D V (n.l), n = z.
 double lobe(const Cell& c, const glm::dvec3& l) {
-  return double(shared::penumbraGgxCosine(shared::vec3(0.0f, 0.0f, 1.0f), shared::vec3(c.v), shared::vec3(l),
-                                          float(c.alpha)));
+  return double(
+      shared::penumbraGgxCosine(shared::vec3(0.0f, 0.0f, 1.0f), shared::vec3(c.v), shared::vec3(l), float(c.alpha)));
 }
 
 glm::dvec3 sampleGgx(const Cell& c, double u1, double u2) { return sampleGgxReflection(c.v, c.alpha, u1, u2); }
@@ -239,9 +239,8 @@ void store(LtcTable& table, int a, int t, const Lobe& g, const Cell& c, double f
   glm::dmat3 minv = g.minv / g.minv[1][1];
   table.minv[i] = glm::vec4(float(minv[0][0]), float(minv[0][2]), float(minv[2][0]), float(minv[2][2]));
   // The reported error: L1 relative to norm, of the lobe the renderer integrates (clipped at z = 0).
-  double l1 = misMean(g, c, table.fit.errorSamples, [](double f, double gl, const glm::dvec3& l) {
-    return std::abs(f - (l.z > 0.0 ? gl : 0.0));
-  });
+  double l1 = misMean(g, c, table.fit.errorSamples,
+                      [](double f, double gl, const glm::dvec3& l) { return std::abs(f - (l.z > 0.0 ? gl : 0.0)); });
   table.terms[i] = glm::vec4(float(g.amplitude), float(fresnel), float(g.amplitude > 0.0 ? l1 / g.amplitude : 0.0),
                              float(objectiveValue));
 }
@@ -266,7 +265,8 @@ double ltcCellLobe(const LtcTable& table, int a, int t, const glm::dvec3& l) {
   return double(table.terms[i].x) * (o.z / len / kPi) * std::abs(glm::determinant(minv)) / (len * len * len);
 }
 
-LtcTable fitLtcGgx(const LtcFitOptions& o, const std::vector<int>& columns, const std::function<void(int, int)>& progress) {
+LtcTable fitLtcGgx(const LtcFitOptions& o, const std::vector<int>& columns,
+                   const std::function<void(int, int)>& progress) {
   if (o.size < 2 || o.size > 256) throw Error("ltc fit", "table size must be in 2..256");
   if (o.fitSamples < 1 || o.momentSamples < 1 || o.errorSamples < 1 || o.iterations < 1)
     throw Error("ltc fit", "sample counts and iterations must be positive");

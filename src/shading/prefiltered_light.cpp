@@ -10,8 +10,8 @@ namespace penumbra::shading {
 namespace {
 
 constexpr double kMargin = PENUMBRA_PREFILTER_MARGIN;
-constexpr int kSubsamples = 4;       // a texel's light samples: kSubsamples^2
-constexpr double kFallback = 1e-3;   // weight of the coarser level where a level's own is small
+constexpr int kSubsamples = 4;      // a texel's light samples: kSubsamples^2
+constexpr double kFallback = 1e-3;  // weight of the coarser level where a level's own is small
 
 // The discrete Gaussian of sigma texels, truncated at 4 sigma, summing to 1.
 std::vector<double> gaussian(double sigma) {
@@ -25,15 +25,16 @@ std::vector<double> gaussian(double sigma) {
 
 // One separable pass: out(x, y) = sum_i g(i) in(x - i, y) along x (or y when `columns`), the input
 // being zero outside [lo, hi) along that axis (the light's support).
-std::vector<glm::dvec4> blur(const std::vector<glm::dvec4>& in, int size, const std::vector<double>& g, int lo,
-                             int hi, bool columns) {
+std::vector<glm::dvec4> blur(const std::vector<glm::dvec4>& in, int size, const std::vector<double>& g, int lo, int hi,
+                             bool columns) {
   const int radius = int(g.size() / 2);
   std::vector<glm::dvec4> out(in.size(), glm::dvec4(0.0));
   for (int line = 0; line < size; ++line)
     for (int x = 0; x < size; ++x) {
       glm::dvec4 acc(0.0);
       for (int s = std::max(lo, x - radius); s < std::min(hi, x + radius + 1); ++s)
-        acc += g[std::size_t(x - s + radius)] * in[columns ? std::size_t(s) * size + line : std::size_t(line) * size + s];
+        acc +=
+            g[std::size_t(x - s + radius)] * in[columns ? std::size_t(s) * size + line : std::size_t(line) * size + s];
       out[columns ? std::size_t(x) * size + line : std::size_t(line) * size + x] = acc;
     }
   return out;
@@ -97,10 +98,12 @@ glm::vec4 prefilteredLevel(const PrefilteredLight& chain, glm::vec2 uv, int k) {
   const float x0f = std::floor(fx), y0f = std::floor(fy);
   const float ax = fx - x0f, ay = fy - y0f;
   auto texel = [&](int x, int y) {
-    return chain.texels[(std::size_t(k) * n + std::size_t(std::clamp(y, 0, n - 1))) * n + std::size_t(std::clamp(x, 0, n - 1))];
+    return chain
+        .texels[(std::size_t(k) * n + std::size_t(std::clamp(y, 0, n - 1))) * n + std::size_t(std::clamp(x, 0, n - 1))];
   };
   const int x0 = int(x0f), y0 = int(y0f);
-  return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), ax), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), ax), ay);
+  return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), ax),
+                  glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), ax), ay);
 }
 
 glm::vec3 prefilteredEmission(const PrefilteredLight& chain, glm::vec3 footprint) {

@@ -9,8 +9,9 @@
 // or beyond the light's border averages only what the light emits there (the paper extends the
 // texture into a margin; this is that margin made exact for a Gaussian weight). Where a level's
 // weight is too small (far outside the light at a small sigma) it blends into the next coarser
-// level. A lookup mixes the levels (shading/shaders/shading.h penumbraPrefilterWeight). The chain covers uv in [-m, 1 + m]^2, m = PENUMBRA_PREFILTER_MARGIN; the coarsest level
-// has sigma >= 2 (the whole light's average, nearly, anywhere in the margin).
+// level. A lookup mixes the levels (shading/shaders/shading.h penumbraPrefilterWeight). The chain covers uv in [-m, 1 +
+// m]^2, m = PENUMBRA_PREFILTER_MARGIN; the coarsest level has sigma >= 2 (the whole light's average, nearly, anywhere
+// in the margin).
 #pragma once
 
 #include <vector>
@@ -22,8 +23,8 @@
 namespace penumbra::shading {
 
 struct PrefilteredLight {
-  int size = 0;               // texels a side of every level
-  float sigma0 = 0.0f;        // level 0's sigma in light uv (level k: sigma0 2^k)
+  int size = 0;         // texels a side of every level
+  float sigma0 = 0.0f;  // level 0's sigma in light uv (level k: sigma0 2^k)
   int levels = 0;
   std::vector<glm::vec4> texels;  // [level][row (v)][column (u)]: rgb, and the level's weight on the light
   bool empty() const { return texels.empty(); }

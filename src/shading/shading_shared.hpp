@@ -1,4 +1,5 @@
-// C++ side of shading/shaders/shading.h (the shading math the shaders and the CPU reference share), in namespace penumbra::shared.
+// C++ side of shading/shaders/shading.h (the shading math the shaders and the CPU reference share), in namespace
+// penumbra::shared.
 #pragma once
 #include "shared/shared.hpp"
 

@@ -13,16 +13,16 @@ using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using glm::abs;
+using glm::clamp;
 using glm::cross;
 using glm::dot;
-using glm::length;
-using glm::exp2;
 using glm::exp;
+using glm::exp2;
+using glm::length;
 using glm::max;
 using glm::min;
-using glm::sqrt;
 using glm::normalize;
-using glm::clamp;
+using glm::sqrt;
 #include "shared/shared.h"    // NOLINT: shared with GLSL
 #include "shared/numerics.h"  // NOLINT: shared with GLSL
 }  // namespace penumbra::shared

@@ -73,8 +73,7 @@ std::string makeWorkspace() {
             "{\"buffer\":0,\"byteOffset\":96,\"byteLength\":72}],"
             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":8,\"type\":\"VEC3\"},"
             "{\"bufferView\":1,\"componentType\":5123,\"count\":36,\"type\":\"SCALAR\"}]}");
-  writeFile(dir / "mesh.obj",
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  writeFile(dir / "mesh.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
   Image tex(4, 4, 3, 0.5f);
   tex.at(1, 1, 0) = 2.0f;
   writePng((dir / "tex.png").string(), tex);
@@ -90,9 +89,7 @@ std::string makeWorkspace() {
   return dir.string();
 }
 
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // What a renderer relies on once loadScene has returned. Returns the first violation.
 std::string checkScene(const Scene& s) {
@@ -104,9 +101,8 @@ std::string checkScene(const Scene& s) {
     if (!finite(m.baseColor)) return "material '" + m.name + "': non-finite colour";
   }
   for (const Texture& t : s.textures) {
-    if (t.image.empty() || t.image.data.size() != std::size_t(t.image.width) *
-                                                      std::size_t(t.image.height) *
-                                                      std::size_t(t.image.channels))
+    if (t.image.empty() ||
+        t.image.data.size() != std::size_t(t.image.width) * std::size_t(t.image.height) * std::size_t(t.image.channels))
       return "texture " + t.source + ": empty or inconsistent size";
     for (float v : t.image.data)
       if (!std::isfinite(v)) return "texture " + t.source + ": non-finite texel";
@@ -117,8 +113,7 @@ std::string checkScene(const Scene& s) {
       return "mesh " + sm.name + ": material index out of range";
     if (!m.normals.empty() && m.normals.size() != m.positions.size())
       return "mesh " + sm.name + ": normals do not match positions";
-    if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
-      return "mesh " + sm.name + ": uvs do not match positions";
+    if (!m.uvs.empty() && m.uvs.size() != m.positions.size()) return "mesh " + sm.name + ": uvs do not match positions";
     for (const glm::uvec3& t : m.triangles) {
       for (int k = 0; k < 3; ++k) {
         if (t[k] >= m.positions.size()) return "mesh " + sm.name + ": index out of range";
@@ -137,8 +132,7 @@ std::string checkScene(const Scene& s) {
       if (f < 0 || f >= int(s.textures.size())) return "light '" + l.name + "': bad texture";
   }
   const Camera& c = s.camera;
-  if (!finite(c.position) || !finite(c.target) || !finite(c.up) || !std::isfinite(c.fovY) ||
-      !std::isfinite(c.zNear))
+  if (!finite(c.position) || !finite(c.target) || !finite(c.up) || !std::isfinite(c.fovY) || !std::isfinite(c.zNear))
     return "camera: non-finite parameter";
   if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384) return "resolution";
   glm::vec3 lo, hi;
@@ -150,8 +144,7 @@ std::string checkScene(const Scene& s) {
 }  // namespace
 
 const std::vector<std::string>& formats() {
-  static const std::vector<std::string> kFormats = {"gltf", "glb", "json", "obj", "ply",
-                                                    "off",  "stl", "exr",  "png"};
+  static const std::vector<std::string> kFormats = {"gltf", "glb", "json", "obj", "ply", "off", "stl", "exr", "png"};
   return kFormats;
 }
 
@@ -189,8 +182,7 @@ Verdict loadInput(const std::string& format, const std::uint8_t* data, std::size
     else if (e.where().empty() || v.message.find(dir.string()) == std::string::npos)
       v.problem = "error does not name the file: " + v.message;
   } catch (const std::exception& e) {
-    v.problem = std::string("exception other than penumbra::Error (") + typeid(e).name() +
-                "): " + e.what();
+    v.problem = std::string("exception other than penumbra::Error (") + typeid(e).name() + "): " + e.what();
   } catch (...) {
     v.problem = "unknown exception type";
   }

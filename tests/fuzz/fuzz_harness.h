@@ -30,9 +30,9 @@ const std::vector<std::string>& formats();
 const std::string& workspace();
 
 struct Verdict {
-  bool loaded = false;   // loadScene returned
-  std::string message;   // the penumbra::Error text when rejected
-  std::string problem;   // non-empty: the contract is broken (the fuzzer aborts on it)
+  bool loaded = false;  // loadScene returned
+  std::string message;  // the penumbra::Error text when rejected
+  std::string problem;  // non-empty: the contract is broken (the fuzzer aborts on it)
 };
 
 // Writes `data` as <workspace>/input.<format> and loads it with penumbra::loadScene.

@@ -15,8 +15,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const unsigned char* data, std::size_t size) {
-  const penumbra::fuzz::Verdict v =
-      penumbra::fuzz::loadInput(PENUMBRA_FUZZ_FORMAT, data, size);
+  const penumbra::fuzz::Verdict v = penumbra::fuzz::loadInput(PENUMBRA_FUZZ_FORMAT, data, size);
   if (!v.problem.empty()) {
     std::fprintf(stderr, "penumbra fuzz (%s): %s\n", PENUMBRA_FUZZ_FORMAT, v.problem.c_str());
     std::abort();

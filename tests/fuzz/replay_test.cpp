@@ -45,8 +45,7 @@ Counts replay(const std::string& root, const std::string& format) {
     const std::string bytes((std::istreambuf_iterator<char>(in)), {});
     const long peakBefore = peakResidentKiB();
     const auto start = std::chrono::steady_clock::now();
-    const Verdict v =
-        loadInput(format, reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+    const Verdict v = loadInput(format, reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(v.problem, "") << file;
     // The fuzz rule, measured: the peak resident set may not grow by 1 GiB, nor a load take 10 s
@@ -55,8 +54,8 @@ Counts replay(const std::string& root, const std::string& format) {
     EXPECT_LT(seconds, kMaxInputSeconds) << file;
     (v.loaded ? counts.loaded : counts.rejected)++;
   }
-  std::printf("[          ] %s/%s: %d loaded, %d rejected\n", root.c_str(), format.c_str(),
-              counts.loaded, counts.rejected);
+  std::printf("[          ] %s/%s: %d loaded, %d rejected\n", root.c_str(), format.c_str(), counts.loaded,
+              counts.rejected);
   return counts;
 }
 
@@ -74,9 +73,7 @@ TEST_P(FuzzReplay, CorpusLoadsOrIsRejectedCleanly) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, FuzzReplay, ::testing::ValuesIn(formats()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           return info.param;
-                         });
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 // Every input a fuzzer once broke the loader with, kept after the fix (the reason is in
 // tests/fuzz/regressions/README.md).

@@ -38,8 +38,8 @@ void ComputeWedges::buildSolids(const gl::Program& prog, const gl::Buffer& edgeI
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 
-void ComputeWedges::run(PassRange& pass, GpuPass range, int width, int height, int samplesPerPass, std::size_t edges, const gl::Texture& counters, const gl::Texture& checksum,
-                        const std::string& light) {
+void ComputeWedges::run(PassRange& pass, GpuPass range, int width, int height, int samplesPerPass, std::size_t edges,
+                        const gl::Texture& counters, const gl::Texture& checksum, const std::string& light) {
   constexpr unsigned kTile = PENUMBRA_DCS_TILE, kChunk = kTile * kTile;
   static_assert(kSolidsPerDispatch % kChunk == 0);
   const unsigned tilesX = (unsigned(width) + kTile - 1) / kTile, tilesY = (unsigned(height) + kTile - 1) / kTile;
@@ -65,9 +65,10 @@ void ComputeWedges::run(PassRange& pass, GpuPass range, int width, int height, i
   std::uint32_t done = 0;
   counts_.read(&done, sizeof done);
   if (done != expected)
-    throw Error("dcs", fmt::format("light '{}': the compute path's tiles completed {} of their {} chunks of wedges (the "
-                                   "driver cut a shader loop short): the counts would be wrong",
-                                   light, done, expected));
+    throw Error("dcs",
+                fmt::format("light '{}': the compute path's tiles completed {} of their {} chunks of wedges (the "
+                            "driver cut a shader loop short): the counts would be wrong",
+                            light, done, expected));
 }
 
 }  // namespace penumbra::dcs

@@ -41,8 +41,8 @@ class ComputeWedges {
   // pixel and the pass's samples `range`. The solids go in dispatches of a few chunks (llvmpipe
   // cuts a long shader loop short), the running counts in a buffer between them; every tile's
   // completed chunks are checked and a shortfall is an Error naming `light`.
-  void run(PassRange& pass, GpuPass range, int width, int height, int samplesPerPass,
-                std::size_t edges, const gl::Texture& counters, const gl::Texture& checksum, const std::string& light);
+  void run(PassRange& pass, GpuPass range, int width, int height, int samplesPerPass, std::size_t edges,
+           const gl::Texture& counters, const gl::Texture& checksum, const std::string& light);
   std::size_t memoryBytes() const { return solids_.size() + counts_.size(); }
 
  private:

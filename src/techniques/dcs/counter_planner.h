@@ -55,7 +55,8 @@ class CounterPlanner {
   // Records what a pass with `plan` measured. Returns the plan to render again with when its
   // counts did not fit (a count past its digit, or partial sums past what the plan keeps
   // exact): final counts up to the measured partial bound, so none can pass its digit.
-  std::optional<PackingPlan> record(int light, const PlanLimits& limits, const PackingPlan& plan, const MeasuredCounts& m);
+  std::optional<PackingPlan> record(int light, const PlanLimits& limits, const PackingPlan& plan,
+                                    const MeasuredCounts& m);
   void forget(int light) { measured_.erase(light); }
   void clear() { measured_.clear(); }
 

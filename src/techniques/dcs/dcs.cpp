@@ -10,12 +10,12 @@
 // and every frame checks its own counts after the pass and renders again with a wider base if
 // a digit could have overflowed; (4) per pass over a subset of the
 // samples: counters initialised to D(c) in every digit, then each edge's wedge rasterised
-// (src/techniques/dcs/shaders/dcs_wedge.geom) and its exact per-sample update (src/techniques/dcs/shaders/common_dcs.glsl) blended
-// into float-packed counters (eq. 7-10), positive and negative updates in one pass (exact in
-// float, see src/techniques/dcs/shaders/dcs_wedge.frag); (5) a resolve that decodes the counters into per-sample
-// visibility (count <= 0) and the visibility buffer, and checks each pixel's digit sum against a
-// checksum of all updates; where the pixel's bound fits the base a mismatch cannot be an
-// overflow and is reported (see below), elsewhere it is a carry and the pass is redone.
+// (src/techniques/dcs/shaders/dcs_wedge.geom) and its exact per-sample update
+// (src/techniques/dcs/shaders/common_dcs.glsl) blended into float-packed counters (eq. 7-10), positive and negative
+// updates in one pass (exact in float, see src/techniques/dcs/shaders/dcs_wedge.frag); (5) a resolve that decodes the
+// counters into per-sample visibility (count <= 0) and the visibility buffer, and checks each pixel's digit sum against
+// a checksum of all updates; where the pixel's bound fits the base a mismatch cannot be an overflow and is reported
+// (see below), elsewhere it is a carry and the pass is redone.
 //
 // The compute path (`path=compute`) replaces step (4)'s rasterised wedges: the solids
 // of the selected edges (src/techniques/dcs/shaders/dcs_solids.comp), then per 8x8 tile the edges whose solid
@@ -64,7 +64,7 @@ struct GpuEdge {
   glm::ivec4 meta;  // first incidence, incidence count, closed rule, units of the mesh
 };
 struct GpuIncidence {
-  glm::vec4 third;  // xyz third vertex, w the triangle's orientation along the edge (+-1)
+  glm::vec4 third;   // xyz third vertex, w the triangle's orientation along the edge (+-1)
   glm::vec4 normal;  // the triangle's plane: n (its winding), w = d with n . x + d = 0
 };
 // A triangle the path from the light centre to a sample passes through (src/techniques/dcs/shaders/dcs_init.frag).
@@ -81,9 +81,9 @@ glm::vec4 trianglePlane(const std::vector<glm::vec3>& P, const glm::uvec3& tri) 
 }
 struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
-  std::uint32_t boundMax = 0;  // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
+  std::uint32_t boundMax = 0;                 // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
   std::uint32_t firstNegative = 0xffffffffu;  // y * width + x of the first pixel with a negative count
-  std::uint32_t carryPixels = 0;  // a digit sum off where a count may pass its digit (dcs_resolve.frag)
+  std::uint32_t carryPixels = 0;              // a digit sum off where a count may pass its digit (dcs_resolve.frag)
 };
 
 // Bias of every counter digit (src/techniques/dcs/shaders/dcs_init.frag).
@@ -103,13 +103,19 @@ geo::LightExtent extentOf(const Light& l) {
   e.tangent = l.tangent;
   e.bitangent = l.bitangent();
   switch (l.shape) {
-    case LightShape::Point: e.kind = geo::LightExtent::Kind::Point; break;
+    case LightShape::Point:
+      e.kind = geo::LightExtent::Kind::Point;
+      break;
     case LightShape::Rect:
       e.kind = geo::LightExtent::Kind::Rect;
       e.halfWidth = 0.5 * l.size.x, e.halfHeight = 0.5 * l.size.y;
       break;
-    case LightShape::Disk: e.kind = geo::LightExtent::Kind::Disk, e.radius = l.size.x; break;
-    case LightShape::Sphere: e.kind = geo::LightExtent::Kind::Sphere, e.radius = l.size.x; break;
+    case LightShape::Disk:
+      e.kind = geo::LightExtent::Kind::Disk, e.radius = l.size.x;
+      break;
+    case LightShape::Sphere:
+      e.kind = geo::LightExtent::Kind::Sphere, e.radius = l.size.x;
+      break;
   }
   return e;
 }
@@ -164,18 +170,21 @@ class DepthComplexitySampling final : public Technique {
  public:
   explicit DepthComplexitySampling(const DcsOptions& o) : options_(o) {
     options_.maxTargets = std::clamp(options_.maxTargets, 1, PENUMBRA_DCS_MAX_TARGETS);
-    if (const char* env = std::getenv("PENUMBRA_DCS_PROFILE")) options_.profile = options_.profile || std::string(env) == "1";
+    if (const char* env = std::getenv("PENUMBRA_DCS_PROFILE"))
+      options_.profile = options_.profile || std::string(env) == "1";
   }
 
   void prepare(const Scene& scene, GpuScene& gpu) override {
     std::vector<float> opacities;
-    for (auto& m : scene.meshes) opacities.push_back(std::clamp(scene.materials[std::size_t(m.material)].opacity, 0.0f, 1.0f));
+    for (auto& m : scene.meshes)
+      opacities.push_back(std::clamp(scene.materials[std::size_t(m.material)].opacity, 0.0f, 1.0f));
     coding_ = dcs::planOpacity(opacities, options_.opacity, options_.opacityTolerance);
     if (coding_.mode != PENUMBRA_DCS_OPACITY_OPAQUE) PLOG_INFO("dcs: semi-opaque occluders, {}", coding_.describe());
     for (std::size_t i = 0; i < opacities.size(); ++i)
       if (opacities[i] > 0.0f && coding_.units[i] == 0)
-        PLOG_INFO("dcs: mesh '{}' (opacity {:.3g}) never occludes: within the single-layer tolerance {:.3g} of transparent",
-                  scene.meshes[i].name, opacities[i], options_.opacityTolerance);
+        PLOG_INFO(
+            "dcs: mesh '{}' (opacity {:.3g}) never occludes: within the single-layer tolerance {:.3g} of transparent",
+            scene.meshes[i].name, opacities[i], options_.opacityTolerance);
     volumes_.prepare(scene, gpu, coding_.units, coding_.opaqueUnits);
     // The wedges' growth covers the float epsilon of every evaluation point (shared/numerics.h
     // penumbraSurfaceEpsilon), bounded by that of the scene's largest coordinate: more is only
@@ -209,9 +218,10 @@ class DepthComplexitySampling final : public Technique {
     const double limit = double(gl::limits().maxStorageBlockSize);
     const double bytes = double(std::max(edges.size() * sizeof(GpuEdge), incidences.size() * sizeof(GpuIncidence)));
     if (limit > 0 && bytes > limit)
-      throw Error("dcs", fmt::format("the scene's {} edges need a {:.0f} MiB storage block, more than this GL's {:.0f} MiB "
-                                     "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE)",
-                                     edges.size(), bytes / 1048576.0, limit / 1048576.0));
+      throw Error("dcs",
+                  fmt::format("the scene's {} edges need a {:.0f} MiB storage block, more than this GL's {:.0f} MiB "
+                              "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE)",
+                              edges.size(), bytes / 1048576.0, limit / 1048576.0));
     edgeBuffer_ = gl::Buffer(edges);
     edges_ = std::move(edges);
     edgeRules_.clear();
@@ -234,19 +244,24 @@ class DepthComplexitySampling final : public Technique {
   void renderVisibility(LightPass& lightPass) override {
     LightFrame f;
     f.light = integrationOrigin(lightPass.light);
-    LightPass pass{lightPass.scene, f.light, lightPass.lightIndex, lightPass.samples, lightPass.gpu, lightPass.timer,
-                   lightPass.cpuGBuffer, lightPass.visibility, lightPass.perSample, lightPass.cpuPerSample,
+    LightPass pass{lightPass.scene,         f.light,
+                   lightPass.lightIndex,    lightPass.samples,
+                   lightPass.gpu,           lightPass.timer,
+                   lightPass.cpuGBuffer,    lightPass.visibility,
+                   lightPass.perSample,     lightPass.cpuPerSample,
                    lightPass.cpuVisibility, lightPass.cpuShading};
     // The paper's 2D covered-sample modes need a planar light (and its centre as the origin);
     // others use the exact test.
-    f.coverage = dcs::edgeLutSupports(f.light) && !stats_.shiftedOrigin ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;
+    f.coverage =
+        dcs::edgeLutSupports(f.light) && !stats_.shiftedOrigin ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;
     stats_.coverage = f.coverage;
     f.lut = f.coverage != PENUMBRA_DCS_COVERAGE_EXACT ? &lutFor(pass) : nullptr;
     f.corners = lightCorners(lightPass.light, f.radius);
     f.radius += glm::length(f.light.position - lightPass.light.position);  // around the origin
     // The eye's largest distance to the near-plane window (src/techniques/dcs/shaders/dcs_wedge.geom), with room.
     const Camera& cam = pass.scene.camera;
-    const float tanY = std::tan(glm::radians(0.5f * cam.fovY)), aspect = float(pass.gpu.width()) / float(pass.gpu.height());
+    const float tanY = std::tan(glm::radians(0.5f * cam.fovY)),
+                aspect = float(pass.gpu.width()) / float(pass.gpu.height());
     f.nearRadius = 2.0f * cam.zNear * std::sqrt(1.0f + tanY * tanY * (1.0f + aspect * aspect));
 
     centreCount(pass, f);
@@ -260,36 +275,39 @@ class DepthComplexitySampling final : public Technique {
   std::size_t memoryBytes() const override {
     std::size_t lutBytes = 0;
     for (auto& [hash, l] : luts_) lutBytes += l.bytes();
-    return volumes_.counter().bytes() + checksum_.bytes() + (counters_ ? counters_.bytes() : 0) +
-           edgeBuffer_.size() + incidenceBuffer_.size() + lutBytes + compute_.memoryBytes();
+    return volumes_.counter().bytes() + checksum_.bytes() + (counters_ ? counters_.bytes() : 0) + edgeBuffer_.size() +
+           incidenceBuffer_.size() + lutBytes + compute_.memoryBytes();
   }
 
   std::vector<std::pair<std::string, double>> statistics() const override {
     std::vector<std::pair<std::string, double>> out = {{"edges", double(stats_.edges)},
-            {"edgeChecksum", double(stats_.edgeChecksum)},
-            {"counterBase", double(stats_.plan.counters.base)},
-            {"countersPerChannel", double(stats_.plan.counters.digits)},
-            {"targets", double(stats_.plan.targets)},
-            {"passes", double(stats_.plan.passes)},
-            {"boundMaxCount", double(stats_.boundMaxCount)},
-            {"countsMayCarry", stats_.plan.mayCarry() ? 1.0 : 0.0},
-            {"reruns", double(stats_.reruns)},
-            {"maxCount", double(stats_.maxCount)},
-            {"negativeCountPixels", double(stats_.negativePixels)},
-            {"inconsistentPixels", double(stats_.inconsistentPixels)},
-            {"opacityCoding", double(coding_.mode)},
-            {"coverageMode", double(stats_.coverage)},
-            {"opaqueUnits", double(coding_.opaqueUnits)},
-            {"opacityLayerError", coding_.maxLayerError},
-            {"closedMeshesPerTriangle", double(stats_.perTriangleMeshes)},
-            {"pathCrossings", double(stats_.pathCrossings)},
-            {"shiftedOrigin", stats_.shiftedOrigin ? 1.0 : 0.0},
-            {"coplanarTriangles", double(stats_.coplanarTriangles)}};
+                                                       {"edgeChecksum", double(stats_.edgeChecksum)},
+                                                       {"counterBase", double(stats_.plan.counters.base)},
+                                                       {"countersPerChannel", double(stats_.plan.counters.digits)},
+                                                       {"targets", double(stats_.plan.targets)},
+                                                       {"passes", double(stats_.plan.passes)},
+                                                       {"boundMaxCount", double(stats_.boundMaxCount)},
+                                                       {"countsMayCarry", stats_.plan.mayCarry() ? 1.0 : 0.0},
+                                                       {"reruns", double(stats_.reruns)},
+                                                       {"maxCount", double(stats_.maxCount)},
+                                                       {"negativeCountPixels", double(stats_.negativePixels)},
+                                                       {"inconsistentPixels", double(stats_.inconsistentPixels)},
+                                                       {"opacityCoding", double(coding_.mode)},
+                                                       {"coverageMode", double(stats_.coverage)},
+                                                       {"opaqueUnits", double(coding_.opaqueUnits)},
+                                                       {"opacityLayerError", coding_.maxLayerError},
+                                                       {"closedMeshesPerTriangle", double(stats_.perTriangleMeshes)},
+                                                       {"pathCrossings", double(stats_.pathCrossings)},
+                                                       {"shiftedOrigin", stats_.shiftedOrigin ? 1.0 : 0.0},
+                                                       {"coplanarTriangles", double(stats_.coplanarTriangles)}};
     if (options_.profile) {
       const Profile& p = stats_.profile;
-      for (auto [name, value] : {std::pair{"profileRectangleEdges", p.rectangleEdges}, {"profileWedgeEdges", p.wedgeEdges},
-                                 {"profileFragments", p.fragments}, {"profileInPlane", p.inPlane},
-                                 {"profileWeighted", p.weighted}, {"profileUpdating", p.updating},
+      for (auto [name, value] : {std::pair{"profileRectangleEdges", p.rectangleEdges},
+                                 {"profileWedgeEdges", p.wedgeEdges},
+                                 {"profileFragments", p.fragments},
+                                 {"profileInPlane", p.inPlane},
+                                 {"profileWeighted", p.weighted},
+                                 {"profileUpdating", p.updating},
                                  {"profileCandidates", p.candidates}})
         out.emplace_back(name, double(value));
     }
@@ -306,7 +324,7 @@ class DepthComplexitySampling final : public Technique {
   using GpuLut = dcs::GpuEdgeLut;
   // What one light's passes share (renderVisibility).
   struct LightFrame {
-    Light light;  // the light, its position the integration origin (integrationOrigin)
+    Light light;                                 // the light, its position the integration origin (integrationOrigin)
     int coverage = PENUMBRA_DCS_COVERAGE_EXACT;  // the covered-sample mode for this light
     const GpuLut* lut = nullptr;                 // the edge LUT of the 2D modes
     std::vector<glm::vec3> corners;              // the polytope around the light (lightCorners)
@@ -359,9 +377,10 @@ class DepthComplexitySampling final : public Technique {
         const auto& x = placed.crossings[j];
         const auto& m = volumes_.meshes()[x.mesh];
         gain += m.units;
-        gpuCrossings.push_back({trianglePlane(m.topology.weldedPositions, m.topology.weldedTriangles[x.at.triangle]),
-                                glm::ivec4(x.at.sideC, x.at.sideS,
-                                           placed.rules[x.mesh] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0, m.units)});
+        gpuCrossings.push_back(
+            {trianglePlane(m.topology.weldedPositions, m.topology.weldedTriangles[x.at.triangle]),
+             glm::ivec4(x.at.sideC, x.at.sideS, placed.rules[x.mesh] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0,
+                        m.units)});
       }
       f.maxPathGain = std::max(f.maxPathGain, gain);
     }
@@ -388,9 +407,11 @@ class DepthComplexitySampling final : public Technique {
         const auto& m = meshes[mi];
         if (m.units == 0) continue;  // never occludes
         if (options_.silhouettes == SilhouetteMode::Accurate) {
-          for (auto e : geo::extractAccurateSilhouette(m.topology, extent, f.placed.rules[mi])) edgeIds.push_back(int(edgeOffset_[mi] + e));
+          for (auto e : geo::extractAccurateSilhouette(m.topology, extent, f.placed.rules[mi]))
+            edgeIds.push_back(int(edgeOffset_[mi] + e));
         } else {
-          for (auto& s : geo::extractPointSilhouette(m.topology, glm::dvec3(f.light.position), f.placed.rules[mi]).sides)
+          for (auto& s :
+               geo::extractPointSilhouette(m.topology, glm::dvec3(f.light.position), f.placed.rules[mi]).sides)
             edgeIds.push_back(int(edgeOffset_[mi] + s.edge));
         }
       }
@@ -420,16 +441,16 @@ class DepthComplexitySampling final : public Technique {
                      const dcs::GpuPass& range) {
     if (f.light.shape == LightShape::Point || f.edgeIds.empty()) return;
     setWedgeUniforms(prog, pass, f);
-    compute_.run(passRange_, range, pass.gpu.width(), pass.gpu.height(), plan.samplesPerPass, f.edgeIds.size(), counters_,
-                 checksum_, f.light.name);
+    compute_.run(passRange_, range, pass.gpu.width(), pass.gpu.height(), plan.samplesPerPass, f.edgeIds.size(),
+                 counters_, checksum_, f.light.name);
   }
 
   // The compute path's solids of the selected edges (src/techniques/dcs/shaders/dcs_solids.comp), once a light.
   void buildSolids(LightPass& pass, const LightFrame& f) {
     if (f.light.shape == LightShape::Point || f.edgeIds.empty()) return;
     pass.timer.time("dcs solids", [&] {
-      const gl::Program& prog = programs_.get({"dcs_solids.comp"}, options_.profile ? std::vector<std::string>{"DCS_PROFILE"}
-                                                                                     : std::vector<std::string>{});
+      const gl::Program& prog = programs_.get(
+          {"dcs_solids.comp"}, options_.profile ? std::vector<std::string>{"DCS_PROFILE"} : std::vector<std::string>{});
       setWedgeUniforms(prog, pass, f);
       compute_.buildSolids(prog, f.idBuffer, f.edgeIds.size());
     });
@@ -463,8 +484,8 @@ class DepthComplexitySampling final : public Technique {
   // later frames from the counts its last pass measured). A light's first frame has none: it
   // plans for the widest base that costs no more targets than base 256 and no extra pass (4096
   // at 16 samples, 64 at 64), and its pass measures the counts for the next (and renders again
-  // where they do not fit). Before the counts were planned from earlier frames, a separate bound pass measured them first,
-  // rasterising every wedge once more (54-70% of a counter pass; engine 256^2: 2.5 s).
+  // where they do not fit). Before the counts were planned from earlier frames, a separate bound pass measured them
+  // first, rasterising every wedge once more (54-70% of a counter pass; engine 256^2: 2.5 s).
   dcs::CountBound firstFrameGuess(const LightPass& pass, const LightFrame& f) const {
     auto both = [](int count) { return dcs::CountBound{count, dcs::Reach::any(count)}; };
     if (options_.firstFrameBound >= 0) {
@@ -516,7 +537,8 @@ class DepthComplexitySampling final : public Technique {
         const dcs::PackingPlan needed = planner_.plan(pass.lightIndex, limits, {});
         if (needed.layout > minLayout() || needed.passes > 1)
           PLOG_INFO("dcs: light '{}': counts up to {} (partial counts up to {}, with the bias {}) need {}", light.name,
-                    planner_.measured(pass.lightIndex).final - kBias, status.boundMax - kBias, kBias, needed.describe());
+                    planner_.measured(pass.lightIndex).final - kBias, status.boundMax - kBias, kBias,
+                    needed.describe());
       }
       if (!again) break;
       PENUMBRA_CHECK(attempt < dcs::kLayoutCount, "dcs: no counter base fits");
@@ -578,7 +600,8 @@ class DepthComplexitySampling final : public Technique {
           return;
         }
         beginWedgeState();
-        drawWedges(*progs.wedge, pass, f);  // outer and inner updates together (src/techniques/dcs/shaders/dcs_wedge.frag)
+        drawWedges(*progs.wedge, pass,
+                   f);  // outer and inner updates together (src/techniques/dcs/shaders/dcs_wedge.frag)
         endWedgeState();
       });
       pass.timer.time("resolve", [&] {
@@ -603,7 +626,8 @@ class DepthComplexitySampling final : public Technique {
     }
     statusBuffer_.read(&status, sizeof status);
     if (options_.profile) {
-      const std::vector<std::uint32_t> c = profileImage_.readUint();  // src/techniques/dcs/shaders/common_dcs.glsl prof*
+      const std::vector<std::uint32_t> c =
+          profileImage_.readUint();  // src/techniques/dcs/shaders/common_dcs.glsl prof*
       stats_.profile = {c[0], c[1], c[2], c[3], c[4], c[5], c[6]};
     }
     return status;
@@ -629,19 +653,21 @@ class DepthComplexitySampling final : public Technique {
     // before it borrowed: exact dcs has none on any scene (render_dcs_test), so one is an error too.
     const bool exact = exactCounts(f);
     if ((status.overflowPixels > 0 || status.negativePixels > 0) && exact)
-      throw Error("dcs", fmt::format("light '{}': {} pixels with inconsistent counts (a counter left its digit) and {} "
-                                     "with negative counts{}: the shadow-volume count and the wedges disagree, the image "
-                                     "would be wrong there",
-                                     light.name, status.overflowPixels, status.negativePixels,
-                                     status.negativePixels == 0 ? std::string()
-                                                                : fmt::format(" (the first at pixel {}, {})",
-                                                                              status.firstNegative % std::uint32_t(pass.gpu.width()),
-                                                                              status.firstNegative / std::uint32_t(pass.gpu.width()))));
+      throw Error("dcs",
+                  fmt::format("light '{}': {} pixels with inconsistent counts (a counter left its digit) and {} "
+                              "with negative counts{}: the shadow-volume count and the wedges disagree, the image "
+                              "would be wrong there",
+                              light.name, status.overflowPixels, status.negativePixels,
+                              status.negativePixels == 0
+                                  ? std::string()
+                                  : fmt::format(" (the first at pixel {}, {})",
+                                                status.firstNegative % std::uint32_t(pass.gpu.width()),
+                                                status.firstNegative / std::uint32_t(pass.gpu.width()))));
     if (status.overflowPixels > pixels / 1000)
       PLOG_WARN("dcs: {} pixels with inconsistent counts (shadow-volume count vs wedges at a volume side)",
                 status.overflowPixels);
-    PLOG_DEBUG("dcs: {} edges, counts up to {} (partial {}), {}, {} inconsistent pixels", stats_.edges,
-               stats_.maxCount, stats_.boundMaxCount, plan.describe(), status.overflowPixels);
+    PLOG_DEBUG("dcs: {} edges, counts up to {} (partial {}), {}, {} inconsistent pixels", stats_.edges, stats_.maxCount,
+               stats_.boundMaxCount, plan.describe(), status.overflowPixels);
   }
 
   // A light whose counts (its depth complexity times the units of a crossing) pass what a float
@@ -662,12 +688,12 @@ class DepthComplexitySampling final : public Technique {
     std::uint64_t edgeChecksum = 0;  // order-free digest of the edge set (CPU/GPU path test)
     dcs::PackingPlan plan;
     std::uint32_t maxCount = 0, boundMaxCount = 0, negativePixels = 0, inconsistentPixels = 0;
-    std::uint32_t reruns = 0;  // counter passes run again because the previous frame's bound failed
+    std::uint32_t reruns = 0;                    // counter passes run again because the previous frame's bound failed
     int coverage = PENUMBRA_DCS_COVERAGE_EXACT;  // the covered-sample mode of the last light
-    std::size_t perTriangleMeshes = 0;  // closed meshes the light touches or enters (counted per triangle)
-    std::size_t pathCrossings = 0;      // (sample, triangle) pairs: a centre-to-sample path through a triangle
-    std::size_t coplanarTriangles = 0;  // triangles in the light's plane (Placement)
-    bool shiftedOrigin = false;         // the light centre lies on a mesh edge or vertex: integrated from next to it
+    std::size_t perTriangleMeshes = 0;           // closed meshes the light touches or enters (counted per triangle)
+    std::size_t pathCrossings = 0;               // (sample, triangle) pairs: a centre-to-sample path through a triangle
+    std::size_t coplanarTriangles = 0;           // triangles in the light's plane (Placement)
+    bool shiftedOrigin = false;  // the light centre lies on a mesh edge or vertex: integrated from next to it
   };
 
   // A point of the light 1% of its size from the centre (well-conditioned volume sides through
@@ -695,14 +721,16 @@ class DepthComplexitySampling final : public Technique {
     const auto& meshes = volumes_.meshes();
     for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
       std::size_t end = mi + 1 < meshes.size() ? edgeOffset_[mi + 1] : edges_.size();
-      for (std::size_t e = edgeOffset_[mi]; e < end; ++e) edges_[e].meta.z = rules[mi] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0;
+      for (std::size_t e = edgeOffset_[mi]; e < end; ++e)
+        edges_[e].meta.z = rules[mi] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0;
     }
     edgeBuffer_.write(edges_.data(), edges_.size() * sizeof(GpuEdge));
     edgeRules_ = rules;
   }
 
   Programs programsFor(const dcs::PackingPlan& plan, int coverage) {
-    std::vector<std::string> defs = {"DCS_BIAS " + std::to_string(kBias), "DCS_TARGETS " + std::to_string(plan.targets),
+    std::vector<std::string> defs = {"DCS_BIAS " + std::to_string(kBias),
+                                     "DCS_TARGETS " + std::to_string(plan.targets),
                                      "DIGITS " + std::to_string(plan.counters.digits),
                                      "DCS_BASE " + std::to_string(plan.counters.base),
                                      "DCS_OPACITY " + std::to_string(coding_.mode),
@@ -766,15 +794,15 @@ class DepthComplexitySampling final : public Technique {
   gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_;
   dcs::PassRange passRange_;  // the pass's sample range (src/techniques/dcs/shaders/common_dcs_pass.glsl)
   gl::Texture profileImage_;
-  std::vector<GpuEdge> edges_;             // edgeBuffer_'s contents
-  std::vector<geo::VolumeRule> edgeRules_;  // the rule per mesh edgeBuffer_ holds
+  std::vector<GpuEdge> edges_;               // edgeBuffer_'s contents
+  std::vector<geo::VolumeRule> edgeRules_;   // the rule per mesh edgeBuffer_ holds
   gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (src/techniques/dcs/shaders/dcs_init.frag)
-  dcs::ComputeWedges compute_;  // the compute path's solids and counts (path=compute)
+  dcs::ComputeWedges compute_;               // the compute path's solids and counts (path=compute)
   gl::Texture checksum_, counters_;
   gl::Framebuffer counterFbo_;
-  gl::ProgramCache programs_;  // by shaders and defines (counter layout, coverage, opacity coding)
+  gl::ProgramCache programs_;             // by shaders and defines (counter layout, coverage, opacity coding)
   std::map<std::uint64_t, GpuLut> luts_;  // by sample-pattern hash
-  dcs::CounterPlanner planner_;  // each light's measured counts, the next frame's plan
+  dcs::CounterPlanner planner_;           // each light's measured counts, the next frame's plan
   gl::VertexArray emptyVao_;
   Stats stats_;
 };

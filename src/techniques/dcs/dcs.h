@@ -16,8 +16,8 @@ enum class SilhouetteMode { Standard, Accurate };
 
 struct DcsOptions {
   SilhouetteMode silhouettes = SilhouetteMode::Accurate;
-  int maxTargets = 4;  // packed RGBA32F counter targets per pass (paper: 4; up to 7 here)
-  std::uint32_t minBase = 8;  // narrowest counter base allowed (dcs::kLayouts)
+  int maxTargets = 4;           // packed RGBA32F counter targets per pass (paper: 4; up to 7 here)
+  std::uint32_t minBase = 8;    // narrowest counter base allowed (dcs::kLayouts)
   bool gpuSilhouettes = false;  // accurate silhouettes by a compute shader instead of the CPU
   // The counter pass's wedges: rasterised (their solids' front faces, src/techniques/dcs/shaders/dcs_wedge.geom) or
   // binned into screen tiles by a compute shader and evaluated per pixel (src/techniques/dcs/shaders/dcs_wedge.comp).

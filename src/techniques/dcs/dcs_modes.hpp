@@ -1,4 +1,5 @@
-// C++ side of techniques/dcs/shaders/dcs_modes.h (dcs's modes and a counter's transmittance), in namespace penumbra::shared.
+// C++ side of techniques/dcs/shaders/dcs_modes.h (dcs's modes and a counter's transmittance), in namespace
+// penumbra::shared.
 #pragma once
 #include "shared/shared.hpp"
 

@@ -32,18 +32,26 @@ double angleOf(double x, double y) {
 // The direction of cube-map texel (s, t) of `face` (OpenGL 4.5 table 8.19 inverted, |ma| = 1).
 glm::dvec3 cubeDirection(int face, double sc, double tc) {
   switch (face) {
-    case 0: return {1.0, -tc, -sc};
-    case 1: return {-1.0, -tc, sc};
-    case 2: return {sc, 1.0, tc};
-    case 3: return {sc, -1.0, -tc};
-    case 4: return {sc, -tc, 1.0};
-    default: return {-sc, -tc, -1.0};
+    case 0:
+      return {1.0, -tc, -sc};
+    case 1:
+      return {-1.0, -tc, sc};
+    case 2:
+      return {sc, 1.0, tc};
+    case 3:
+      return {sc, -1.0, -tc};
+    case 4:
+      return {sc, -tc, 1.0};
+    default:
+      return {-sc, -tc, -1.0};
   }
 }
 
 // The payload in file order: the sector table, the line table, the packed positions.
 std::vector<std::pair<const void*, std::size_t>> payloadOf(const EdgeLut& l) {
-  return {{l.sector.data(), l.sector.size() * 4}, {l.line.data(), l.line.size() * 4}, {l.packed.data(), l.packed.size() * 4}};
+  return {{l.sector.data(), l.sector.size() * 4},
+          {l.line.data(), l.line.size() * 4},
+          {l.packed.data(), l.packed.size() * 4}};
 }
 
 }  // namespace
@@ -61,7 +69,8 @@ Light unitLight(LightShape shape) {
 }
 
 std::vector<glm::vec2> normalisedSamples(const LightSampleSet& s) {
-  PENUMBRA_CHECK(s.shape == LightShape::Rect || s.shape == LightShape::Disk, "normalisedSamples: rect or disk sets only");
+  PENUMBRA_CHECK(s.shape == LightShape::Rect || s.shape == LightShape::Disk,
+                 "normalisedSamples: rect or disk sets only");
   std::vector<glm::vec2> out;
   out.reserve(s.uv.size());
   for (const glm::vec2& uv : s.uv) out.push_back(2.0f * uv - 1.0f);
@@ -84,7 +93,8 @@ std::uint64_t patternHash(const std::vector<glm::vec2>& normalised, int samples,
 
 EdgeLut buildEdgeLut(const std::vector<glm::vec2>& normalised, int samples, int sets, const EdgeLutSize& size) {
   PENUMBRA_CHECK(samples >= 1 && samples <= 128 && sets >= 1, "buildEdgeLut: 1..128 samples, >= 1 set");
-  PENUMBRA_CHECK(normalised.size() == std::size_t(samples) * std::size_t(sets), "buildEdgeLut: positions != samples x sets");
+  PENUMBRA_CHECK(normalised.size() == std::size_t(samples) * std::size_t(sets),
+                 "buildEdgeLut: positions != samples x sets");
   PENUMBRA_CHECK(size.cube >= 1 && size.line >= 2 && size.line % 2 == 0, "buildEdgeLut: bad table size");
   EdgeLut l;
   l.samples = samples, l.sets = sets, l.size = size;
@@ -106,7 +116,8 @@ EdgeLut buildEdgeLut(const std::vector<glm::vec2>& normalised, int samples, int 
     for (int face = 0; face < 6; ++face)
       for (std::size_t y = 0; y < C; ++y)
         for (std::size_t x = 0; x < C; ++x) {
-          glm::dvec3 d = cubeDirection(face, 2.0 * (double(x) + 0.5) / double(C) - 1.0, 2.0 * (double(y) + 0.5) / double(C) - 1.0);
+          glm::dvec3 d =
+              cubeDirection(face, 2.0 * (double(x) + 0.5) / double(C) - 1.0, 2.0 * (double(y) + 0.5) / double(C) - 1.0);
           double limit = angleOf(d.x, d.y);
           std::uint32_t* field = &l.sector[(((std::size_t(set) * 6 + std::size_t(face)) * C + y) * C + x) * W];
           for (int k = 0; k < samples; ++k)
@@ -115,7 +126,8 @@ EdgeLut buildEdgeLut(const std::vector<glm::vec2>& normalised, int samples, int 
     const double R = l.extent;
     for (std::size_t y = 0; y < L; ++y)
       for (std::size_t x = 0; x < L; ++x) {
-        glm::dvec2 foot((2.0 * (double(x) + 0.5) / double(L) - 1.0) * R, (2.0 * (double(y) + 0.5) / double(L) - 1.0) * R);
+        glm::dvec2 foot((2.0 * (double(x) + 0.5) / double(L) - 1.0) * R,
+                        (2.0 * (double(y) + 0.5) / double(L) - 1.0) * R);
         std::uint32_t* field = &l.line[((std::size_t(set) * L + y) * L + x) * W];
         // The four texels around c: a line through (or next to) the centre; the sector decides.
         bool centre = std::abs(foot.x) < R / double(L) * 1.5 && std::abs(foot.y) < R / double(L) * 1.5;
@@ -124,7 +136,9 @@ EdgeLut buildEdgeLut(const std::vector<glm::vec2>& normalised, int samples, int 
           if (centre || glm::dot(glm::dvec2(pos[k]), foot) > ff) setBit(field, k);
       }
     for (int k = 0; k < samples; ++k) {
-      auto q = [](float v) { return std::uint32_t(std::clamp(std::lround((double(v) + 1.0) * 0.5 * 255.0), 0L, 255L)); };
+      auto q = [](float v) {
+        return std::uint32_t(std::clamp(std::lround((double(v) + 1.0) * 0.5 * 255.0), 0L, 255L));
+      };
       std::uint32_t word = q(pos[k].x) | (q(pos[k].y) << 8);
       l.packed[std::size_t(set) * std::size_t(packedWords(samples)) + std::size_t(k / 2)] |= word << (16 * (k % 2));
     }
@@ -133,7 +147,8 @@ EdgeLut buildEdgeLut(const std::vector<glm::vec2>& normalised, int samples, int 
 }
 
 glm::vec2 unpackPosition(const EdgeLut& l, int set, int k) {
-  std::uint32_t word = l.packed[std::size_t(set) * std::size_t(packedWords(l.samples)) + std::size_t(k / 2)] >> (16 * (k % 2));
+  std::uint32_t word =
+      l.packed[std::size_t(set) * std::size_t(packedWords(l.samples)) + std::size_t(k / 2)] >> (16 * (k % 2));
   return {float(word & 255u) / 255.0f * 2.0f - 1.0f, float((word >> 8) & 255u) / 255.0f * 2.0f - 1.0f};
 }
 
@@ -146,10 +161,13 @@ std::string edgeLutFileName(const LightSampleSet& s) {
 }
 
 void writeEdgeLut(const std::string& path, const EdgeLut& l) {
-  const std::string covered = tableHeaderLines(
-      kMagic, {{"samples", std::to_string(l.samples)}, {"sets", std::to_string(l.sets)}, {"words", std::to_string(l.words)},
-               {"cube", std::to_string(l.size.cube)}, {"line", std::to_string(l.size.line)},
-               {"extent", fmt::format("{:.9g}", l.extent)}, {"pattern", hex64(l.pattern)}});
+  const std::string covered = tableHeaderLines(kMagic, {{"samples", std::to_string(l.samples)},
+                                                        {"sets", std::to_string(l.sets)},
+                                                        {"words", std::to_string(l.words)},
+                                                        {"cube", std::to_string(l.size.cube)},
+                                                        {"line", std::to_string(l.size.line)},
+                                                        {"extent", fmt::format("{:.9g}", l.extent)},
+                                                        {"pattern", hex64(l.pattern)}});
   writeAtomically(path, [&](const std::string& temporary) {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) throw Error(path, std::string("cannot write: ") + std::strerror(errno));
@@ -165,7 +183,8 @@ void writeEdgeLut(const std::string& path, const EdgeLut& l) {
 EdgeLut readEdgeLut(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path, std::string("cannot open: ") + std::strerror(errno));
-  const TableHeader h = readTableHeader(in, path, kMagic, {"samples", "sets", "words", "cube", "line", "extent", "pattern"});
+  const TableHeader h =
+      readTableHeader(in, path, kMagic, {"samples", "sets", "words", "cube", "line", "extent", "pattern"});
   EdgeLut l;
   l.samples = h.get<int>("samples");
   l.sets = h.get<int>("sets");
@@ -194,7 +213,8 @@ EdgeLut readEdgeLut(const std::string& path) {
   l.sector.resize(S * 6 * C * C * W);
   l.line.resize(S * L * L * W);
   l.packed.resize(S * std::size_t(packedWords(l.samples)));
-  for (auto* v : {&l.sector, &l.line, &l.packed}) in.read(reinterpret_cast<char*>(v->data()), std::streamsize(v->size() * 4));
+  for (auto* v : {&l.sector, &l.line, &l.packed})
+    in.read(reinterpret_cast<char*>(v->data()), std::streamsize(v->size() * 4));
   if (!in) throw Error(path, "truncated payload");
   h.checkChecksum(payloadOf(l));
   return l;

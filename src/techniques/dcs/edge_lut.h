@@ -20,8 +20,8 @@
 // Packed positions (7.1): each sample's normalised position quantised to 8 bits per coordinate,
 // two samples per 32-bit word, the input of the `naive` mode.
 //
-// File format (luts/*.lut; the header is core/table_file.h's, which every table file shares): a text header of `key value` lines, then the tables as
-// little-endian uint32 words:
+// File format (luts/*.lut; the header is core/table_file.h's, which every table file shares): a text header of `key
+// value` lines, then the tables as little-endian uint32 words:
 //   penumbra-edge-lut 2
 //   samples N / sets S / words W (ceil(N / 32)) / cube C / line L / extent R (%.9g)
 //   pattern <16 hex digits>   FNV-1a 64 of N, S and the normalised positions' float bits

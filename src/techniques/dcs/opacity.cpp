@@ -19,9 +19,12 @@ template <class UnitsOf>
 std::vector<int> unitsFor(const std::vector<float>& opacities, int opaqueUnits, double tolerance, UnitsOf unitsOf) {
   std::vector<int> u;
   for (float a : opacities) {
-    if (a <= 0.0f) u.push_back(0);
-    else if (a >= 1.0f) u.push_back(opaqueUnits);
-    else u.push_back(std::clamp(unitsOf(double(a)), double(a) <= tolerance ? 0 : 1, opaqueUnits));
+    if (a <= 0.0f)
+      u.push_back(0);
+    else if (a >= 1.0f)
+      u.push_back(opaqueUnits);
+    else
+      u.push_back(std::clamp(unitsOf(double(a)), double(a) <= tolerance ? 0 : 1, opaqueUnits));
   }
   return u;
 }
@@ -46,7 +49,8 @@ std::string OpacityCoding::describe() const {
     case PENUMBRA_DCS_OPACITY_PRODUCT:
       return fmt::format("product coding: a unit is -ln T = {:.4g}, opaque = {} units, worst single-layer error {:.2g}",
                          unitLog, opaqueUnits, maxLayerError);
-    default: return "opaque occluders: one unit each";
+    default:
+      return "opaque occluders: one unit each";
   }
 }
 

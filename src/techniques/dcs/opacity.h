@@ -28,11 +28,11 @@ enum class OpacityMode { Sum, Product };
 inline constexpr int kMaxOpaqueUnits = 1 << 20;
 
 struct OpacityCoding {
-  int mode = 0;             // PENUMBRA_DCS_OPACITY_* (shaders/dcs_modes.h)
-  int opaqueUnits = 1;      // Q (sum) or U (product): the units of an opaque surface
-  float unitLog = 0.0f;     // product: delta, -ln of the transmittance of one unit
-  std::vector<int> units;   // per input opacity: the units one crossing adds (0: no occluder)
-  double maxLayerError = 0.0;  // worst |T(units) - (1 - opacity)| over the inputs
+  int mode = 0;                  // PENUMBRA_DCS_OPACITY_* (shaders/dcs_modes.h)
+  int opaqueUnits = 1;           // Q (sum) or U (product): the units of an opaque surface
+  float unitLog = 0.0f;          // product: delta, -ln of the transmittance of one unit
+  std::vector<int> units;        // per input opacity: the units one crossing adds (0: no occluder)
+  double maxLayerError = 0.0;    // worst |T(units) - (1 - opacity)| over the inputs
   std::string describe() const;  // "product coding: delta 0.0347, opaque = 200 units, ..."
 };
 

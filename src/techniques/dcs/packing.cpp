@@ -65,7 +65,8 @@ std::int64_t Reach::forPasses(int samples, int samplesPerPass) const {
   return best;
 }
 
-PackingPlan planPacking(int samples, int maxCount, int maxTargets, int minLayout, const Reach& reach, bool finalCounts) {
+PackingPlan planPacking(int samples, int maxCount, int maxTargets, int minLayout, const Reach& reach,
+                        bool finalCounts) {
   PENUMBRA_CHECK(samples >= 1 && maxTargets >= 1, "planPacking arguments");
   auto make = [&](int layout, int digits) {
     PackingPlan p;
@@ -96,7 +97,8 @@ PackingPlan planPacking(int samples, int maxCount, int maxTargets, int minLayout
 
 PackingPlan planPacking(int samples, int maxCount, int maxTargets, int minLayout, std::int64_t reach) {
   return reach < 0 ? planPacking(samples, maxCount, maxTargets, minLayout, Reach::any(maxCount), false)
-                   : planPacking(samples, maxCount, maxTargets, minLayout, Reach::any(std::max<std::int64_t>(reach, maxCount)), true);
+                   : planPacking(samples, maxCount, maxTargets, minLayout,
+                                 Reach::any(std::max<std::int64_t>(reach, maxCount)), true);
 }
 
 PackingPlan widestPlanAtTheCostOf(int samples, int maxCount, int maxTargets, int minLayout) {

@@ -20,7 +20,9 @@ TechniqueInfo dcsRow(std::string name, std::string description, SilhouetteMode s
 std::vector<TechniqueInfo> dcsRows() {
   using dcs::OpacityMode;
   return {
-      dcsRow("dcs", "depth complexity sampling: per-sample occluder counts, accurate silhouettes (exact; semi-opaque layers multiply)",
+      dcsRow("dcs",
+             "depth complexity sampling: per-sample occluder counts, accurate silhouettes (exact; semi-opaque layers "
+             "multiply)",
              SilhouetteMode::Accurate, OpacityMode::Product, PENUMBRA_DCS_COVERAGE_EXACT),
       dcsRow("dcs-standard", "depth complexity sampling with standard silhouettes (from the light centre)",
              SilhouetteMode::Standard, OpacityMode::Product, PENUMBRA_DCS_COVERAGE_EXACT),

@@ -101,13 +101,13 @@ class RaytraceDenoised final : public Technique {
     const LightSampleSet& set = pass.samples;
     const int n = set.count, spp = std::min(o_.spp, n);
     if (spp < o_.spp && !warned_) {
-      PLOG_WARN("raytrace-denoised: spp {} exceeds light '{}''s {} samples: {} rays a pixel", o_.spp, pass.light.name, n, spp);
+      PLOG_WARN("raytrace-denoised: spp {} exceeds light '{}''s {} samples: {} rays a pixel", o_.spp, pass.light.name,
+                n, spp);
       warned_ = true;
     }
     History& h = histories_[pass.lightIndex];
-    SparseResult r = pass.timer.time("trace", [&] {
-      return reference_->sparseSamples(g, set, spp, h.frame * std::uint32_t(spp));
-    });
+    SparseResult r =
+        pass.timer.time("trace", [&] { return reference_->sparseSamples(g, set, spp, h.frame * std::uint32_t(spp)); });
     Image visibility = pass.timer.time("denoise", [&] { return denoise(pass, g, r, h, n, spp); });
     ++h.frame;
     pass.timer.harness("upload", [&] { pass.visibility.upload(visibility.data.data(), 3); });
@@ -115,8 +115,11 @@ class RaytraceDenoised final : public Technique {
   }
 
   std::vector<std::pair<std::string, double>> statistics() const override {
-    return {{"spp", double(o_.spp)}, {"temporal", o_.temporal ? 1.0 : 0.0}, {"mean radius", meanRadius_},
-            {"mean history", meanHistory_}, {"rays", reference_ ? reference_->raysCast() : 0.0}};
+    return {{"spp", double(o_.spp)},
+            {"temporal", o_.temporal ? 1.0 : 0.0},
+            {"mean radius", meanRadius_},
+            {"mean history", meanHistory_},
+            {"rays", reference_ ? reference_->raysCast() : 0.0}};
   }
 
  private:
@@ -214,7 +217,8 @@ class RaytraceDenoised final : public Technique {
         const std::size_t first = std::size_t(set.setForPixel(x, y)) * std::size_t(n);
         glm::vec3 unshadowed(0.0f);
         for (int k = 0; k < n; ++k)
-          if (glm::dot(g.normal[i], set.positions[first + k] - g.position[i]) > 0.0f) unshadowed += set.luminance[first + k];
+          if (glm::dot(g.normal[i], set.positions[first + k] - g.position[i]) > 0.0f)
+            unshadowed += set.luminance[first + k];
         unshadowed /= float(n);
         for (int c = 0; c < 3; ++c) visibility.at(x, y, c) = std::clamp(ratio.at(x, y, c), 0.0f, 1.0f) * unshadowed[c];
       }
@@ -234,7 +238,8 @@ std::vector<ParamSpec> denoisedParams() {
   const Options o;
   return {ParamSpec::integer("spp", o.spp, 1, 64, "shadow rays per pixel and frame (of the pixel's N samples)"),
           ParamSpec::boolean("temporal", o.temporal, "accumulate over frames with reprojection"),
-          ParamSpec::integer("history", o.history, 0, 1024, "frames of history at most (0: N / spp, one cycle of the samples)")
+          ParamSpec::integer("history", o.history, 0, 1024,
+                             "frames of history at most (0: N / spp, one cycle of the samples)")
               .shown("N / spp"),
           ParamSpec::integer("max-radius", o.maxRadius, 1, 64, "the spatial filter's largest radius, pixels")};
 }

@@ -5,7 +5,9 @@
 namespace penumbra {
 
 std::vector<TechniqueInfo> denoisedRows() {
-  return {{"raytrace-denoised", "1-4 shadow rays per pixel through Embree, temporal accumulation and a penumbra-sized cross-bilateral filter (NRD SIGMA style)",
+  return {{"raytrace-denoised",
+           "1-4 shadow rays per pixel through Embree, temporal accumulation and a penumbra-sized cross-bilateral "
+           "filter (NRD SIGMA style)",
            denoisedParams(), makeRaytraceDenoised, TechniqueFamily::Denoised}};
 }
 

@@ -26,9 +26,10 @@ class ExponentialVarianceShadowMaps final : public shadow_map::SingleViewTechniq
     positive_ = std::min(o_.positive, limit_);
     negative_ = std::min(o_.negative, limit_);
     if ((positive_ < o_.positive || negative_ < o_.negative) && !warned_) {
-      PLOG_WARN("evsm: exponents {} / {} exceed what the {}-bit summed-area table of {}^2 texels holds (its sums reach "
-                "N exp(2 c), the warp is the float exp(c / 2) squared): clamped to the limit {:.1f}",
-                o_.positive, o_.negative, o_.satBits, frame().size, limit_);
+      PLOG_WARN(
+          "evsm: exponents {} / {} exceed what the {}-bit summed-area table of {}^2 texels holds (its sums reach "
+          "N exp(2 c), the warp is the float exp(c / 2) squared): clamped to the limit {:.1f}",
+          o_.positive, o_.negative, o_.satBits, frame().size, limit_);
       warned_ = true;
     }
     std::vector<std::string> defines = {"MOMENTS4", "EVSM"};
@@ -42,11 +43,12 @@ class ExponentialVarianceShadowMaps final : public shadow_map::SingleViewTechniq
     pass.timer.time(name() + " shadow pass", [&] {
       std::vector<std::string> resolve = {"SOFT"};
       if (o_.satBits == 64) resolve.push_back("DOUBLE");
-      resolveMoments(pass, program({"fullscreen.vert", "evsm_resolve.frag"}, resolve), sat_, range_, [&](const gl::Program& p) {
-        p.set("evsmPositive", float(positive_));
-        p.set("evsmNegative", float(negative_));
-        p.set("subKernels", o_.subKernels);
-      });
+      resolveMoments(pass, program({"fullscreen.vert", "evsm_resolve.frag"}, resolve), sat_, range_,
+                     [&](const gl::Program& p) {
+                       p.set("evsmPositive", float(positive_));
+                       p.set("evsmNegative", float(negative_));
+                       p.set("subKernels", o_.subKernels);
+                     });
     });
   }
 

@@ -3,15 +3,14 @@
 // e- = -exp(-c- u) of the depth u in [-1, 1], the lit share the smaller of the two warps'
 // Chebyshev bounds) with the PCSS framework and summed-area penumbra of vssm: the engines' fix for
 // variance maps' light bleeding under area lights (Unity HDRP's area-light shadows, Filament's VSM
-// option). On the single-view framework and the four-moment tables of msm (src/techniques/common/shadow_map/shaders/vssm_sat.comp
-// EVSM, evsm_resolve.frag, moment_soft.glsl).
+// option). On the single-view framework and the four-moment tables of msm
+// (src/techniques/common/shadow_map/shaders/vssm_sat.comp EVSM, evsm_resolve.frag, moment_soft.glsl).
 //
 // The exponents and their overflow limits: a table of N texels holds sums of e+^2 up to
 // N exp(2 c+), so c+ and c- are at most (ln(max) - ln N) / 2: in doubles (sat-bits 64, default)
 // 175.7 (the warp is the float exp of half the exponent, squared in double), in fp32 (ln(FLT_MAX)
-// - ln N) / 2 = 37.1 at 1024^2 maps, 36.3 at 2048^2 (each with a 1% margin). A larger exponent is clamped to the limit with
-// a warning naming the technique, the table and the limit (never NaN); the statistics give the
-// exponents used.
+// - ln N) / 2 = 37.1 at 1024^2 maps, 36.3 at 2048^2 (each with a 1% margin). A larger exponent is clamped to the limit
+// with a warning naming the technique, the table and the limit (never NaN); the statistics give the exponents used.
 #pragma once
 
 #include <memory>

@@ -5,8 +5,9 @@
 namespace penumbra {
 
 std::vector<TechniqueInfo> evsmRows() {
-  return {presetRow("evsm", "exponential variance shadow maps (two exponents, four moments) with vssm's PCSS summed-area penumbra",
-                    TechniqueFamily::SingleMap, evsmParams(EvsmOptions{}), EvsmOptions{}, makeExponentialVarianceShadowMaps)};
+  return {presetRow(
+      "evsm", "exponential variance shadow maps (two exponents, four moments) with vssm's PCSS summed-area penumbra",
+      TechniqueFamily::SingleMap, evsmParams(EvsmOptions{}), EvsmOptions{}, makeExponentialVarianceShadowMaps)};
 }
 
 }  // namespace penumbra

@@ -5,8 +5,11 @@
 namespace penumbra {
 
 std::vector<TechniqueInfo> hardSvRows() {
-  return {{"hard-sv", "hard shadows from the light centre, z-fail shadow volumes (float counter)", {},
-           [](const TechniqueArgs&) { return makeHardShadowVolumes(); }, TechniqueFamily::Hard}};
+  return {{"hard-sv",
+           "hard shadows from the light centre, z-fail shadow volumes (float counter)",
+           {},
+           [](const TechniqueArgs&) { return makeHardShadowVolumes(); },
+           TechniqueFamily::Hard}};
 }
 
 }  // namespace penumbra

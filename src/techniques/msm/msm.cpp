@@ -23,11 +23,12 @@ class MomentShadowMapping final : public shadow_map::SingleViewTechnique {
       std::vector<std::string> resolve;
       if (o_.satBits == 64) resolve.push_back("DOUBLE");
       if (o_.soft) resolve.push_back("SOFT");
-      resolveMoments(pass, program({"fullscreen.vert", "msm_resolve.frag"}, resolve), sat_, range_, [&](const gl::Program& p) {
-        p.set("momentBias", float(o_.momentBias));
-        p.set("filterTexels", o_.filter);
-        p.set("subKernels", o_.subKernels);
-      });
+      resolveMoments(pass, program({"fullscreen.vert", "msm_resolve.frag"}, resolve), sat_, range_,
+                     [&](const gl::Program& p) {
+                       p.set("momentBias", float(o_.momentBias));
+                       p.set("filterTexels", o_.filter);
+                       p.set("subKernels", o_.subKernels);
+                     });
     });
   }
 
@@ -50,10 +51,13 @@ class MomentShadowMapping final : public shadow_map::SingleViewTechnique {
 
 std::vector<ParamSpec> msmParams(const MsmOptions& o) {
   std::vector<ParamSpec> p = shadow_map::mapParams();
-  if (!o.soft) p.push_back(ParamSpec::integer("filter", o.filter, 1, 63, "width in texels of the box the moments are filtered over (odd)"));
+  if (!o.soft)
+    p.push_back(ParamSpec::integer("filter", o.filter, 1, 63,
+                                   "width in texels of the box the moments are filtered over (odd)"));
   if (o.soft) p.push_back(shadow_map::subKernelsParam(o.subKernels));
-  p.push_back(ParamSpec::number("moment-bias", o.momentBias, 0.0, 0.1,
-                                "alpha: the share by which a box's standardised moments are pulled towards a uniform distribution's"));
+  p.push_back(ParamSpec::number(
+      "moment-bias", o.momentBias, 0.0, 0.1,
+      "alpha: the share by which a box's standardised moments are pulled towards a uniform distribution's"));
   p.push_back(shadow_map::satBitsParam().withDefault(o.satBits));
   return p;
 }
@@ -61,7 +65,8 @@ std::vector<ParamSpec> msmParams(const MsmOptions& o) {
 std::unique_ptr<Technique> makeMomentShadowMapping(const TechniqueArgs& args, MsmOptions o) {
   if (!o.soft) {
     o.filter = args.integer("filter");
-    if (o.filter % 2 == 0) throw Error("param", "filter: must be odd, got " + std::to_string(o.filter), ExitCode::Usage);
+    if (o.filter % 2 == 0)
+      throw Error("param", "filter: must be odd, got " + std::to_string(o.filter), ExitCode::Usage);
   }
   if (o.soft) o.subKernels = args.integer("sub-kernels");
   o.momentBias = args.number("moment-bias");

@@ -12,9 +12,8 @@
 // quantisation (which a table of sums cannot keep); each box's moments are standardised in the
 // table's precision before the float reconstruction, and the moment bias acts on the
 // standardised moments (towards the uniform distribution of the box's own mean and variance,
-// common/shadow_map/shaders/moments.h penumbraMsmBias), so that it neither blurs small depth differences nor depends on the
-// depth range; the receiver depth of a box is its plane's lowest over the box
-// (moment_kernel.glsl).
+// common/shadow_map/shaders/moments.h penumbraMsmBias), so that it neither blurs small depth differences nor depends on
+// the depth range; the receiver depth of a box is its plane's lowest over the box (moment_kernel.glsl).
 #pragma once
 
 #include <memory>
@@ -24,11 +23,11 @@
 namespace penumbra {
 
 struct MsmOptions {
-  bool soft = false;          // msm-soft: blocker search and penumbra kernel; msm: a fixed box
-  int filter = 3;             // msm: the box's width in texels (odd)
-  int subKernels = 4;         // msm-soft: each kernel split into subKernels^2 (own receiver depths)
-  double momentBias = 1e-5;   // alpha on the standardised moments (common/shadow_map/shaders/moments.h penumbraMsmBias)
-  int satBits = 64;           // 64: the table in doubles; 32: fp32
+  bool soft = false;         // msm-soft: blocker search and penumbra kernel; msm: a fixed box
+  int filter = 3;            // msm: the box's width in texels (odd)
+  int subKernels = 4;        // msm-soft: each kernel split into subKernels^2 (own receiver depths)
+  double momentBias = 1e-5;  // alpha on the standardised moments (common/shadow_map/shaders/moments.h penumbraMsmBias)
+  int satBits = 64;          // 64: the table in doubles; 32: fp32
 };
 
 // The parameters of a preset, its values their defaults: the map ones, filter (msm only),

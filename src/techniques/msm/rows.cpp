@@ -15,10 +15,12 @@ TechniqueInfo msmRow(std::string name, std::string description, bool soft) {
 
 std::vector<TechniqueInfo> msmRows() {
   return {
-      msmRow("msm", "moment shadow mapping: hard shadows from the light centre, Hamburger 4MSM over a filter box of a four-moment summed-area table",
+      msmRow("msm",
+             "moment shadow mapping: hard shadows from the light centre, Hamburger 4MSM over a filter box of a "
+             "four-moment summed-area table",
              false),
-      msmRow("msm-soft", "moment soft shadows: PCSS blocker search and filtering from four-moment summed-area tables (4MSM)",
-             true),
+      msmRow("msm-soft",
+             "moment soft shadows: PCSS blocker search and filtering from four-moment summed-area tables (4MSM)", true),
   };
 }
 

@@ -15,8 +15,9 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
   void renderMaps(LightPass& pass, const shadow_map::MapFrame& frame) override {
     const gl::Texture& maps = ensureMaps(GL_DEPTH_COMPONENT32F, frame);
     pass.timer.time(name() + " depth maps", [&] {
-      const gl::Program& program = layered_ ? programs().get({"mvr_depth.vert", "mvr_depth.geom", "depth_only.frag"}, {"LAYERED"})
-                                            : programs().get({"mvr_depth.vert", "depth_only.frag"});
+      const gl::Program& program =
+          layered_ ? programs().get({"mvr_depth.vert", "mvr_depth.geom", "depth_only.frag"}, {"LAYERED"})
+                   : programs().get({"mvr_depth.vert", "depth_only.frag"});
       glEnable(GL_DEPTH_TEST);
       glDepthFunc(GL_GREATER);  // reversed depth
       glDepthMask(GL_TRUE);
@@ -25,25 +26,26 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
       program.use();
       shadow_map::setMapUniforms(program, frame);
       // No fragment in any map is checked against the first sample's view (map 0).
-      shadow_map::drawWithOccluderCheck(name(), "depth maps", pass.scene, frame, pass.samples.positions.at(0),
-                                        frame.size, [&] {
-        if (layered_) {
-          if (!layeredFbo_ || fboFor_ != maps.id()) layeredFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &maps);
-          layeredFbo_.bind();
-          pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::Opaque);
-        } else {
-          if (fboFor_ != maps.id()) {
-            layerFbos_.clear();
-            for (int l = 0; l < frame.layers; ++l)
-              layerFbos_.emplace_back(std::vector<gl::Framebuffer::Attachment>{}, &maps, l);
-          }
-          for (int l = 0; l < frame.layers; ++l) {
-            layerFbos_[std::size_t(l)].bind();
-            program.set("layer", l);
-            pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
-          }
-        }
-      });
+      shadow_map::drawWithOccluderCheck(
+          name(), "depth maps", pass.scene, frame, pass.samples.positions.at(0), frame.size, [&] {
+            if (layered_) {
+              if (!layeredFbo_ || fboFor_ != maps.id())
+                layeredFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &maps);
+              layeredFbo_.bind();
+              pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::Opaque);
+            } else {
+              if (fboFor_ != maps.id()) {
+                layerFbos_.clear();
+                for (int l = 0; l < frame.layers; ++l)
+                  layerFbos_.emplace_back(std::vector<gl::Framebuffer::Attachment>{}, &maps, l);
+              }
+              for (int l = 0; l < frame.layers; ++l) {
+                layerFbos_[std::size_t(l)].bind();
+                program.set("layer", l);
+                pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
+              }
+            }
+          });
       fboFor_ = maps.id();
       glDisable(GL_DEPTH_TEST);
     });

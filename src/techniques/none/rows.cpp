@@ -5,7 +5,10 @@
 namespace penumbra {
 
 std::vector<TechniqueInfo> noneRows() {
-  return {{"none", "unshadowed direct lighting", {}, [](const TechniqueArgs&) { return makeUnshadowed(); },
+  return {{"none",
+           "unshadowed direct lighting",
+           {},
+           [](const TechniqueArgs&) { return makeUnshadowed(); },
            TechniqueFamily::Hard}};
 }
 

@@ -25,7 +25,8 @@ struct Target {
 
 class PercentageCloserSoftShadows final : public shadow_map::SingleViewTechnique {
  public:
-  PercentageCloserSoftShadows(const shadow_map::MapOptions& m, const PcssOptions& o) : SingleViewTechnique("pcss", m), o_(o) {}
+  PercentageCloserSoftShadows(const shadow_map::MapOptions& m, const PcssOptions& o)
+      : SingleViewTechnique("pcss", m), o_(o) {}
 
  protected:
   void renderShadow(LightPass& pass) override {
@@ -35,9 +36,11 @@ class PercentageCloserSoftShadows final : public shadow_map::SingleViewTechnique
       pass.timer.time("pcss min filter", [&] {
         // The window: the blocker search's reach at the farthest receivers, in texels.
         const auto& f = frame();
-        minRadius_ = o_.minRadius > 0
-                         ? o_.minRadius
-                         : std::clamp(int(std::ceil(lightHalfSize() / (2.0f * searchNear() * f.tanHalf) * float(f.size))), 1, 32);
+        minRadius_ =
+            o_.minRadius > 0
+                ? o_.minRadius
+                : std::clamp(int(std::ceil(lightHalfSize() / (2.0f * searchNear() * f.tanHalf) * float(f.size))), 1,
+                             32);
         minA_.ensure(GL_R32F, f.size, f.size);
         minB_.ensure(GL_R32F, f.size, f.size);
         const gl::Program& mx = program({"fullscreen.vert", "pcss_filter.frag"}, {"MAX_FILTER"});
@@ -148,9 +151,11 @@ PcssOptions pcssPreset(PcssMode mode, bool ultra, bool checkerboard) {
 
 std::vector<ParamSpec> pcssParams(const PcssOptions& o) {
   std::vector<ParamSpec> p = shadow_map::mapParams();
-  p.push_back(ParamSpec::integer("blocker-samples", o.blockerSamples, 1, 256, "Vogel-disk samples of the blocker search"));
+  p.push_back(
+      ParamSpec::integer("blocker-samples", o.blockerSamples, 1, 256, "Vogel-disk samples of the blocker search"));
   p.push_back(ParamSpec::integer("pcf-samples", o.pcfSamples, 1, 256, "Vogel-disk samples of the PCF"));
-  p.push_back(ParamSpec::boolean("checkerboard", o.checkerboard, "compute half the pixels, upsample the rest (Sterna 3)"));
+  p.push_back(
+      ParamSpec::boolean("checkerboard", o.checkerboard, "compute half the pixels, upsample the rest (Sterna 3)"));
   if (o.mode == PcssMode::PenumbraMask) {
     p.push_back(ParamSpec::number("kernel-scale", o.kernelScale, 0.25, 4.0,
                                   "blocker-search region scale of the mask (Sterna 2.2: 1.2-1.6)"));

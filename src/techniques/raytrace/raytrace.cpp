@@ -19,9 +19,7 @@ class Raytrace final : public Technique {
  public:
   explicit Raytrace(std::optional<shading::IntegratorOptions> converged) : converged_(converged) {}
 
-  void prepare(const Scene& scene, GpuScene&) override {
-    reference_ = std::make_unique<EmbreeReference>(scene);
-  }
+  void prepare(const Scene& scene, GpuScene&) override { reference_ = std::make_unique<EmbreeReference>(scene); }
 
   void renderVisibility(LightPass& pass) override {
     const CpuGBuffer& gbuf = pass.cpuGBuffer();
@@ -79,16 +77,18 @@ std::unique_ptr<Technique> makeRaytraceSameSamples() { return std::make_unique<R
 
 std::vector<ParamSpec> raytraceConvergedParams() {
   const shading::IntegratorOptions o;
-  return {ParamSpec::integer("reference-samples", o.minSamples, 1, 1 << 20,
-                             "light samples per pixel at least (the visibility buffer's)"),
-          ParamSpec::integer("reference-max-samples", o.maxSamples, 1, 1 << 24,
-                             "light samples per pixel at most (and as many BRDF samples)"),
-          ParamSpec::number("reference-target", o.target, 0.0, 1.0,
-                            "the shaded radiance's standard error relative to the pixel's largest channel (0: every pixel to the cap)"),
-          ParamSpec::integer("reference-batch", o.batch, 1, 65536,
-                             "samples of each strategy per batch (the noise is the spread of the batches)"),
-          ParamSpec::boolean("reference-mis", o.brdfSampling,
-                             "sample the BRDF too, combined with the light samples by MIS (0: light samples only)")};
+  return {
+      ParamSpec::integer("reference-samples", o.minSamples, 1, 1 << 20,
+                         "light samples per pixel at least (the visibility buffer's)"),
+      ParamSpec::integer("reference-max-samples", o.maxSamples, 1, 1 << 24,
+                         "light samples per pixel at most (and as many BRDF samples)"),
+      ParamSpec::number(
+          "reference-target", o.target, 0.0, 1.0,
+          "the shaded radiance's standard error relative to the pixel's largest channel (0: every pixel to the cap)"),
+      ParamSpec::integer("reference-batch", o.batch, 1, 65536,
+                         "samples of each strategy per batch (the noise is the spread of the batches)"),
+      ParamSpec::boolean("reference-mis", o.brdfSampling,
+                         "sample the BRDF too, combined with the light samples by MIS (0: light samples only)")};
 }
 
 std::unique_ptr<Technique> makeRaytraceConverged(const TechniqueArgs& args) {
@@ -99,8 +99,10 @@ std::unique_ptr<Technique> makeRaytraceConverged(const TechniqueArgs& args) {
   o.batch = args.integer("reference-batch");
   o.brdfSampling = args.boolean("reference-mis");
   if (o.maxSamples < o.minSamples)
-    throw Error("reference-max-samples", "is below reference-samples (" + std::to_string(o.maxSamples) + " < " +
-                                             std::to_string(o.minSamples) + ")", ExitCode::Usage);
+    throw Error(
+        "reference-max-samples",
+        "is below reference-samples (" + std::to_string(o.maxSamples) + " < " + std::to_string(o.minSamples) + ")",
+        ExitCode::Usage);
   return std::make_unique<Raytrace>(o);
 }
 

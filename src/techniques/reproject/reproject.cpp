@@ -60,8 +60,9 @@ std::vector<ParamSpec> reprojectParams() {
   std::vector<ParamSpec> p = shadow_map::mapParams();
   p.push_back(shadow_map::pcfParam());
   p.push_back(ParamSpec::integer("k", 0, 0, 4096, "maps per compute thread: 1 serial, 0 all (fully parallel)"));
-  p.push_back(ParamSpec::number("scale", 1.0, 0.125, 16.0,
-                                "central-map resolution over the map resolution (the paper raises it to fill gaps, 4.2.1)"));
+  p.push_back(
+      ParamSpec::number("scale", 1.0, 0.125, 16.0,
+                        "central-map resolution over the map resolution (the paper raises it to fill gaps, 4.2.1)"));
   return p;
 }
 
@@ -70,7 +71,8 @@ std::unique_ptr<Technique> makeFragmentReprojection(const TechniqueArgs& args, b
   s.synchronized = synchronized;
   s.mapsPerThread = args.integer("k");
   double scale = args.number("scale");
-  return std::make_unique<FragmentReprojection>(shadow_map::readMapOptions(args), shadow_map::readPcfTaps(args), scale, s);
+  return std::make_unique<FragmentReprojection>(shadow_map::readMapOptions(args), shadow_map::readPcfTaps(args), scale,
+                                                s);
 }
 
 }  // namespace penumbra

@@ -19,7 +19,9 @@ VssmOptions vssmPreset(bool exactSat, int shadowLevels) {
 
 std::vector<TechniqueInfo> vssmRows() {
   return {
-      vssmRow("vssm", "variance soft shadow mapping: exact summed-area table of depth moments, min-max HSM, 5x5 uniform blocker / H=3 adaptive shadow subdivision, contact fallback",
+      vssmRow("vssm",
+              "variance soft shadow mapping: exact summed-area table of depth moments, min-max HSM, 5x5 uniform "
+              "blocker / H=3 adaptive shadow subdivision, contact fallback",
               VssmOptions{}),
       vssmRow("vssm-uniform", "vssm with uniform subdivision for both kernels (5x5 blocker, 8x8 shadow)",
               vssmPreset(true, 0)),

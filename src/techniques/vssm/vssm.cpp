@@ -15,7 +15,11 @@ namespace {
 class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
  public:
   VarianceSoftShadowMapping(const shadow_map::MapOptions& m, const VssmOptions& o)
-      : SingleViewTechnique(!o.exactSat ? "vssm-fp32" : o.shadowLevels > 0 ? "vssm" : "vssm-uniform", m), o_(o) {}
+      : SingleViewTechnique(!o.exactSat          ? "vssm-fp32"
+                            : o.shadowLevels > 0 ? "vssm"
+                                                 : "vssm-uniform",
+                            m),
+        o_(o) {}
 
  protected:
   void renderShadow(LightPass& pass) override {
@@ -31,17 +35,19 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
     // depthMin and depthMax), so that geometry far outside the map (a 1e5-unit floor, hard case
     // 25) does not turn every blocker into a contact.
     const float lateral = f.tanHalf * depthMax_;
-    const float viewRadius = 0.5f * std::sqrt(8.0f * lateral * lateral + (depthMax_ - depthMin_) * (depthMax_ - depthMin_));
+    const float viewRadius =
+        0.5f * std::sqrt(8.0f * lateral * lateral + (depthMax_ - depthMin_) * (depthMax_ - depthMin_));
     const float radius = std::min(0.5f * glm::length(hi - lo), viewRadius);
     threshold_ = float(std::pow(1e-4 * radius / (depthMax_ - depthMin_), 2.0));
     contactEpsilon_ = 0.01f * radius;
     if (f.size & (f.size - 1))
-      throw Error(name(), "map size " + std::to_string(f.size) + " is not a power of two (the min-max hierarchy halves it)",
+      throw Error(name(),
+                  "map size " + std::to_string(f.size) + " is not a power of two (the min-max hierarchy halves it)",
                   ExitCode::Usage);
 
     pass.timer.time(name() + " sat", [&] {
-      buildMomentTable(sat_, o_.exactSat ? 16 : 8, o_.exactSat ? std::vector<std::string>{"EXACT"} : std::vector<std::string>{},
-                       range);
+      buildMomentTable(sat_, o_.exactSat ? 16 : 8,
+                       o_.exactSat ? std::vector<std::string>{"EXACT"} : std::vector<std::string>{}, range);
     });
     pass.timer.time(name() + " hsm", [&] {
       hsmLevels_ = 0;
@@ -87,8 +93,8 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
     out.emplace_back("exact sat", o_.exactSat ? 1.0 : 0.0);
     out.emplace_back("blocker sub-kernels", o_.blockerLevels > 0 ? double(1 << (2 * o_.blockerLevels))
                                                                  : double(o_.blockerDiv * o_.blockerDiv));
-    out.emplace_back("shadow sub-kernels", o_.shadowLevels > 0 ? double(1 << (2 * o_.shadowLevels))
-                                                               : double(o_.shadowDiv * o_.shadowDiv));
+    out.emplace_back("shadow sub-kernels",
+                     o_.shadowLevels > 0 ? double(1 << (2 * o_.shadowLevels)) : double(o_.shadowDiv * o_.shadowDiv));
     out.emplace_back("adaptive shadow levels", double(o_.shadowLevels));
     out.emplace_back("hsm levels", double(hsmLevels_));
     out.emplace_back("hsm bytes", double(hsm_.size()));
@@ -108,7 +114,8 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
 
 std::vector<ParamSpec> vssmParams(const VssmOptions& o) {
   std::vector<ParamSpec> p = shadow_map::mapParams();
-  p.push_back(ParamSpec::integer("blocker-div", o.blockerDiv, 1, 16, "uniform m x m sub-kernels of the blocker search"));
+  p.push_back(
+      ParamSpec::integer("blocker-div", o.blockerDiv, 1, 16, "uniform m x m sub-kernels of the blocker search"));
   p.push_back(ParamSpec::integer("shadow-div", o.shadowDiv, 1, 16, "uniform n x n sub-kernels of the visibility"));
   p.push_back(ParamSpec::integer("blocker-levels", o.blockerLevels, 0, 5,
                                  "adaptive quad-tree height of the blocker search (0: uniform)"));

@@ -12,11 +12,11 @@
 namespace penumbra {
 
 struct VssmOptions {
-  bool exactSat = true;  // 15-bit integer depths summed in doubles; false: the fp32 table
-  int blockerDiv = 5;    // m x m uniform sub-kernels for the blocker search (the paper's m = 5)
-  int shadowDiv = 8;     // n x n uniform sub-kernels for the visibility (when shadowLevels = 0)
-  int blockerLevels = 0; // adaptive quad-tree height for the blocker search (0: uniform)
-  int shadowLevels = 3;  // adaptive quad-tree height H for the visibility (the paper's H = 3)
+  bool exactSat = true;   // 15-bit integer depths summed in doubles; false: the fp32 table
+  int blockerDiv = 5;     // m x m uniform sub-kernels for the blocker search (the paper's m = 5)
+  int shadowDiv = 8;      // n x n uniform sub-kernels for the visibility (when shadowLevels = 0)
+  int blockerLevels = 0;  // adaptive quad-tree height for the blocker search (0: uniform)
+  int shadowLevels = 3;   // adaptive quad-tree height H for the visibility (the paper's H = 3)
 };
 
 // The parameters of a preset, its values their defaults: the map ones (the map size must be a

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <map>
 
-
 #include <fmt/format.h>
 
 #include "core/error.h"
@@ -22,17 +21,20 @@ namespace {
 struct VwssOptions {
   VwssMode mode = VwssMode::Buffered;
   shadow_map::SplatOptions splat;
-  int backFaces = -1;  // 0 cull, 1 keep, -1 (default) keep unless culling provably drops nothing
-  double scale = 0.0;  // 0: eq. 3
+  int backFaces = -1;   // 0 cull, 1 keep, -1 (default) keep unless culling provably drops nothing
+  double scale = 0.0;   // 0: eq. 3
   long passPoints = 0;  // most points one generation pass holds; 0: the GL's storage-block limit
   int maxView = 4096;   // the point view's side at most (the GL's limit caps it too)
 };
 
 const char* modeName(VwssMode m) {
   switch (m) {
-    case VwssMode::Unbuffered: return "vwss-unbuffered";
-    case VwssMode::Graphics: return "vwss-graphics";
-    default: return "vwss";
+    case VwssMode::Unbuffered:
+      return "vwss-unbuffered";
+    case VwssMode::Graphics:
+      return "vwss-graphics";
+    default:
+      return "vwss";
   }
 }
 
@@ -90,16 +92,19 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
     sourceSize_ = capped_ ? cap : int(wanted);
     if (capped_ && !warnedCap_) {
       const double ratio = double(cap) / double(frame.size);  // eq. 3's (z_n + d) / z_n at the cap
-      PLOG_WARN("{}: eq. 3 asks for a {:.0f}^2 point-generation view; capped at {} ({}): occluders nearer the light than "
-                "{:.3g} are sampled below mvr's rate", name(), wanted, cap,
-                cap == o_.maxView ? "the max-view parameter" : "the GL's limit",
-                ratio > 1.0 ? double(distance_) / (ratio - 1.0) : double(INFINITY));
+      PLOG_WARN(
+          "{}: eq. 3 asks for a {:.0f}^2 point-generation view; capped at {} ({}): occluders nearer the light than "
+          "{:.3g} are sampled below mvr's rate",
+          name(), wanted, cap, cap == o_.maxView ? "the max-view parameter" : "the GL's limit",
+          ratio > 1.0 ? double(distance_) / (ratio - 1.0) : double(INFINITY));
       warnedCap_ = true;
     }
 
     const gl::Texture* maps = nullptr;
-    if (o_.mode == VwssMode::Graphics) maps = &ensureMaps(GL_DEPTH_COMPONENT32F, frame);
-    else maps = &ensureMaps(GL_R32UI, frame);
+    if (o_.mode == VwssMode::Graphics)
+      maps = &ensureMaps(GL_DEPTH_COMPONENT32F, frame);
+    else
+      maps = &ensureMaps(GL_R32UI, frame);
     if (sourceFbo_.id() == 0 || sourceFboSize_ != sourceSize_) {
       sourceFbo_ = gl::Framebuffer::empty(sourceSize_, sourceSize_);
       sourceFboSize_ = sourceSize_;
@@ -183,12 +188,13 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
       });
       if (count > capacity_) {  // more than one pass can hold: halve the band
         if (y1 - y0 < 2)
-          throw Error(name(), fmt::format("one row of the {}^2 point-generation view holds {} points, more than one pass "
-                                          "holds ({}, {}); use a smaller scale{}",
-                                          sourceSize_, count, passLimit,
-                                          passLimit == std::size_t(o_.passPoints) ? "the pass-points parameter"
-                                                                                  : "the limit of this GL's storage blocks",
-                                          passLimit == std::size_t(o_.passPoints) ? " or a larger pass-points" : ""));
+          throw Error(name(),
+                      fmt::format("one row of the {}^2 point-generation view holds {} points, more than one pass "
+                                  "holds ({}, {}); use a smaller scale{}",
+                                  sourceSize_, count, passLimit,
+                                  passLimit == std::size_t(o_.passPoints) ? "the pass-points parameter"
+                                                                          : "the limit of this GL's storage blocks",
+                                  passLimit == std::size_t(o_.passPoints) ? " or a larger pass-points" : ""));
         const int mid = y0 + (y1 - y0) / 2;
         todo.push_back({mid, y1});
         todo.push_back({y0, mid});
@@ -211,7 +217,8 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
       prog.set("pointCapacity", unsigned(capacity_));
       if (layerFbosFor_ != maps.id()) {
         layerFbos_.clear();
-        for (int l = 0; l < frame.layers; ++l) layerFbos_.emplace_back(std::vector<gl::Framebuffer::Attachment>{}, &maps, l);
+        for (int l = 0; l < frame.layers; ++l)
+          layerFbos_.emplace_back(std::vector<gl::Framebuffer::Attachment>{}, &maps, l);
         layerFbosFor_ = maps.id();
       }
       glEnable(GL_DEPTH_TEST);
@@ -317,7 +324,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
       for (const auto& t : o.topology.weldedTriangles) {
         const glm::dvec3 a(P[t.x]);
         const glm::dvec3 n = glm::cross(glm::dvec3(P[t.y]) - a, glm::dvec3(P[t.z]) - a);
-        if (glm::dot(n, eye - a) >= 0.0) continue;  // drawn (or edge-on)
+        if (glm::dot(n, eye - a) >= 0.0) continue;                           // drawn (or edge-on)
         if (lightOutside && geo::classifyLight(extent, n, a) < 0) continue;  // never a first hit
         return true;
       }
@@ -353,21 +360,25 @@ std::vector<ParamSpec> vwssParams(VwssMode mode) {
   p.push_back(shadow_map::pcfParam());
   if (mode == VwssMode::Buffered)
     p.push_back(ParamSpec::integer("k", 8, 0, 4096, "maps per compute thread: 1 serial, 0 all (fully parallel)"));
-  p.push_back(ParamSpec::integer("backfaces", -1, 0, 1,
-                                 "unset: keep back faces in point generation (VWSS 3.1's option) unless culling provably "
-                                 "drops no nearest occluder (every back face has the whole light behind its plane and "
-                                 "belongs to a closed, outward-wound mesh the light is outside; hard case 29); 0 cull, 1 keep")
-                  .shown("auto"));
-  p.push_back(ParamSpec::number("scale", 0.0, 0.0, 64.0, "point-generation resolution over the map resolution; 0: eq. 3")
-                  .shown("eq. 3"));
-  p.push_back(ParamSpec::integer("max-view", VwssOptions{}.maxView, 16, 16384,
-                                 "the point-generation view's side at most (and the GL's limit): eq. 3 asks for "
-                                 "(z_n + d) / z_n times the map, unbounded as an occluder nears the light; a capped view warns"));
+  p.push_back(
+      ParamSpec::integer("backfaces", -1, 0, 1,
+                         "unset: keep back faces in point generation (VWSS 3.1's option) unless culling provably "
+                         "drops no nearest occluder (every back face has the whole light behind its plane and "
+                         "belongs to a closed, outward-wound mesh the light is outside; hard case 29); 0 cull, 1 keep")
+          .shown("auto"));
+  p.push_back(
+      ParamSpec::number("scale", 0.0, 0.0, 64.0, "point-generation resolution over the map resolution; 0: eq. 3")
+          .shown("eq. 3"));
+  p.push_back(ParamSpec::integer(
+      "max-view", VwssOptions{}.maxView, 16, 16384,
+      "the point-generation view's side at most (and the GL's limit): eq. 3 asks for "
+      "(z_n + d) / z_n times the map, unbounded as an occluder nears the light; a capped view warns"));
   if (mode != VwssMode::Unbuffered)
-    p.push_back(ParamSpec::integer("pass-points", 0, 0, 1 << 30,
-                                   "most points one point-generation pass holds (0: the GL's limit); more are split into "
-                                   "bands of the central view (same maps: atomicMax)")
-                    .shown("GL limit"));
+    p.push_back(
+        ParamSpec::integer("pass-points", 0, 0, 1 << 30,
+                           "most points one point-generation pass holds (0: the GL's limit); more are split into "
+                           "bands of the central view (same maps: atomicMax)")
+            .shown("GL limit"));
   return p;
 }
 

@@ -18,17 +18,20 @@ namespace penumbra::shadow_map {
 
 std::vector<ParamSpec> mapParams() {
   const MapOptions o;
-  return {ParamSpec::integer("map", o.size, 16, 16384, "depth-map resolution (square)"),
-          ParamSpec::number("bias", o.biasConstant, -1.0, 1e30,
-                            "constant depth bias, world units along the view axis; < 0: per point (eps: `shared/numerics.h` "
-                            "penumbraSurfaceEpsilon, relative to the positions' float magnitude)")
-              .shown("per point: 4 x (eps(p) + eps(sample))"),
-          ParamSpec::number("slope-bias", o.biasSlope, 0.0, 100.0,
-                            "slope margin on top of the receiver-plane depth, in texels of the receiver plane's depth slope"),
-          ParamSpec::number("max-angle", o.maxHalfAngle, 1.0, 89.0,
-                            "widest frustum half-angle (degrees); receivers beyond it are left unshadowed, and said so per "
-                            "pixel (report: `errors.unshadowedPixels`, the error without them "
-                            "`errors.visibilityExceptUnshadowed`, mask `<technique>_unshadowed.png` in the gallery)")};
+  return {
+      ParamSpec::integer("map", o.size, 16, 16384, "depth-map resolution (square)"),
+      ParamSpec::number(
+          "bias", o.biasConstant, -1.0, 1e30,
+          "constant depth bias, world units along the view axis; < 0: per point (eps: `shared/numerics.h` "
+          "penumbraSurfaceEpsilon, relative to the positions' float magnitude)")
+          .shown("per point: 4 x (eps(p) + eps(sample))"),
+      ParamSpec::number(
+          "slope-bias", o.biasSlope, 0.0, 100.0,
+          "slope margin on top of the receiver-plane depth, in texels of the receiver plane's depth slope"),
+      ParamSpec::number("max-angle", o.maxHalfAngle, 1.0, 89.0,
+                        "widest frustum half-angle (degrees); receivers beyond it are left unshadowed, and said so per "
+                        "pixel (report: `errors.unshadowedPixels`, the error without them "
+                        "`errors.visibilityExceptUnshadowed`, mask `<technique>_unshadowed.png` in the gallery)")};
 }
 
 MapOptions readMapOptions(const TechniqueArgs& args) {
@@ -110,7 +113,8 @@ void drawWithOccluderCheck(const std::string& technique, const std::string& what
                                        what, size));
 }
 
-float NearestOccluder::get(const Scene& scene, int lightIndex, const glm::vec3& centre, const MapFrame& f, bool surfaces) {
+float NearestOccluder::get(const Scene& scene, int lightIndex, const glm::vec3& centre, const MapFrame& f,
+                           bool surfaces) {
   auto key = std::make_tuple(lightIndex, std::array<float, 3>{f.axis.x, f.axis.y, f.axis.z}, surfaces);
   auto it = cache_.find(key);
   if (it != cache_.end()) return it->second;
@@ -152,13 +156,16 @@ void setReach(MapFrame& f, const Light& light, const LightSampleSet& samples, Ma
   }
   const glm::vec3 t = light.tangent, b = light.bitangent(), n = glm::normalize(light.normal);
   switch (light.shape) {
-    case LightShape::Point: break;
+    case LightShape::Point:
+      break;
     case LightShape::Rect:
       for (float u : {-0.5f, 0.5f})
         for (float v : {-0.5f, 0.5f}) add(u * light.size.x * t + v * light.size.y * b);
       break;
     case LightShape::Disk: {
-      auto rim = [&](const glm::vec3& d) { return light.size.x * std::sqrt(std::max(0.0f, 1.0f - glm::dot(d, n) * glm::dot(d, n))); };
+      auto rim = [&](const glm::vec3& d) {
+        return light.size.x * std::sqrt(std::max(0.0f, 1.0f - glm::dot(d, n) * glm::dot(d, n)));
+      };
       f.sampleLateral = std::max(rim(f.right), rim(f.up));
       f.sampleAxialMax = rim(f.axis), f.sampleAxialMin = -f.sampleAxialMax;
       break;
@@ -178,7 +185,9 @@ float viewEpsilon(const Light& light, const LightSampleSet& samples, MapReach re
     return eps;
   }
   // The corners of the light's bounding box (its radius along every axis bounds a disk and a ball).
-  const float r = light.shape == LightShape::Rect ? 0.5f * glm::length(light.size) : light.isArea() ? light.size.x : 0.0f;
+  const float r = light.shape == LightShape::Rect ? 0.5f * glm::length(light.size)
+                  : light.isArea()                ? light.size.x
+                                                  : 0.0f;
   for (float x : {-r, r})
     for (float y : {-r, r})
       for (float z : {-r, r}) eps = std::max(eps, shared::penumbraSurfaceEpsilon(c + glm::vec3(x, y, z)));
@@ -310,14 +319,16 @@ void MultiViewTechnique::renderSemiOpaque(LightPass& pass, const MapFrame& frame
   semiReruns_ = 0;
   for (;;) {
     const int slots = std::max(semiSlots_, 1);
-    if (semiCount_.width() != frame.size || semiCount_.layers() != frame.layers || semiLayers_.layers() != frame.layers * slots) {
+    if (semiCount_.width() != frame.size || semiCount_.layers() != frame.layers ||
+        semiLayers_.layers() != frame.layers * slots) {
       GLint maxLayers = 0;
       glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
       double bytes = 4.0 * double(frame.size) * frame.size * frame.layers * (slots + 1);
       if (frame.layers * slots > maxLayers || bytes > 4.0 * 1024 * 1024 * 1024)
-        throw Error(name_, fmt::format("{} semi-opaque surfaces on one map texel need {} layers ({:.0f} MiB) for {} maps of "
-                                       "{}^2: beyond this GL's {} layers or 4 GiB (use a smaller map)",
-                                       slots, frame.layers * slots, bytes / 1048576.0, frame.layers, frame.size, maxLayers));
+        throw Error(name_,
+                    fmt::format("{} semi-opaque surfaces on one map texel need {} layers ({:.0f} MiB) for {} maps of "
+                                "{}^2: beyond this GL's {} layers or 4 GiB (use a smaller map)",
+                                slots, frame.layers * slots, bytes / 1048576.0, frame.layers, frame.size, maxLayers));
       semiCount_ = gl::Texture::make2DArray(GL_R32UI, frame.size, frame.size, frame.layers);
       semiLayers_ = gl::Texture();
       semiLayers_ = gl::Texture::make2DArray(GL_R32UI, frame.size, frame.size, frame.layers * slots);
@@ -353,15 +364,16 @@ const gl::Texture& MultiViewTechnique::ensureMaps(GLenum format, const MapFrame&
     glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     if (frame.layers > maxLayers)
-      throw Error(name_, fmt::format("{} depth maps (sets x samples) exceed the GL's {} array layers", frame.layers, maxLayers));
-    if (frame.size > maxSize)
-      throw Error(name_, fmt::format("map size {} exceeds the GL's {}", frame.size, maxSize));
+      throw Error(name_, fmt::format("{} depth maps (sets x samples) exceed the GL's {} array layers", frame.layers,
+                                     maxLayers));
+    if (frame.size > maxSize) throw Error(name_, fmt::format("map size {} exceeds the GL's {}", frame.size, maxSize));
     maps_ = gl::Texture();
     try {
       maps_ = gl::Texture::make2DArray(format, frame.size, frame.size, frame.layers);
     } catch (const Error&) {  // GL_OUT_OF_MEMORY (gl/objects.cpp): name the technique and the parameter
       throw Error(name_, fmt::format("out of GPU memory for {} depth maps of {}^2 ({:.0f} MiB): use a smaller map",
-                                     frame.layers, frame.size, 4.0 * frame.size * double(frame.size) * frame.layers / 1048576.0));
+                                     frame.layers, frame.size,
+                                     4.0 * frame.size * double(frame.size) * frame.layers / 1048576.0));
     }
   }
   maps_.clear(glm::vec4(0.0f));
@@ -378,9 +390,8 @@ const gl::Program& MultiViewTechnique::resolveProgram(bool perSample) {
 }
 
 void MultiViewTechnique::renderVisibility(LightPass& pass) {
-  frame_ = pass.timer.time(name_ + " views", [&] {
-    return fit_.compute(pass.gpu, pass.light, pass.samples, options_, MapReach::Samples);
-  });
+  frame_ = pass.timer.time(
+      name_ + " views", [&] { return fit_.compute(pass.gpu, pass.light, pass.samples, options_, MapReach::Samples); });
   renderMaps(pass, frame_);
   if (semiOpaque_) pass.timer.time(name_ + " semi-opaque maps", [&] { renderSemiOpaque(pass, frame_); });
   pass.timer.time(name_ + " lighting", [&] {
@@ -420,7 +431,8 @@ std::vector<std::pair<std::string, double>> MultiViewTechnique::statistics() con
 }
 
 void dispatchThreads(std::size_t threads) {
-  const std::size_t groups = std::max<std::size_t>((threads + PENUMBRA_MAP_LOCAL_SIZE - 1) / PENUMBRA_MAP_LOCAL_SIZE, 1);
+  const std::size_t groups =
+      std::max<std::size_t>((threads + PENUMBRA_MAP_LOCAL_SIZE - 1) / PENUMBRA_MAP_LOCAL_SIZE, 1);
   const GLuint gx = GLuint(std::min<std::size_t>(groups, 65535)), gy = GLuint((groups + gx - 1) / gx);
   glDispatchCompute(gx, gy, 1);
 }

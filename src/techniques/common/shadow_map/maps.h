@@ -30,10 +30,11 @@ namespace penumbra::shadow_map {
 
 // The view and bias options of every shadow-map technique (multi-view and single-view).
 struct MapOptions {
-  int size = 1024;            // map resolution (square), as the VWSS paper's 1024^2
-  double biasConstant = -1.0; // world units along the view axis; < 0: per point, 4 x the positions' float epsilon (shadow_map_common.glsl)
-  double biasSlope = 1.0;     // texels of the receiver plane's depth slope (shadow_map_common.glsl)
-  double maxHalfAngle = 80.0; // degrees: receivers needing a wider frustum are left unshadowed
+  int size = 1024;             // map resolution (square), as the VWSS paper's 1024^2
+  double biasConstant = -1.0;  // world units along the view axis; < 0: per point, 4 x the positions' float epsilon
+                               // (shadow_map_common.glsl)
+  double biasSlope = 1.0;      // texels of the receiver plane's depth slope (shadow_map_common.glsl)
+  double maxHalfAngle = 80.0;  // degrees: receivers needing a wider frustum are left unshadowed
 };
 // The declarations of map, bias, slope-bias and max-angle (every shadow-map technique's).
 std::vector<ParamSpec> mapParams();
@@ -61,10 +62,10 @@ struct MapFrame {
 // --samples or --seed; a rect's corners, a disk's or sphere's radius).
 enum class MapReach { Samples, Light };
 
-// The frustum fitted on the GPU: reductions over the G-buffer (src/techniques/common/shadow_map/shaders/shadow_map_fit.comp), so
-// no shadow-map technique reads the G-buffer back. Only the results come back to the CPU: the
-// receivers' centroid (isotropic lights' axis, 32 bytes) and the widest receiver and the count of
-// pixels outside (8 bytes).
+// The frustum fitted on the GPU: reductions over the G-buffer
+// (src/techniques/common/shadow_map/shaders/shadow_map_fit.comp), so no shadow-map technique reads the G-buffer back.
+// Only the results come back to the CPU: the receivers' centroid (isotropic lights' axis, 32 bytes) and the widest
+// receiver and the count of pixels outside (8 bytes).
 class FrameFit {
  public:
   // The frame of `light`'s views over the G-buffer of `gpu` (its surface pixels): the axis (rect
@@ -178,7 +179,8 @@ class MultiViewTechnique : public Technique {
   std::size_t semiOpaque_ = 0;
   gl::Texture semiCount_, semiLayers_;
   gl::Framebuffer semiFbo_;
-  gl::Texture semiStatus_;  // 1 x 1 R32UI image (src/techniques/common/shadow_map/shaders/shadow_map_transmittance.frag)
+  gl::Texture
+      semiStatus_;  // 1 x 1 R32UI image (src/techniques/common/shadow_map/shaders/shadow_map_transmittance.frag)
   int semiSlots_ = 0, semiReruns_ = 0;
 };
 
@@ -191,8 +193,9 @@ int readPcfTaps(const TechniqueArgs& args);
 // groups, split over y beyond 65535 groups (src/techniques/common/shadow_map/shaders/compute_index.glsl globalIndex).
 void dispatchThreads(std::size_t threads);
 
-// Point rendering into an R32UI map array with compute (src/techniques/common/shadow_map/shaders/shadow_map_reproject.comp):
-// `mapsPerThread` maps per traversal of the points (1: serial, 0 or >= layers: fully parallel).
+// Point rendering into an R32UI map array with compute
+// (src/techniques/common/shadow_map/shaders/shadow_map_reproject.comp): `mapsPerThread` maps per traversal of the
+// points (1: serial, 0 or >= layers: fully parallel).
 struct SplatOptions {
   int mapsPerThread = 8;
   bool synchronized = true;  // imageAtomicMax; false: plain stores (last writer wins)

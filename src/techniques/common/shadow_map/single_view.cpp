@@ -5,7 +5,7 @@
 #include "core/error.h"
 #include "gl/context.h"
 #include "pipeline/renderer.h"
-#include "shared/shared.h"  // NOLINT: shared with GLSL
+#include "shared/shared.h"                                              // NOLINT: shared with GLSL
 #include "techniques/common/shadow_map/shaders/single_view_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra::shadow_map {
@@ -15,12 +15,14 @@ ParamSpec satBitsParam() {
 }
 
 ParamSpec subKernelsParam(int fallback) {
-  return ParamSpec::integer("sub-kernels", fallback, 1, 16, "each kernel split into n x n sub-kernels with their own receiver depth");
+  return ParamSpec::integer("sub-kernels", fallback, 1, 16,
+                            "each kernel split into n x n sub-kernels with their own receiver depth");
 }
 
 int readSatBits(const TechniqueArgs& args) {
   const int bits = args.integer("sat-bits");
-  if (bits != 32 && bits != 64) throw Error("param", "sat-bits: must be 32 or 64, got " + std::to_string(bits), ExitCode::Usage);
+  if (bits != 32 && bits != 64)
+    throw Error("param", "sat-bits: must be 32 or 64, got " + std::to_string(bits), ExitCode::Usage);
   return bits;
 }
 
@@ -30,9 +32,8 @@ void SingleViewTechnique::prepare(const Scene& scene, GpuScene&) {
 }
 
 void SingleViewTechnique::renderVisibility(LightPass& pass) {
-  frame_ = pass.timer.time(name_ + " views", [&] {
-    return fit_.compute(pass.gpu, pass.light, pass.samples, map_, MapReach::Light);
-  });
+  frame_ = pass.timer.time(name_ + " views",
+                           [&] { return fit_.compute(pass.gpu, pass.light, pass.samples, map_, MapReach::Light); });
   searchNear_ = nearest_.get(pass.scene, pass.lightIndex, pass.light.position, frame_);
   halfSize_ = pass.light.penumbraHalfSize();
   if (!vao_) {
@@ -97,7 +98,8 @@ void SingleViewTechnique::buildMomentTable(gl::Buffer& sat, std::size_t bytesPer
 }
 
 void SingleViewTechnique::resolveMoments(LightPass& pass, const gl::Program& p, const gl::Buffer& sat,
-                                         const DepthRange& range, const std::function<void(const gl::Program&)>& uniforms) {
+                                         const DepthRange& range,
+                                         const std::function<void(const gl::Program&)>& uniforms) {
   setUniforms(p, pass, 0, 0, 1.0);
   p.set("depthMin", range.min);
   p.set("depthMax", range.max);
@@ -148,14 +150,13 @@ void SingleViewTechnique::drawFullscreen(const gl::Framebuffer& fbo, const gl::P
 }
 
 std::vector<std::pair<std::string, double>> SingleViewTechnique::statistics() const {
-  std::vector<std::pair<std::string, double>> s = {
-      {"map size", frame_.size},
-      {"frustum half-angle deg", glm::degrees(std::atan(frame_.tanHalf))},
-      {"pixels outside maps", double(frame_.outsidePixels)},
-      {"search near", searchNear_},
-      {"light half size", halfSize_},
-      {"map bytes", double(depth_.bytes())},
-      {"semi-opaque triangles as opaque", double(semiOpaque_)}};
+  std::vector<std::pair<std::string, double>> s = {{"map size", frame_.size},
+                                                   {"frustum half-angle deg", glm::degrees(std::atan(frame_.tanHalf))},
+                                                   {"pixels outside maps", double(frame_.outsidePixels)},
+                                                   {"search near", searchNear_},
+                                                   {"light half size", halfSize_},
+                                                   {"map bytes", double(depth_.bytes())},
+                                                   {"semi-opaque triangles as opaque", double(semiOpaque_)}};
   addStatistics(s);
   return s;
 }

@@ -45,12 +45,12 @@ class SingleViewTechnique : public Technique {
   const std::string& name() const { return name_; }
   const MapFrame& frame() const { return frame_; }
   const gl::Texture& depth() const { return depth_; }
-  float searchNear() const { return searchNear_; }       // nearest occluder's view depth
+  float searchNear() const { return searchNear_; }  // nearest occluder's view depth
   // The nearest triangle point's view depth (NearestOccluder surfaces: a bound on every occluder).
   float nearestSurface(const LightPass& pass) {
     return nearest_.get(pass.scene, pass.lightIndex, pass.light.position, frame_, true);
   }
-  float lightHalfSize() const { return halfSize_; }      // the parallel-planes light size
+  float lightHalfSize() const { return halfSize_; }  // the parallel-planes light size
   // The depth range of the moment techniques' normalised depth (vssm, msm, evsm: shaders/
   // vssm_common.glsl): from the nearest occluder surface to the farthest scene point ahead of the
   // light along the map's axis.
@@ -58,14 +58,13 @@ class SingleViewTechnique : public Technique {
     float min = 0.0f, max = 1.0f;
   };
   DepthRange momentDepthRange(const LightPass& pass);
-  // The summed-area table of the depth moments (src/techniques/common/shadow_map/shaders/vssm_sat.comp, its defines) into `sat`,
-  // sized to `bytesPerTexel`, over `range`.
-  // `uniforms` sets the table program's own (evsm's exponents).
+  // The summed-area table of the depth moments (src/techniques/common/shadow_map/shaders/vssm_sat.comp, its defines)
+  // into `sat`, sized to `bytesPerTexel`, over `range`. `uniforms` sets the table program's own (evsm's exponents).
   void buildMomentTable(gl::Buffer& sat, std::size_t bytesPerTexel, const std::vector<std::string>& defines,
                         const DepthRange& range, const std::function<void(const gl::Program&)>& uniforms = {});
-  // The shadow pass of a four-moment table technique (src/techniques/common/shadow_map/shaders/moment_soft.glsl): `p` with the
-  // framework's uniforms, the depth range and its own (`uniforms`), the table and the map bound,
-  // into the visibility buffer.
+  // The shadow pass of a four-moment table technique (src/techniques/common/shadow_map/shaders/moment_soft.glsl): `p`
+  // with the framework's uniforms, the depth range and its own (`uniforms`), the table and the map bound, into the
+  // visibility buffer.
   void resolveMoments(LightPass& pass, const gl::Program& p, const gl::Buffer& sat, const DepthRange& range,
                       const std::function<void(const gl::Program&)>& uniforms);
   // Their statistics: the table's precision and bytes, the depth range.

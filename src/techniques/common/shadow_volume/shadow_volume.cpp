@@ -72,7 +72,6 @@ std::size_t acrossBorder(const geo::EdgeTopology& topology, const std::vector<st
   return count;
 }
 
-
 }  // namespace
 
 void ShadowVolumeCounter::prepare(const Scene& scene, GpuScene& gpu, const std::vector<int>& units, int opaqueUnits) {
@@ -97,8 +96,9 @@ void ShadowVolumeCounter::prepare(const Scene& scene, GpuScene& gpu, const std::
   fbo_ = gl::Framebuffer({&counter_}, &gpu.depth());
 }
 
-ShadowVolumeCounter::Placement ShadowVolumeCounter::place(const glm::dvec3& centre, const std::vector<glm::vec3>* samples,
-                                                          double radius, const glm::dvec3& eye) const {
+ShadowVolumeCounter::Placement ShadowVolumeCounter::place(const glm::dvec3& centre,
+                                                          const std::vector<glm::vec3>* samples, double radius,
+                                                          const glm::dvec3& eye) const {
   Placement out;
   const std::size_t n = samples ? samples->size() : 0;
   std::vector<std::vector<Placement::Crossing>> perSample(n);
@@ -182,9 +182,9 @@ bool ShadowVolumeCounter::onMeshBorder(const glm::dvec3& x) const {
 
 namespace {
 // A face's corners for its cover (world points, w = 0 at infinity), from its storage-block
-// record (src/techniques/common/shadow_volume/shaders/hardsv_volume.frag): a side's quad b -> a -> a_inf -> b_inf with (a, b) =
-// (v0, v1) turned for a negative weight (common/shadow_volume/shaders/volume_count.h penumbraSideCount), a near cap's triangle, a
-// far cap's triangle at infinity reversed.
+// record (src/techniques/common/shadow_volume/shaders/hardsv_volume.frag): a side's quad b -> a -> a_inf -> b_inf with
+// (a, b) = (v0, v1) turned for a negative weight (common/shadow_volume/shaders/volume_count.h penumbraSideCount), a
+// near cap's triangle, a far cap's triangle at infinity reversed.
 int faceCorners(const glm::vec4* f, glm::dvec4 corners[4]) {
   const glm::dvec3 a(f[0]), b(f[1]), c(f[2]);
   switch (int(f[1].w)) {
@@ -206,14 +206,16 @@ int faceCorners(const glm::vec4* f, glm::dvec4 corners[4]) {
 
 // Grows `buffer` (recreated, contents lost) to hold at least `bytes`.
 void reserve(gl::Buffer& buffer, std::size_t bytes) {
-  if (buffer.size() < bytes || buffer.id() == 0) buffer = gl::Buffer(std::max<std::size_t>(bytes + bytes / 2, 1024), nullptr);
+  if (buffer.size() < bytes || buffer.id() == 0)
+    buffer = gl::Buffer(std::max<std::size_t>(bytes + bytes / 2, 1024), nullptr);
 }
 }  // namespace
 
 void ShadowVolumeCounter::count(LightPass& pass, const std::vector<geo::VolumeRule>& rules) {
   PENUMBRA_CHECK(rules.size() == meshes_.size(), "ShadowVolumeCounter: one volume rule per mesh");
   const glm::dvec3 light(pass.light.position);
-  // The faces, three vec4 each (src/techniques/common/shadow_volume/shaders/hardsv_volume.frag: (a, weight), (b, kind), (c, 0)).
+  // The faces, three vec4 each (src/techniques/common/shadow_volume/shaders/hardsv_volume.frag: (a, weight), (b, kind),
+  // (c, 0)).
   faces_.clear();
   sideEdges_ = caps_ = 0;
   pass.timer.time("silhouettes", [&] {
@@ -236,8 +238,8 @@ void ShadowVolumeCounter::count(LightPass& pass, const std::vector<geo::VolumeRu
         // c_t = -1 (back-facing triangle of an open mesh): reverse it so the cap faces the light.
         const glm::uvec3 o = sil.capSign[t] > 0 ? tri : glm::uvec3(tri.x, tri.z, tri.y);
         for (int kind : {PENUMBRA_VOLUME_NEAR_CAP, PENUMBRA_VOLUME_FAR_CAP})
-          faces_.insert(faces_.end(), {glm::vec4(P[o.x], float(m.units)), glm::vec4(P[o.y], float(kind)),
-                                       glm::vec4(P[o.z], 0.0f)});
+          faces_.insert(faces_.end(),
+                        {glm::vec4(P[o.x], float(m.units)), glm::vec4(P[o.y], float(kind)), glm::vec4(P[o.z], 0.0f)});
         ++caps_;
       }
     }
@@ -255,8 +257,9 @@ void ShadowVolumeCounter::count(LightPass& pass, const std::vector<geo::VolumeRu
   view.clipNear = 0.5 * double(pass.scene.camera.zNear);
   view.light = light;
   view.margin = coverMargin(gl::limits().subpixelBits);
-  view.focalPixels = 0.5 * view.viewport.x * glm::length(glm::dvec3(view.clipFromWorld[0][0], view.clipFromWorld[1][0],
-                                                                      view.clipFromWorld[2][0]));
+  view.focalPixels =
+      0.5 * view.viewport.x *
+      glm::length(glm::dvec3(view.clipFromWorld[0][0], view.clipFromWorld[1][0], view.clipFromWorld[2][0]));
   pass.timer.time("volume covers", [&] {
     parallelRows(int(blocks), 0, [&](int block, std::uint64_t&) {
       CoverBlock& b = blocks_[std::size_t(block)];

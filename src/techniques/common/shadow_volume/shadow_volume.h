@@ -10,11 +10,11 @@
 // counts where the view ray meets it behind the evaluation point (shared/numerics.h penumbraShadowOrigin:
 // the visible point moved towards the camera, off its surface); both halves are decided exactly
 // in the fragment shader (shaders/volume_count.h, "Which faces of the shadow volumes the view ray meets";
-// src/techniques/common/shadow_volume/shaders/hardsv_volume.frag), not by the rasteriser or the depth buffer: the visible surface's
-// own near cap counts, which gives the winding number on the camera's side of the surface (the
-// lit side whenever the horizon rule passes), the faces sharing an edge or a vertex line decide
-// it as one (hard case 34), and dcs's wedges decide side planes with the same test. The
-// rasteriser draws each face's cover (volume_cover.h), built here on the CPU each frame.
+// src/techniques/common/shadow_volume/shaders/hardsv_volume.frag), not by the rasteriser or the depth buffer: the
+// visible surface's own near cap counts, which gives the winding number on the camera's side of the surface (the lit
+// side whenever the horizon rule passes), the faces sharing an edge or a vertex line decide it as one (hard case 34),
+// and dcs's wedges decide side planes with the same test. The rasteriser draws each face's cover (volume_cover.h),
+// built here on the CPU each frame.
 #pragma once
 
 #include <string>
@@ -31,7 +31,7 @@ class ShadowVolumeCounter {
   struct MeshVolumes {
     geo::EdgeTopology topology;
     geo::VolumeRule rule;  // for a light outside (place() may give a closed mesh PerTriangle)
-    int units = 1;  // what one volume of the mesh adds to the count (0: the mesh never occludes)
+    int units = 1;         // what one volume of the mesh adds to the count (0: the mesh never occludes)
     std::string name;
   };
 
@@ -101,9 +101,9 @@ class ShadowVolumeCounter {
   // The count's faces and their covers, kept from frame to frame (no reallocation).
   static constexpr std::size_t kCoverBlock = 4096;  // faces a draw (a storage block of 192 KiB)
   struct CoverBlock {
-    std::vector<glm::vec2> points;         // window coordinates (volume_cover.h)
-    std::vector<std::uint32_t> faces;      // per point, its face in the block
-    std::vector<std::uint32_t> indices;    // triangles over the block's points
+    std::vector<glm::vec2> points;       // window coordinates (volume_cover.h)
+    std::vector<std::uint32_t> faces;    // per point, its face in the block
+    std::vector<std::uint32_t> indices;  // triangles over the block's points
   };
   std::vector<glm::vec4> faces_;
   std::vector<CoverBlock> blocks_;

@@ -1,4 +1,5 @@
-// C++ side of techniques/common/shadow_volume/shaders/volume_count.h (the exact shadow-volume count), in namespace penumbra::shared.
+// C++ side of techniques/common/shadow_volume/shaders/volume_count.h (the exact shadow-volume count), in namespace
+// penumbra::shared.
 #pragma once
 #include "shared/shared.hpp"
 

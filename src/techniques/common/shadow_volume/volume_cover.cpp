@@ -25,11 +25,16 @@ struct Point {
 double planeValue(int k, const Point& p, double clipNear) {
   const glm::dvec4& c = p.clip;
   switch (k) {
-    case 0: return c.w - clipNear * p.h;
-    case 1: return kGuard * c.w - c.x;
-    case 2: return kGuard * c.w + c.x;
-    case 3: return kGuard * c.w - c.y;
-    default: return kGuard * c.w + c.y;
+    case 0:
+      return c.w - clipNear * p.h;
+    case 1:
+      return kGuard * c.w - c.x;
+    case 2:
+      return kGuard * c.w + c.x;
+    case 3:
+      return kGuard * c.w - c.y;
+    default:
+      return kGuard * c.w + c.y;
   }
 }
 
@@ -113,10 +118,12 @@ std::size_t appendCover(const CoverView& view, const glm::dvec4* corners, int n,
   for (int i = 0; i < m && m > 1; ++i) {
     const glm::dvec2& x = r[std::size_t(i)];
     const glm::dvec2 in = x - r[std::size_t((i + m - 1) % m)], outEdge = r[std::size_t((i + 1) % m)] - x;
-    const glm::dvec2 nIn = glm::normalize(glm::dvec2(in.y, -in.x)), nOut = glm::normalize(glm::dvec2(outEdge.y, -outEdge.x));
+    const glm::dvec2 nIn = glm::normalize(glm::dvec2(in.y, -in.x)),
+                     nOut = glm::normalize(glm::dvec2(outEdge.y, -outEdge.x));
     const double det = nIn.x * nOut.y - nIn.y * nOut.x;
     if (m > 2 && det > 1e-6) {
-      const double hIn = margin * (std::abs(nIn.x) + std::abs(nIn.y)), hOut = margin * (std::abs(nOut.x) + std::abs(nOut.y));
+      const double hIn = margin * (std::abs(nIn.x) + std::abs(nIn.y)),
+                   hOut = margin * (std::abs(nOut.x) + std::abs(nOut.y));
       // Solve nIn . d = hIn, nOut . d = hOut for the offset d; a spike longer than a pixel is cut.
       const glm::dvec2 d = glm::dvec2(hIn * nOut.y - hOut * nIn.y, hOut * nIn.x - hIn * nOut.x) / det;
       if (glm::dot(d, d) <= 1.0) {

@@ -1,10 +1,9 @@
-// Where the shadow-volume count draws a volume face (src/techniques/common/shadow_volume/shaders/hardsv_volume.frag): a convex
-// polygon on screen holding every pixel centre whose view ray may meet the face. The fragment
-// shader decides exactly whether the ray meets it (shaders/volume_count.h, "Which faces of the shadow volumes
-// the view ray meets"); the rasteriser only has to hand it each such pixel once. So a face is
-// drawn grown by a margin, as one convex fan: no pixel gets two of its fragments (but within
-// rounding of the cover's border, a margin away from the face, where the exact test refuses
-// it), and none whose ray may meet it is missed: the margin, coverMargin(), is three times the
+// Where the shadow-volume count draws a volume face (src/techniques/common/shadow_volume/shaders/hardsv_volume.frag): a
+// convex polygon on screen holding every pixel centre whose view ray may meet the face. The fragment shader decides
+// exactly whether the ray meets it (shaders/volume_count.h, "Which faces of the shadow volumes the view ray meets");
+// the rasteriser only has to hand it each such pixel once. So a face is drawn grown by a margin, as one convex fan: no
+// pixel gets two of its fragments (but within rounding of the cover's border, a margin away from the face, where the
+// exact test refuses it), and none whose ray may meet it is missed: the margin, coverMargin(), is three times the
 // rasteriser's snapping of window coordinates (2^-GL_SUBPIXEL_BITS pixel: llvmpipe 8 bits, the
 // GL asks for 4) and far above the rounding here. Drawn with no margin, the engine scene at
 // 128 px had 473 pixels wrong: the exact test and the rasteriser disagree along every edge.

@@ -179,8 +179,9 @@ TEST(DcsEdgeLut, ForeignCorruptAndTruncatedTablesAreRefused) {
   std::string v1 = bytes;
   v1.replace(0, v1.find('\n'), "penumbra-edge-lut 1");
   writeBytes(v1);
-  expectError([&] { readEdgeLut(bad); }, bad,
-              "format 'penumbra-edge-lut 1', this build reads 'penumbra-edge-lut 2': regenerate it with `penumbra lut`");
+  expectError(
+      [&] { readEdgeLut(bad); }, bad,
+      "format 'penumbra-edge-lut 1', this build reads 'penumbra-edge-lut 2': regenerate it with `penumbra lut`");
   writeBytes("penumbra-edge-lut 2\nsamples 16\nsamples 16\nend\n");
   expectError([&] { readEdgeLut(bad); }, bad, "given twice");
   writeBytes("penumbra-edge-lut 2\nsamples 100000\nend\n");

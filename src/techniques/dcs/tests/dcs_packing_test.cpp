@@ -47,7 +47,8 @@ TEST(DcsPacking, PartialCountsPastTheDigitDecodeExactlyWhereThePlanSaysSo) {
       add(d, c >= reach ? -1 : (c <= -reach ? 1 : ((seed >> 4) & 1 ? 1 : -1)));
     }
     for (int d = 0; d < digits; ++d)
-      while (counts[std::size_t(d)] < 0 || counts[std::size_t(d)] >= int(l.base)) add(d, counts[std::size_t(d)] < 0 ? 1 : -1);
+      while (counts[std::size_t(d)] < 0 || counts[std::size_t(d)] >= int(l.base))
+        add(d, counts[std::size_t(d)] < 0 ? 1 : -1);
     EXPECT_GT(passedTheDigit, 100) << "base " << l.base << ": the walk passed the digits";
     double rest = v;
     for (int d = 0; d < digits; ++d) {
@@ -78,7 +79,9 @@ TEST(DcsPacking, FloatAdditionOfPackedDigitsIsExact) {
     for (int step = 0; step < 2000; ++step) {
       seed = seed * 1664525u + 1013904223u;
       int d = int(seed >> 8) % l.digits;
-      int delta = digits[std::size_t(d)] == int(l.base) - 1 ? -1 : (digits[std::size_t(d)] == 0 ? 1 : ((seed >> 4) & 1 ? 1 : -1));
+      int delta = digits[std::size_t(d)] == int(l.base) - 1
+                      ? -1
+                      : (digits[std::size_t(d)] == 0 ? 1 : ((seed >> 4) & 1 ? 1 : -1));
       digits[std::size_t(d)] += delta;
       v += float(delta) * float(std::pow(double(l.base), d));
     }
@@ -99,7 +102,7 @@ TEST(DcsPacking, PlannerPicksTheNarrowestBaseThatHoldsTheCount) {
   EXPECT_EQ(planPacking(16, 256, 4).counters.base, 4096u);
   EXPECT_EQ(planPacking(16, 5000, 4).counters.base, 1u << 24);
   EXPECT_EQ(planPacking(16, 1, 4, 3).counters.base, 64u);  // minimum layout honoured
-  for (int maxCount : {0, 5, 30, 200, 3000}) {                // the paper's rule: no carries
+  for (int maxCount : {0, 5, 30, 200, 3000}) {             // the paper's rule: no carries
     const PackingPlan p = planPacking(16, maxCount, 4);
     EXPECT_FALSE(p.mayCarry()) << maxCount;
     EXPECT_EQ(p.reach, maxCount);
@@ -139,7 +142,8 @@ TEST(DcsPacking, PlannerHoldsTheFinalCountsWithExactPartialSums) {
           if (q.mayCarry()) {
             EXPECT_TRUE(weightedChecksumExact(q.samplesPerPass, q.reach));
           }
-          EXPECT_LE(std::pair(q.passes, q.targets), std::pair(r.passes, r.targets)) << n << " " << maxCount << " " << reach;
+          EXPECT_LE(std::pair(q.passes, q.targets), std::pair(r.passes, r.targets))
+              << n << " " << maxCount << " " << reach;
           EXPECT_GE(q.passes * q.samplesPerPass, n);
         }
 }

@@ -105,7 +105,8 @@ TEST_P(DcsComputePath, EqualsTheRasterPathAndTheReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, DcsComputePath,
-                         ::testing::Values(ComputePathCase{"", 16, 96}, ComputePathCase{"scenes/stained-glass.json", 16, 96},
+                         ::testing::Values(ComputePathCase{"", 16, 96},
+                                           ComputePathCase{"scenes/stained-glass.json", 16, 96},
                                            ComputePathCase{"scenes/hard/15-two-plates.json", 64, 64},
                                            ComputePathCase{"scenes/hard/28-rect-partly-inside.json", 16, 64},
                                            ComputePathCase{"scenes/engine.json", 16, 64}),

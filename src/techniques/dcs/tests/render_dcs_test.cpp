@@ -34,8 +34,8 @@ TEST_P(DcsVsRaytrace, PerSampleVisibilityMatchesOutsideEdgeBand) {
   EXPECT_EQ(e.sampleMismatches, 0) << e.samplePairs << " (pixel, sample) pairs compared";
   EXPECT_LE(e.visibilityOutsideBand.rmse, 1e-3);
   // A negative count means the integration constant and the wedges disagreed about a side of
-  // the centre's shadow volume (they share the plane test, common/shadow_volume/shaders/volume_count.h penumbraSideOfEdgePlane): none anywhere,
-  // edge band included.
+  // the centre's shadow volume (they share the plane test, common/shadow_volume/shaders/volume_count.h
+  // penumbraSideOfEdgePlane): none anywhere, edge band included.
   EXPECT_EQ(statistic(r.frame, "negativeCountPixels"), 0.0);
   EXPECT_EQ(statistic(r.frame, "inconsistentPixels"), 0.0);
   // No semi-opaque surface here: no opacity coding (one unit per occluder).
@@ -51,12 +51,12 @@ std::vector<Case> cases() {
   out.push_back({"scenes/hard/15-sphere-grid.json", 16});
   // Samples past Embree's FLT_LARGE (raytrace aborted before).
   out.push_back({"scenes/hard/31-huge-light.json", 16});
-  for (const char* s : {"scenes/stained-glass.json", "scenes/dcs-silhouettes.json", "scenes/hard/01-cube-on-plane.json", "scenes/hard/02-camera-in-shadow.json",
-                        "scenes/hard/03-thin-pole-low-light.json", "scenes/hard/04-open-quad.json",
-                        "scenes/hard/05-open-cylinder.json", "scenes/hard/06-book.json",
-                        "scenes/hard/07-flipped-triangle.json", "scenes/hard/09-light-in-face-plane.json",
-                        "scenes/hard/11-camera-in-volume-side.json", "scenes/hard/14-edge-near-light.json",
-                        "scenes/hard/15-two-plates.json",
+  for (const char* s : {"scenes/stained-glass.json", "scenes/dcs-silhouettes.json", "scenes/hard/01-cube-on-plane.json",
+                        "scenes/hard/02-camera-in-shadow.json", "scenes/hard/03-thin-pole-low-light.json",
+                        "scenes/hard/04-open-quad.json", "scenes/hard/05-open-cylinder.json",
+                        "scenes/hard/06-book.json", "scenes/hard/07-flipped-triangle.json",
+                        "scenes/hard/09-light-in-face-plane.json", "scenes/hard/11-camera-in-volume-side.json",
+                        "scenes/hard/14-edge-near-light.json", "scenes/hard/15-two-plates.json",
                         "scenes/hard/19-camera-inside-occluder.json", "scenes/hard/20-light-behind-camera.json",
                         "scenes/hard/23-analytic-square.json", "scenes/hard/23-analytic-disk.json"})
     for (int n : {16, 64}) out.push_back({s, n});
@@ -69,11 +69,11 @@ std::vector<Case> cases() {
     for (int n : {32, 128}) out.push_back({s, n});
   // Hard cases 27-29: lights on, in, through and touching closed meshes, below the
   // floor, inside an open tube; the straddling area lights at 64 samples too.
-  for (const char* s : {"scenes/hard/27-point-at-vertex.json", "scenes/hard/27-point-on-edge.json",
-                        "scenes/hard/27-point-on-face.json", "scenes/hard/27-point-inside.json",
-                        "scenes/hard/27-point-outside.json", "scenes/hard/28-rect-inside-box.json",
-                        "scenes/hard/28-rect-touching.json", "scenes/hard/28-sphere-touching.json",
-                        "scenes/hard/29-light-below-floor.json", "scenes/hard/29-light-inside-tube.json"})
+  for (const char* s :
+       {"scenes/hard/27-point-at-vertex.json", "scenes/hard/27-point-on-edge.json", "scenes/hard/27-point-on-face.json",
+        "scenes/hard/27-point-inside.json", "scenes/hard/27-point-outside.json", "scenes/hard/28-rect-inside-box.json",
+        "scenes/hard/28-rect-touching.json", "scenes/hard/28-sphere-touching.json",
+        "scenes/hard/29-light-below-floor.json", "scenes/hard/29-light-inside-tube.json"})
     out.push_back({s, 16});
   for (const char* s : {"scenes/hard/28-rect-partly-inside.json", "scenes/hard/28-rect-centre-inside.json",
                         "scenes/hard/28-disk-through-box.json", "scenes/hard/28-sphere-partly-inside.json",
@@ -104,11 +104,13 @@ TEST(Dcs, LightsStraddlingABoxMatchTheReferenceWithEveryPattern) {
     }
   }
   // A pole through the light with no sample inside it: closed rule, paths crossing it.
-  Comparison pole = renderAndCompare(loadScene(scenePath("scenes/hard/28-disk-pierced-by-pole.json")), "dcs", settings(96, 64));
+  Comparison pole =
+      renderAndCompare(loadScene(scenePath("scenes/hard/28-disk-pierced-by-pole.json")), "dcs", settings(96, 64));
   EXPECT_LE(pole.errors.visibility.rmse, 1e-3);
   EXPECT_EQ(statistic(pole.frame, "closedMeshesPerTriangle"), 0.0);
   EXPECT_GT(statistic(pole.frame, "pathCrossings"), 0.0);
-  Comparison outside = renderAndCompare(loadScene(scenePath("scenes/hard/01-cube-on-plane.json")), "dcs", settings(64, 16));
+  Comparison outside =
+      renderAndCompare(loadScene(scenePath("scenes/hard/01-cube-on-plane.json")), "dcs", settings(64, 16));
   EXPECT_EQ(statistic(outside.frame, "closedMeshesPerTriangle"), 0.0);
   EXPECT_EQ(statistic(outside.frame, "pathCrossings"), 0.0);
 }
@@ -124,7 +126,8 @@ TEST(Dcs, LightCentredOnAVertexOrEdgeIntegratesFromNextToIt) {
     EXPECT_LE(r.errors.visibility.rmse, 1e-3) << file;
     EXPECT_EQ(statistic(r.frame, "negativeCountPixels"), 0.0) << file;
   }
-  Comparison off = renderAndCompare(loadScene(scenePath("scenes/hard/28-rect-partly-inside.json")), "dcs", settings(64, 16));
+  Comparison off =
+      renderAndCompare(loadScene(scenePath("scenes/hard/28-rect-partly-inside.json")), "dcs", settings(64, 16));
   EXPECT_EQ(statistic(off.frame, "shiftedOrigin"), 0.0);
   EXPECT_EQ(statistic(off.frame, "coplanarTriangles"), 0.0);
 }
@@ -196,9 +199,9 @@ TEST(Dcs, LaterFramesPackTheFinalCountsExactly) {
   FrameResult first = renderer.render(*dcs), second = renderer.render(*dcs);
   FrameResult ref = renderer.render(*makeTechnique("raytrace"));
   const double bound = statistic(second, "boundMaxCount"), maxCount = statistic(second, "maxCount");
-  std::printf("engine 96 px: bound %.0f, max %.0f; first frame base %.0f x %.0f targets, second base %.0f x %.0f\n", bound,
-              maxCount, statistic(first, "counterBase"), statistic(first, "targets"), statistic(second, "counterBase"),
-              statistic(second, "targets"));
+  std::printf("engine 96 px: bound %.0f, max %.0f; first frame base %.0f x %.0f targets, second base %.0f x %.0f\n",
+              bound, maxCount, statistic(first, "counterBase"), statistic(first, "targets"),
+              statistic(second, "counterBase"), statistic(second, "targets"));
   EXPECT_GT(bound, 4.0 * maxCount) << "the case this plan is for";
   EXPECT_EQ(statistic(first, "countsMayCarry"), 0.0);
   EXPECT_EQ(statistic(second, "countsMayCarry"), 1.0);
@@ -375,7 +378,8 @@ TEST(DcsCoverageModes, RefusesALutOfAnotherPattern) {
     renderer.render(*dcs);
     ADD_FAILURE() << "a LUT for 16 samples was accepted for 32";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("edge_rect_stratified_correlated_n16_seed1.lut"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("edge_rect_stratified_correlated_n16_seed1.lut"), std::string::npos)
+        << e.what();
   }
   // Its own pattern: accepted.
   Renderer r16(context(), scene, settings(64, 16));
@@ -584,11 +588,12 @@ TEST_P(DcsOverflow, FinalCountsPastTheirDigitAreDetectedAndRedone) {
 
 INSTANTIATE_TEST_SUITE_P(Bases, DcsOverflow,
                          ::testing::Values(StackCase{8, 7}, StackCase{8, 8}, StackCase{8, 9}, StackCase{16, 15},
-                                           StackCase{16, 16}, StackCase{16, 17}, StackCase{64, 63},
-                                           StackCase{64, 64}, StackCase{64, 65}, StackCase{256, 255},
-                                           StackCase{256, 256}, StackCase{256, 257}),
+                                           StackCase{16, 16}, StackCase{16, 17}, StackCase{64, 63}, StackCase{64, 64},
+                                           StackCase{64, 65}, StackCase{256, 255}, StackCase{256, 256},
+                                           StackCase{256, 257}),
                          [](const auto& info) {
-                           return "base" + std::to_string(info.param.base) + "_plates" + std::to_string(info.param.plates);
+                           return "base" + std::to_string(info.param.base) + "_plates" +
+                                  std::to_string(info.param.plates);
                          });
 
 // Counts past what a float counter holds exactly are refused, naming dcs and the cause, never
@@ -647,7 +652,8 @@ TEST_P(DcsTinyOpacity, EqualsTheReferencePerSample) {
   // Only the mixed scene has surfaces that need units (2e-3, 0.5): a product coding; the
   // others have nothing left to code but the opaque floor.
   const bool mixed = std::string(c.scene).find("mixed") != std::string::npos;
-  EXPECT_EQ(statistic(r.frame, "opacityCoding"), double(mixed ? PENUMBRA_DCS_OPACITY_PRODUCT : PENUMBRA_DCS_OPACITY_OPAQUE));
+  EXPECT_EQ(statistic(r.frame, "opacityCoding"),
+            double(mixed ? PENUMBRA_DCS_OPACITY_PRODUCT : PENUMBRA_DCS_OPACITY_OPAQUE));
 }
 
 INSTANTIATE_TEST_SUITE_P(HardCase30, DcsTinyOpacity,
@@ -657,7 +663,8 @@ INSTANTIATE_TEST_SUITE_P(HardCase30, DcsTinyOpacity,
                                            TinyCase{"scenes/hard/30-tiny-opacity-mixed.json", nullptr, 64}),
                          [](const auto& info) {
                            std::string n = sceneTestName(info.param.scene);
-                           if (info.param.opacity) n += std::string("_opacity") + (info.param.opacity[3] == '7' ? "1e7" : "1e8");
+                           if (info.param.opacity)
+                             n += std::string("_opacity") + (info.param.opacity[3] == '7' ? "1e7" : "1e8");
                            return n;
                          });
 
@@ -688,8 +695,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DcsSilhouettePaths,
                          ::testing::Values("scenes/stained-glass.json", "scenes/dcs-silhouettes.json",
                                            "scenes/hard/05-open-cylinder.json", "scenes/hard/06-book.json",
                                            "scenes/hard/07-flipped-triangle.json",
-                                           "scenes/hard/09-light-in-face-plane.json",
-                                           "scenes/hard/15-two-plates.json", "scenes/hard/23-analytic-disk.json"),
+                                           "scenes/hard/09-light-in-face-plane.json", "scenes/hard/15-two-plates.json",
+                                           "scenes/hard/23-analytic-disk.json"),
                          [](const auto& info) { return sceneTestName(info.param); });
 
 }  // namespace
@@ -746,7 +753,8 @@ TEST(HardCase33, ALightAcrossAFacesBorderIsRefused) {
 
 TEST(HardCase33, ALightOnAFaceOnlyWithinRoundingIsRefused) {
   // The ceiling lowered by 2e-7 (about 2 ulps at 1.5): the light lies 2e-7 behind it.
-  const Scene scene = loadScene(scenePath("scenes/hard/33-ceiling-light.json"), {"objects.1.translate=[0,1.4999998,0]"});
+  const Scene scene =
+      loadScene(scenePath("scenes/hard/33-ceiling-light.json"), {"objects.1.translate=[0,1.4999998,0]"});
   Renderer renderer(context(), scene, settings(64, 16));
   auto dcs = makeTechnique("dcs");
   try {
@@ -762,8 +770,8 @@ TEST(HardCase33, ALightOnAFaceOnlyWithinRoundingIsRefused) {
 // the faces' coverage left to the rasteriser, pixel (102, 78) counted 11 volumes where there are
 // 13 (a side nearly edge-on to the camera given the pixel across a vertex line): dcs refused at
 // 8 and 32 samples and lit one sample silently at 16. Every face's crossing is decided exactly
-// now (common/shadow_volume/shaders/volume_count.h); every (pixel, sample) pair outside the edge band equals the ray tracer's (at 16
-// samples the engine is a DcsVsRaytrace case, with the same gate).
+// now (common/shadow_volume/shaders/volume_count.h); every (pixel, sample) pair outside the edge band equals the ray
+// tracer's (at 16 samples the engine is a DcsVsRaytrace case, with the same gate).
 TEST(HardCase34, ViewRaysThroughVertexLinesCountEveryVolume) {
   const Scene scene = loadScene(scenePath("scenes/engine.json"));
   for (int samples : {8, 32}) {

@@ -83,7 +83,8 @@ namespace penumbra::test {
 TEST(HardCase35, DenoisedKeepsAClosedBoxDark) {
   const Scene scene = loadScene(scenePath("scenes/hard/35-camera-in-closed-box.json"));
   for (const char* spp : {"1", "4"}) {
-    const Comparison r = renderAndCompare(scene, "raytrace-denoised", settings(64, 16), params({std::string("spp=") + spp}));
+    const Comparison r =
+        renderAndCompare(scene, "raytrace-denoised", settings(64, 16), params({std::string("spp=") + spp}));
     std::printf("spp %s: visibility RMSE %.3g, max %.3g\n", spp, r.errors.visibility.rmse, r.errors.visibility.maxAbs);
     EXPECT_LE(r.errors.visibility.maxAbs, 1e-6) << "spp " << spp;
     // The scene is dark for the reference too (and has surface in view), or this proves nothing.

@@ -17,7 +17,8 @@ TEST(Evsm, ParallelPlanesAndBleedingAgainstVssm) {
   EXPECT_EQ(statistic(r.frame, "positive exponent"), 40.0);
   EXPECT_EQ(statistic(r.frame, "negative exponent"), 10.0);
   expectBleedsLessThanVssm("evsm",
-                           {{"scenes/engine.json", 0.09}, {"scenes/hard/15-sphere-grid.json", 0.24},
+                           {{"scenes/engine.json", 0.09},
+                            {"scenes/hard/15-sphere-grid.json", 0.24},
                             {"scenes/hard/15-two-plates.json", 0.065}},
                            0.9);
 }
@@ -30,8 +31,9 @@ TEST(Evsm, AnExponentBeyondTheTablesRangeIsClampedNotNaN) {
   EXPECT_NEAR(evsmExponentLimit(32, 1024.0 * 1024.0), 37.06, 0.01);
   EXPECT_NEAR(evsmExponentLimit(64, 1024.0 * 1024.0), 175.7, 0.1);
   Scene scene = loadScene(scenePath("scenes/hard/23-analytic-square.json"));
-  Comparison fp32 = renderAndCompare(scene, "evsm", settings(96, 16),
-                                     TechniqueParams({"sat-bits=32", "positive-exponent=200", "negative-exponent=200", "map=256"}));
+  Comparison fp32 =
+      renderAndCompare(scene, "evsm", settings(96, 16),
+                       TechniqueParams({"sat-bits=32", "positive-exponent=200", "negative-exponent=200", "map=256"}));
   EXPECT_NEAR(statistic(fp32.frame, "positive exponent"), evsmExponentLimit(32, 256.0 * 256.0), 1e-6);
   EXPECT_NEAR(statistic(fp32.frame, "negative exponent"), evsmExponentLimit(32, 256.0 * 256.0), 1e-6);
   Comparison doubles = renderAndCompare(scene, "evsm", settings(96, 16), TechniqueParams({"positive-exponent=400"}));

@@ -24,7 +24,8 @@ TEST_P(HardSvVsRaytrace, VisibilityMatchesOutsideEdgeBand) {
   RecordProperty("misclassified_fraction", std::to_string(wrong));
   RecordProperty("visibility_rmse_outside_band", std::to_string(e.visibilityOutsideBand.rmse));
   EXPECT_EQ(e.misclassifiedPixels, 0) << e.misclassifiedPixels << " of " << e.visibilityOutsideBand.pixelsCounted
-                                     << " pixels differ; visibility RMSE outside band " << e.visibilityOutsideBand.rmse;
+                                      << " pixels differ; visibility RMSE outside band "
+                                      << e.visibilityOutsideBand.rmse;
   // With one sample the shaded images agree wherever the decisions do.
   EXPECT_LE(e.shadedOutsideBand.pixelsOver, e.visibilityOutsideBand.pixelsCounted / 200 + 1);
   // The scene must actually contain shadow, or the test proves nothing.
@@ -41,13 +42,10 @@ TEST_P(HardSvVsRaytrace, VisibilityMatchesOutsideEdgeBand) {
 INSTANTIATE_TEST_SUITE_P(
     Scenes, HardSvVsRaytrace,
     ::testing::Values(Case{"", 160}, Case{"scenes/hard/01-cube-on-plane.json", 160},
-                      Case{"scenes/hard/02-camera-in-shadow.json", 160},
-                      Case{"scenes/hard/04-open-quad.json", 160},
-                      Case{"scenes/hard/05-open-cylinder.json", 160},
-                      Case{"scenes/hard/06-book.json", 160},
+                      Case{"scenes/hard/02-camera-in-shadow.json", 160}, Case{"scenes/hard/04-open-quad.json", 160},
+                      Case{"scenes/hard/05-open-cylinder.json", 160}, Case{"scenes/hard/06-book.json", 160},
                       Case{"scenes/hard/07-flipped-triangle.json", 160},
-                      Case{"scenes/hard/20-light-behind-camera.json", 160},
-                      Case{"scenes/engine.json", 192},
+                      Case{"scenes/hard/20-light-behind-camera.json", 160}, Case{"scenes/engine.json", 192},
                       // Hard cases 27-29: the light centre on a vertex, an edge, a face, 1e-4
                       // outside; outside a box it straddles; inside an open tube.
                       Case{"scenes/hard/27-point-at-vertex.json", 128}, Case{"scenes/hard/27-point-on-edge.json", 128},
@@ -93,7 +91,8 @@ TEST(HardCase38, ATransparentOccluderCastsNoShadowInAnyTechnique) {
                          t.name != "raytrace-denoised";
     if (variant || t.name == "raytrace") continue;
     const Comparison r = renderAndCompare(scene, t.name, settings(48, 8));
-    std::printf("%-18s visibility RMSE %.2g, max %.2g\n", t.name.c_str(), r.errors.visibility.rmse, r.errors.visibility.maxAbs);
+    std::printf("%-18s visibility RMSE %.2g, max %.2g\n", t.name.c_str(), r.errors.visibility.rmse,
+                r.errors.visibility.maxAbs);
     // The box's shadow would be errors of 1. Exact and hard techniques equal the ray tracer; the
     // approximate ones keep their own small errors of an unoccluded floor (measured at 48 px and 8
     // samples: the multi-view maps 0.025 at most; at 64 px and 16 samples 0.038, and over the

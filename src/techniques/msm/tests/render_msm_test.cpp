@@ -51,12 +51,13 @@ TEST(MsmSoft, ParallelPlanesCase) {
 // curved receivers need them, as vssm's section 5.2 found for its moments.
 TEST(MsmSoft, BleedsLessThanVssm) {
   expectBleedsLessThanVssm("msm-soft",
-                           {{"scenes/engine.json", 0.08}, {"scenes/hard/15-sphere-grid.json", 0.19},
+                           {{"scenes/engine.json", 0.08},
+                            {"scenes/hard/15-sphere-grid.json", 0.19},
                             {"scenes/hard/15-two-plates.json", 0.06}},
                            0.8);
   Scene engine = loadScene(scenePath("scenes/engine.json"));
-  const double single =
-      renderAndCompare(engine, "msm-soft", settings(128, 16), TechniqueParams({"sub-kernels=1"})).errors.visibility.rmse;
+  const double single = renderAndCompare(engine, "msm-soft", settings(128, 16), TechniqueParams({"sub-kernels=1"}))
+                            .errors.visibility.rmse;
   std::printf("engine, msm-soft without sub-kernels: %.4f\n", single);
   EXPECT_GE(single, 0.15);
 }
@@ -69,7 +70,8 @@ TEST(MsmSoft, BleedsLessThanVssm) {
 TEST(MsmSoft, Fp32SummedAreaTableFailsAtTheFarCornerDoublesDoNot) {
   Scene scene = loadScene(scenePath("scenes/hard/17-far-corner.json"));
   Comparison doubles = renderAndCompare(scene, "msm-soft", settings(128, 16), TechniqueParams({"map=2048"}));
-  Comparison fp32 = renderAndCompare(scene, "msm-soft", settings(128, 16), TechniqueParams({"map=2048", "sat-bits=32"}));
+  Comparison fp32 =
+      renderAndCompare(scene, "msm-soft", settings(128, 16), TechniqueParams({"map=2048", "sat-bits=32"}));
   RecordProperty("rmse_doubles", std::to_string(doubles.errors.visibility.rmse));
   RecordProperty("rmse_fp32", std::to_string(fp32.errors.visibility.rmse));
   EXPECT_LE(doubles.errors.visibility.rmse, 0.02);

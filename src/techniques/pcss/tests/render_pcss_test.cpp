@@ -75,7 +75,6 @@ TEST(Pcss, SampleCountsAndSemiOpaqueAreReported) {
   EXPECT_GT(statistic(r.frame, "semi-opaque triangles as opaque"), 0.0);
 }
 
-
 // Sterna's cheaper penumbra estimates stay close to the per-pixel blocker search on the parallel
 // planes case (measured RMSE 0.018-0.024 against the reference at N = 16).
 TEST(PcssVariants, MaskMinFilterAndCheckerboardStayClose) {
@@ -97,7 +96,6 @@ TEST(PcssVariants, MaskMinFilterAndCheckerboardStayClose) {
   EXPECT_LE(measureErrors(f, reference).visibility.rmse, 0.05);
   EXPECT_EQ(gl::Context::takeErrorCount(), 0);
 }
-
 
 // Hard cases 16 (contact) and 18 (receiver grazed at 1 degree): the slope-scaled bias
 // (shadow_map_common.glsl biasedDepth) keeps lit surfaces lit (acne: decisions differing from
@@ -140,10 +138,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DepthBias,
                                            BiasCase{"scenes/hard/18-grazing-receiver.json", "pcss"},
                                            BiasCase{"scenes/hard/16-contact.json", "vssm"},
                                            BiasCase{"scenes/hard/18-grazing-receiver.json", "vssm"}),
-                         [](const auto& info) {
-                           return sceneTestName(info.param.scene) + "_" + info.param.technique;
-                         });
-
+                         [](const auto& info) { return sceneTestName(info.param.scene) + "_" + info.param.technique; });
 
 // Thin geometry missed by the blocker search (VWSS paper Fig. 10): a 1 cm blade high under a
 // large light. Its texels fall between the search's taps at many pixels, so pcss leaves holes and

@@ -11,7 +11,8 @@ namespace {
 // floor's depth and occluded nothing (RMSE 0.965 at 128 px); from the nearest triangle point it
 // measures 0.009.
 TEST(Vssm, WallsPassingTheLightStillOcclude) {
-  Comparison r = renderAndCompare(loadScene(scenePath("scenes/hard/29-light-inside-tube.json")), "vssm", settings(96, 16));
+  Comparison r =
+      renderAndCompare(loadScene(scenePath("scenes/hard/29-light-inside-tube.json")), "vssm", settings(96, 16));
   RecordProperty("rmse_vssm", std::to_string(r.errors.visibility.rmse));
   EXPECT_LE(r.errors.visibility.rmse, 0.05);
 }
@@ -32,7 +33,6 @@ TEST(Vssm, ParallelPlanesCaseAndFusionFailure) {
   RecordProperty("rmse_two_plates_vssm", std::to_string(vssm));
   EXPECT_GE(vssm, 2.5 * mvr);
 }
-
 
 // Hard case 17: a small occluder at the far corner of a 2048^2 map, where an fp32 summed-area
 // table's corner sums (millions of depths) leave no precision for a box's variance: its penumbra

@@ -71,24 +71,24 @@ std::string caseName(const ::testing::TestParamInfo<Case>& info) {
 // pole at 3 degrees (0.045, in the edge band) and the cube (0.9964: samples grazing its front
 // face, whose own depth the receiver-plane bias cannot resolve edge-on); vwss and reproject
 // agreement >= 0.996.
-INSTANTIATE_TEST_SUITE_P(
-    Scenes, MultiViewVsRaytrace,
-    ::testing::Values(Case{"scenes/hard/01-cube-on-plane.json", "mvr", 0.995, 0.01},
-                      Case{"scenes/hard/04-open-quad.json", "mvr", 0.999, 0.015},
-                      Case{"scenes/hard/15-two-plates.json", "mvr", 0.999, 0.02},
-                      Case{"scenes/hard/20-light-behind-camera.json", "mvr", 0.999, 0.015},
-                      Case{"scenes/hard/23-analytic-square.json", "mvr", 0.999, 0.01},
-                      Case{"scenes/hard/23-analytic-disk.json", "mvr", 0.999, 0.01},
-                      Case{"scenes/hard/03-thin-pole-low-light.json", "mvr", 0.999, 0.06},
-                      Case{"scenes/stained-glass.json", "mvr", 0.998, 0.01},
-                      Case{"scenes/stained-glass.json", "vwss", 0.995, 0.02},
-                      Case{"scenes/hard/23-analytic-square.json", "vwss", 0.999, 0.01},
-                      Case{"scenes/hard/20-light-behind-camera.json", "vwss", 0.995, 0.02},
-                      Case{"scenes/hard/23-analytic-disk.json", "reproject", 0.999, 0.01},
-                      Case{"scenes/hard/22-points-behind-light.json", "mvr", 0.999, 0.015},
-                      Case{"scenes/hard/22-points-behind-light.json", "vwss", 0.998, 0.025},
-                      Case{"scenes/hard/22-points-behind-light.json", "vwss-unbuffered", 0.998, 0.025}),
-    caseName);
+INSTANTIATE_TEST_SUITE_P(Scenes, MultiViewVsRaytrace,
+                         ::testing::Values(Case{"scenes/hard/01-cube-on-plane.json", "mvr", 0.995, 0.01},
+                                           Case{"scenes/hard/04-open-quad.json", "mvr", 0.999, 0.015},
+                                           Case{"scenes/hard/15-two-plates.json", "mvr", 0.999, 0.02},
+                                           Case{"scenes/hard/20-light-behind-camera.json", "mvr", 0.999, 0.015},
+                                           Case{"scenes/hard/23-analytic-square.json", "mvr", 0.999, 0.01},
+                                           Case{"scenes/hard/23-analytic-disk.json", "mvr", 0.999, 0.01},
+                                           Case{"scenes/hard/03-thin-pole-low-light.json", "mvr", 0.999, 0.06},
+                                           Case{"scenes/stained-glass.json", "mvr", 0.998, 0.01},
+                                           Case{"scenes/stained-glass.json", "vwss", 0.995, 0.02},
+                                           Case{"scenes/hard/23-analytic-square.json", "vwss", 0.999, 0.01},
+                                           Case{"scenes/hard/20-light-behind-camera.json", "vwss", 0.995, 0.02},
+                                           Case{"scenes/hard/23-analytic-disk.json", "reproject", 0.999, 0.01},
+                                           Case{"scenes/hard/22-points-behind-light.json", "mvr", 0.999, 0.015},
+                                           Case{"scenes/hard/22-points-behind-light.json", "vwss", 0.998, 0.025},
+                                           Case{"scenes/hard/22-points-behind-light.json", "vwss-unbuffered", 0.998,
+                                                0.025}),
+                         caseName);
 
 // The VWSS paper's MVR is the accurate multi-view reference: its error falls as the maps grow.
 TEST(MultiView, MvrConvergesAsMapsGrow) {
@@ -270,8 +270,7 @@ TEST(Enclosure, SeparatesOnlyWhatEveryPathCrosses) {
 TEST(MultiView, VwssWithoutPointsIsAnError) {
   char dir[] = "/tmp/penumbra-shaders-XXXXXX";
   ASSERT_NE(mkdtemp(dir), nullptr);
-  std::ofstream(std::string(dir) + "/vwss_points.frag")
-      << "#include \"shadow_map_points.glsl\"\nvoid main() {}\n";
+  std::ofstream(std::string(dir) + "/vwss_points.frag") << "#include \"shadow_map_points.glsl\"\nvoid main() {}\n";
   Scene scene = loadScene(scenePath("scenes/hard/15-two-plates.json"));
   Renderer renderer(context(), scene, settings(64, 4));
   auto vwss = makeTechnique("vwss", params({"map=128"}));
@@ -280,7 +279,8 @@ TEST(MultiView, VwssWithoutPointsIsAnError) {
     renderer.render(*vwss);
     ADD_FAILURE() << "no error for a pass without points";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("vwss: the point-generation pass produced no point"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("vwss: the point-generation pass produced no point"), std::string::npos)
+        << e.what();
   }
   unsetenv("PENUMBRA_SHADER_DIR");
   std::filesystem::remove_all(dir);
@@ -304,7 +304,8 @@ TEST(MultiView, DepthPassWithoutFragmentsIsAnError) {
       ADD_FAILURE() << name << ": no error for a depth pass without fragments";
     } catch (const Error& e) {
       EXPECT_EQ(std::string(e.what()).rfind(std::string(name) + ": the ", 0), 0u) << e.what();
-      EXPECT_NE(std::string(e.what()).find("pass drew no fragment although occluder triangles cover"), std::string::npos)
+      EXPECT_NE(std::string(e.what()).find("pass drew no fragment although occluder triangles cover"),
+                std::string::npos)
           << e.what();
     }
   }
@@ -361,9 +362,9 @@ TEST(MultiView, VwssKeepsBackFacesWhereTheLightNeedsThem) {
     double overMvr;      // auto's RMSE <= mvr's + this, or < 0: no bound against mvr
     double underCulled;  // auto's RMSE <= this x backfaces=0's
   };
-  for (Case c : {Case{"scenes/hard/29-light-below-floor.json", 0.005, 0.3},
-                 Case{"scenes/hard/27-point-inside.json", 0.005, 0.6},
-                 Case{"scenes/hard/28-rect-inside-box.json", -1.0, 0.4}}) {
+  for (Case c :
+       {Case{"scenes/hard/29-light-below-floor.json", 0.005, 0.3}, Case{"scenes/hard/27-point-inside.json", 0.005, 0.6},
+        Case{"scenes/hard/28-rect-inside-box.json", -1.0, 0.4}}) {
     Scene scene = loadScene(scenePath(c.scene));
     RenderSettings s = settings(96, 16);
     s.cullSeparatedLights = false;  // the technique's own answer for a light inside a closed mesh
@@ -394,14 +395,16 @@ TEST(MultiView, InterleavedSetsUseTheirOwnMaps) {
   s.sampling.pattern = PixelPattern::Interleaved;
   s.sampling.interleaveK = 2;
   s.interleaveFilter = false;
-  Comparison r = renderAndCompare(loadScene(scenePath("scenes/hard/23-analytic-square.json")), "mvr", s, params({"map=512"}));
+  Comparison r =
+      renderAndCompare(loadScene(scenePath("scenes/hard/23-analytic-square.json")), "mvr", s, params({"map=512"}));
   EXPECT_EQ(statistic(r.frame, "maps"), 64.0);
   EXPECT_GE(r.errors.sampleAgreement, 0.999);
 }
 
 // Sphere and point lights have no normal: the maps look from the light towards the receivers.
 TEST(MultiView, SphereLightLooksAtTheReceivers) {
-  Scene scene = loadScene(scenePath("scenes/hard/01-cube-on-plane.json"), {"lights.0.type=sphere", "lights.0.radius=0.3"});
+  Scene scene =
+      loadScene(scenePath("scenes/hard/01-cube-on-plane.json"), {"lights.0.type=sphere", "lights.0.radius=0.3"});
   Comparison r = renderAndCompare(scene, "mvr", settings(128, 16));
   EXPECT_GE(r.errors.sampleAgreement, 0.995);
   EXPECT_LE(r.errors.visibility.rmse, 0.02);
@@ -429,7 +432,8 @@ TEST(MultiView, SemiOpaqueOccludersMultiplyTransmittance) {
   renderer.render(*mvr);
   EXPECT_EQ(statistic(renderer.render(*mvr), "semi-opaque reruns"), 0.0);
   // A scene without semi-opaque surfaces allocates nothing for them.
-  Comparison plain = renderAndCompare(loadScene(scenePath("scenes/hard/01-cube-on-plane.json")), "mvr", settings(64, 4));
+  Comparison plain =
+      renderAndCompare(loadScene(scenePath("scenes/hard/01-cube-on-plane.json")), "mvr", settings(64, 4));
   EXPECT_EQ(statistic(plain.frame, "semi-opaque map bytes"), 0.0);
 }
 
@@ -451,14 +455,14 @@ TEST(MultiView, SplatIgnoresPointsBehindTheCameraAndNonFinitePoints) {
   sampleBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   std::vector<glm::vec3> pts = {
-      {0.1f, 2.0f, 0.1f},         // valid for both samples
-      {0.0f, 5.0f, 0.0f},         // behind both cameras (w < 0)
-      {0.0f, 4.0f, 0.0f},         // on sample 0's plane (w = 0)
-      {0.3f, -0.0f + 4.0f, 0.2f}, // on the plane again
-      {0.0f, 3.995f, 0.0f},       // in front of the camera but nearer than the near plane
-      {nan, 2.0f, 0.0f},          // NaN
-      {0.0f, -inf, 0.0f},         // Inf
-      {100.0f, 2.0f, 0.0f},       // outside the frustum
+      {0.1f, 2.0f, 0.1f},          // valid for both samples
+      {0.0f, 5.0f, 0.0f},          // behind both cameras (w < 0)
+      {0.0f, 4.0f, 0.0f},          // on sample 0's plane (w = 0)
+      {0.3f, -0.0f + 4.0f, 0.2f},  // on the plane again
+      {0.0f, 3.995f, 0.0f},        // in front of the camera but nearer than the near plane
+      {nan, 2.0f, 0.0f},           // NaN
+      {0.0f, -inf, 0.0f},          // Inf
+      {100.0f, 2.0f, 0.0f},        // outside the frustum
   };
   std::vector<float> data(4, 0.0f);
   std::uint32_t count = std::uint32_t(pts.size());

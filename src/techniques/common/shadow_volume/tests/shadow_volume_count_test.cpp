@@ -67,7 +67,7 @@ int crossings(const geo::EdgeTopology& topo, glm::dvec3 o, glm::dvec3 c) {
   const glm::dvec3 d = c - o;
   for (const glm::uvec3& t : topo.weldedTriangles) {
     const glm::dvec3 a(topo.weldedPositions[t.x]), e1 = glm::dvec3(topo.weldedPositions[t.y]) - a,
-        e2 = glm::dvec3(topo.weldedPositions[t.z]) - a;
+                                                   e2 = glm::dvec3(topo.weldedPositions[t.z]) - a;
     const glm::dvec3 p = glm::cross(d, e2);
     const double det = glm::dot(e1, p);
     if (det == 0.0) continue;
@@ -108,7 +108,9 @@ geo::TriangleMesh sphereMesh() {
       const double th = M_PI * j / rings, ph = 2.0 * M_PI * i / segments;
       const double r = j == 0 || j == rings ? 0.0 : std::sin(th);  // the poles exactly
       m.positions.emplace_back(float(r * std::cos(ph)), float(r * std::sin(ph)),
-                               float(j == 0 ? 1.0 : j == rings ? -1.0 : std::cos(th)));
+                               float(j == 0       ? 1.0
+                                     : j == rings ? -1.0
+                                                  : std::cos(th)));
     }
   for (int j = 0; j < rings; ++j)
     for (int i = 0; i < segments; ++i) {
@@ -126,10 +128,10 @@ geo::TriangleMesh sphereMesh() {
 // volume faces meet. Evaluation points near the vertex lines of every silhouette vertex, beyond
 // the vertex from the light, off the line by 1e-6 to 1e-3 of their magnitude (below a pixel:
 // where the rasterised decision went wrong) and not within 1e-5 of a face's plane (where which
-// side the point is on is a float decision), from many eyes: the count equals the surfaces the segment to the light crosses (a closed mesh: whether
-// it passes through it), in double. A sphere lit from anywhere (closed: silhouette sides, front
-// caps) and a height field lit from low on one side (one volume per triangle: the folds towards
-// and away from the light are sides inside it).
+// side the point is on is a float decision), from many eyes: the count equals the surfaces the segment to the light
+// crosses (a closed mesh: whether it passes through it), in double. A sphere lit from anywhere (closed: silhouette
+// sides, front caps) and a height field lit from low on one side (one volume per triangle: the folds towards and away
+// from the light are sides inside it).
 TEST(VolumeCount, AViewRayNearAVertexLineCountsEveryVolumeOnce) {
   std::mt19937 rng(34);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -174,8 +176,10 @@ TEST(VolumeCount, AViewRayNearAVertexLineCountsEveryVolumeOnce) {
   // On the line itself, within rounding of both side planes, the two sides' decisions are
   // rounding: measured, not gated.
   RecordProperty("on_the_line_counted_otherwise", std::to_string(offOnLine) + " of " + std::to_string(onLine));
-  std::printf("%d points near vertex lines, all counted as the double crossings; on a line (within rounding): %d of %d "
-              "counted otherwise\n", checked, offOnLine, onLine);
+  std::printf(
+      "%d points near vertex lines, all counted as the double crossings; on a line (within rounding): %d of %d "
+      "counted otherwise\n",
+      checked, offOnLine, onLine);
 }
 
 // Away from any degeneracy the count is the number of volumes: closed objects or surfaces
@@ -219,7 +223,8 @@ TEST(VolumeCover, HoldsEveryPixelOfTheFaceWithItsMargin) {
   int points = 0, missed = 0, concave = 0;
   for (int trial = 0; trial < 400; ++trial) {
     const glm::dvec3 eye(3.0 * u(rng), 3.0 * u(rng), 3.0 * u(rng));
-    const glm::dmat4 viewMatrix = glm::lookAt(eye, glm::dvec3(0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)), glm::dvec3(0, 1, 0));
+    const glm::dmat4 viewMatrix =
+        glm::lookAt(eye, glm::dvec3(0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)), glm::dvec3(0, 1, 0));
     view.clipFromWorld = glm::perspective(glm::radians(50.0), 1.5, 0.05, 100.0) * viewMatrix;
     view.light = glm::dvec3(2.0 * u(rng), 4.0, 2.0 * u(rng));
     const int kind = trial % 3;
