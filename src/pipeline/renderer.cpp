@@ -402,16 +402,54 @@ FrameResult Renderer::render(Technique& technique, const std::string& name) {
   }
 }
 
-FrameResult Renderer::renderFrame(Technique& technique, const std::string& name) {
+// What the steps of one frame share.
+struct Renderer::FrameState {
+  FrameState(Technique& t, const std::string& n, GpuScene& g, ShadingMode shading)
+      : technique(t),
+        name(n),
+        gpu(g),
+        perSample(shading == ShadingMode::PerSample),
+        exact(shading == ShadingMode::RatioExact),
+        ratio(shading == ShadingMode::Ratio || exact),
+        sumsSamples(perSample || ratio) {}
+  Technique& technique;
+  const std::string& name;
+  GpuScene& gpu;
+  bool perSample, exact, ratio;
+  bool sumsSamples;  // shading reads every sample (eq. 6, the ratio), not V alone
   FrameResult result;
-  result.timer = StageTimer([] { glFinish(); });
-  StageTimer& timer = result.timer;
+  bool haveCpuGBuffer = false;
+  Image cpuRadiance;  // the lights a technique shaded itself (LightPass::cpuShading)
+  std::size_t culledLights = 0;
+  // The G-buffer read back to the CPU, once a frame on first use.
+  const CpuGBuffer& cpuGBuffer() {
+    if (!haveCpuGBuffer) {
+      result.timer.harness("gbuffer readback", [&] { result.gbuffer = gpu.readGBuffer(); });
+      haveCpuGBuffer = true;
+    }
+    return result.gbuffer;
+  }
+};
+
+// What the steps of one light share.
+struct Renderer::LightState {
+  const Light& light;
+  std::size_t index;
+  LightSampleSet samples;
+  gl::Buffer posBuf, lumBuf;         // PENUMBRA_SSBO_LIGHT_SAMPLES, PENUMBRA_SSBO_SAMPLE_RADIANCE
+  bool wantSamples = false;          // the technique's per-sample results are kept or shaded from
+  bool filter = false;               // interleaved sampling's gather filter runs
+  const gl::Texture* vis = nullptr;  // the visibility shading reads (filtered or not)
+  LightResult lr;
+  CpuShading own;
+};
+
+FrameResult Renderer::renderFrame(Technique& technique, const std::string& name) {
+  FrameState frame(technique, name, *gpu_, settings_.shading);
+  frame.result.timer = StageTimer([] { glFinish(); });
+  StageTimer& timer = frame.result.timer;
   timer.setCounter(statistics_.get());
-  bool perSample = settings_.shading == ShadingMode::PerSample;
-  const bool exact = settings_.shading == ShadingMode::RatioExact;
-  const bool ratio = settings_.shading == ShadingMode::Ratio || exact;
-  const bool sumsSamples = perSample || ratio;  // shading reads every sample (eq. 6, the ratio), not V alone
-  if (perSample && !technique.providesPerSample() && !technique.shadesLights())
+  if (frame.perSample && !technique.providesPerSample() && !technique.shadesLights())
     throw Error(name.empty() ? "renderer" : name,
                 "per-sample shading (eq. 6) needs a technique with per-sample visibility", ExitCode::Usage);
 
@@ -420,227 +458,267 @@ FrameResult Renderer::renderFrame(Technique& technique, const std::string& name)
     prepared_ = technique.serial();
   }
   timer.time("gbuffer", [&] { gpu_->renderGBuffer(); });
-
-  bool haveCpuGBuffer = false;
-  auto cpuGBuffer = [&]() -> const CpuGBuffer& {
-    if (!haveCpuGBuffer) {
-      timer.harness("gbuffer readback", [&] { result.gbuffer = gpu_->readGBuffer(); });
-      haveCpuGBuffer = true;
-    }
-    return result.gbuffer;
-  };
-
   const float background[4] = {scene_.background.r, scene_.background.g, scene_.background.b, 0};
   glClearNamedFramebufferfv(colorFbo_.id(), GL_COLOR, 0, background);
+  for (std::size_t li = 0; li < scene_.lights.size(); ++li) renderLight(frame, li);
+  return finishFrame(frame);
+}
 
-  Image cpuRadiance;  // the lights a technique shaded itself (LightPass::cpuShading)
-  std::size_t culledLights = 0;
-  for (std::size_t li = 0; li < scene_.lights.size(); ++li) {
-    const Light& light = scene_.lights[li];
-    LightSampleSet samples = makeLightSamples(scene_, light, settings_.sampling, settings_.time);
-    // A NaN pose (or light) would make every sample fail the horizon test: a finite, wrongly
-    // dark image. Refused here, before any technique sees it.
-    const auto finite = [](const glm::vec3& v) {
-      return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-    };
-    if (!finite(light.position) || !std::all_of(samples.positions.begin(), samples.positions.end(), finite))
-      throw Error(name, fmt::format("light '{}': its position or light samples are NaN or infinite", light.name));
-    std::vector<glm::vec4> lum(samples.luminance.size());
-    for (std::size_t i = 0; i < lum.size(); ++i) lum[i] = glm::vec4(samples.luminance[i], 1.0f);
-    gl::Buffer posBuf = lightSampleBuffer(samples.positions, samples.count), lumBuf(lum);
-    posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
-    lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
+// One light: its samples uploaded, the technique's visibility (or the light culled), the
+// interleaving filter, the light shaded into the image (or the technique's own shading added),
+// the results read back and checked.
+void Renderer::renderLight(FrameState& frame, std::size_t li) {
+  const Light& light = scene_.lights[li];
+  LightState l{light, li, makeLightSamples(scene_, light, settings_.sampling, settings_.time), {}, {}};
+  const LightSampleSet& samples = l.samples;
+  // A NaN pose (or light) would make every sample fail the horizon test: a finite, wrongly
+  // dark image. Refused here, before any technique sees it.
+  const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite(light.position) || !std::all_of(samples.positions.begin(), samples.positions.end(), finite))
+    throw Error(frame.name, fmt::format("light '{}': its position or light samples are NaN or infinite", light.name));
+  std::vector<glm::vec4> lum(samples.luminance.size());
+  for (std::size_t i = 0; i < lum.size(); ++i) lum[i] = glm::vec4(samples.luminance[i], 1.0f);
+  l.posBuf = lightSampleBuffer(samples.positions, samples.count);
+  l.lumBuf = gl::Buffer(lum);
+  l.posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
+  l.lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
 
-    bool wantSamples = technique.providesPerSample() && (settings_.perSampleResults || sumsSamples);
-    if (wantSamples && (perSample_.width() != settings_.width || perSample_.layers() != samples.count))
-      perSample_ = gl::Texture::make2DArray(GL_R32F, settings_.width, settings_.height, samples.count);
-    visibility_.clear(glm::vec4(0.0f));
-    // Pixels without a surface get no per-sample value from a technique: cleared like the
-    // visibility, else they hold whatever the memory held (zink over lavapipe hands out freed
-    // memory: an earlier texture's uint bits read as NaN, MultiView.SemiOpaque... flaked).
-    if (wantSamples) perSample_.clear(glm::vec4(0.0f));
-    LightResult lr;
-    lr.samples = samples.count;
-    CpuShading own;
-    LightPass pass{scene_,        light,          int(li),
-                   samples,       *gpu_,          timer,
-                   cpuGBuffer,    visibility_,    wantSamples ? &perSample_ : nullptr,
-                   &lr.perSample, &lr.visibility, &own};
-    gpu_->bindGBuffer();
-    const LightEnclosure* enclosure = nullptr;
-    if (settings_.cullSeparatedLights && technique.cullsSeparatedLights()) {
-      timer.time("light culling", [&] {
-        if (!enclosures_)
-          enclosures_ = std::make_unique<Enclosures>(
-              scene_, nearPlaneReach(scene_.camera, double(settings_.width) / double(settings_.height)));
-        enclosure = &enclosures_->classify(int(li), light, samples);
-      });
-      if (enclosure->separatedBy.empty() && !enclosure->straddled.empty() &&
-          warned_.insert({technique.serial(), li}).second)
-        PLOG_WARN(
-            "{}: light '{}' has {} of {} samples on the other side of closed mesh '{}' from its centre: the "
-            "technique sees the occluders from the centre, on one side of that surface only (light leaks "
-            "through it; compare measures how much)",
-            name, light.name, enclosure->samplesInOtherCells, samples.positions.size(), enclosure->straddled);
-    }
-    if (enclosure && !enclosure->separatedBy.empty()) {
-      ++culledLights;  // visibility and per-sample results stay cleared: 0
-    } else {
-      technique.renderVisibility(pass);
-      lr.unshadowed = timer.harness("unshadowed readback", [&] { return technique.unshadowedPixels(); });
-    }
-    gl::Context::checkErrors("visibility");
+  renderVisibility(frame, l);
+  filterVisibility(frame, l);
+  if (frame.technique.shadesLights())
+    addOwnShading(frame, l);
+  else
+    shadeLight(frame, l);
+  readBackLight(frame, l);
+  frame.result.lights.push_back(std::move(l.lr));
+}
 
-    // Interleaved sampling (DCS paper 5.2, Algorithm 2): the gather filter over the K x K sets.
-    const bool filter =
-        settings_.interleaveFilter && samples.pattern == PixelPattern::Interleaved && samples.interleaveK > 1;
-    // Filters `source` into the bound framebuffer (blend state is the caller's).
-    auto runFilter = [&](const gl::Texture& source) {
-      glDisable(GL_DEPTH_TEST);
-      gpu_->bindGBuffer();
-      source.bind(PENUMBRA_UNIT_FILTER_SOURCE);
-      filter_.use();
-      filter_.set("interleaveK", samples.interleaveK);
-      filter_.set("eyePosition", gpu_->cameraPosition());
-      emptyVao_.bind();
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-    };
-    if (filter && !filtered_) {  // only frames that interleave pay for these targets
-      filtered_ = gl::Texture::make2D(GL_RGBA32F, settings_.width, settings_.height);
-      filteredFbo_ = gl::Framebuffer({&filtered_}, nullptr);
-    }
-    if (filter && sumsSamples && !lightColor_) {
-      lightColor_ = gl::Texture::make2D(GL_RGBA32F, settings_.width, settings_.height);
-      lightColorFbo_ = gl::Framebuffer({&lightColor_}, nullptr);
-    }
-    const gl::Texture* vis = &visibility_;
-    if (filter) {
-      timer.time("interleave filter", [&] {
-        filteredFbo_.bind();
-        runFilter(visibility_);
-      });
-      vis = &filtered_;
-    }
-
-    // The technique shaded the light itself: its radiance is added to the image read back, its
-    // variances to the frame's (independent lights: variances add).
-    const auto rgbImage = [&](const Image& im) {
-      return im.width == settings_.width && im.height == settings_.height && im.channels == 3;
-    };
-    if (technique.shadesLights() && own.radiance.pixelCount() == 0)
-      throw Error(name,
-                  fmt::format("light '{}': the technique shades its lights but gave no shaded image", light.name));
-    if (technique.shadesLights()) {
-      if (!rgbImage(own.radiance) || (own.radianceVariance.pixelCount() && !rgbImage(own.radianceVariance)))
-        throw Error(name, fmt::format("light '{}': the technique's shaded image or its variance is not {}x{} RGB",
-                                      light.name, settings_.width, settings_.height));
-      const auto add = [&](Image& sum, const Image& term) {
-        if (sum.pixelCount() == 0) sum = Image(settings_.width, settings_.height, 3, 0.0f);
-        for (std::size_t i = 0; i < sum.data.size(); ++i) sum.data[i] += term.data[i];
-      };
-      add(cpuRadiance, own.radiance);
-      if (own.radianceVariance.pixelCount()) add(result.colorVariance, own.radianceVariance);
-    } else {
-      if (exact) {
-        const CpuGBuffer& g = cpuGBuffer();
-        const Image u = timer.time("exact unshadowed", [&] {
-          return shading::unshadowedIntegral(g, scene_, light, settings_.time,
-                                             shading::IntegratorOptions{.lightColour = false});
-        });
-        exactUnshadowed_.upload(u.data.data(), 3);
-      }
-      timer.time("shading", [&] {
-        const gl::Program& prog = shade_;
-        // Eq. 6 and the ratio estimator with interleaving: the light's term is shaded apart (from
-        // the unfiltered per-sample results), then filtered into the image. Divergence from
-        // Heitz et al. 2018, who filter the ratio: the unshadowed factor is smooth, so filtering
-        // the product differs from it only where U varies within the K x K gather.
-        const bool separate = sumsSamples && filter;
-        if (separate) {
-          lightColorFbo_.bind();
-          const float zero[4] = {0, 0, 0, 0};
-          glClearNamedFramebufferfv(lightColorFbo_.id(), GL_COLOR, 0, zero);
-        } else {
-          colorFbo_.bind();
-        }
-        glDisable(GL_DEPTH_TEST);
-        glEnable(GL_BLEND);
-        glBlendEquation(GL_FUNC_ADD);
-        glBlendFunc(GL_ONE, GL_ONE);
-        gpu_->bindGBuffer();
-        posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
-        lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
-        if (wantSamples) perSample_.bind(PENUMBRA_UNIT_SAMPLE_VIS);
-        (ratio ? visibility_ : *vis).bind(PENUMBRA_UNIT_VISIBILITY);
-        prog.use();
-        setLightUniforms(prog, light, samples);
-        prog.set("eyePosition", gpu_->cameraPosition());
-        if (exact) exactUnshadowed_.bind(PENUMBRA_UNIT_UNSHADOWED);
-        if (ratio) {
-          prog.set("ratioFromSamples", wantSamples ? 1 : 0);
-          prog.set("ltcSize", float(ltc_.width()));
-          ltc_.bind(PENUMBRA_UNIT_LTC);
-          const Prefiltered* chain = prefilteredFor(light);
-          prog.set("lightPrefiltered", chain ? 1 : 0);
-          if (chain) {
-            chain->texture.bind(PENUMBRA_UNIT_LIGHT_PREFILTERED);
-            prog.set("prefilterSigma0", chain->sigma0);
-            prog.set("prefilterLevels", chain->levels);
-          }
-        }
-        emptyVao_.bind();
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        if (separate) {
-          colorFbo_.bind();
-          runFilter(lightColor_);
-        }
-        glDisable(GL_BLEND);
-      });
-    }
-    timer.harness("readback", [&] {
-      // A CPU technique's own visibility is the buffer unless the filter changed it.
-      if (filter || lr.visibility.pixelCount() == 0) {
-        lr.visibility = vis->read(3);
-      }
-      if (wantSamples && settings_.perSampleResults && lr.perSample.empty()) {
-        // GPU per-sample results: gather the layers into [pixel * N + k].
-        std::size_t n = lr.visibility.pixelCount();
-        lr.perSample.resize(n * std::size_t(samples.count));
-        Image layers = perSample_.read(1);
-        for (std::size_t k = 0; k < std::size_t(samples.count); ++k)
-          for (std::size_t i = 0; i < n; ++i) lr.perSample[i * std::size_t(samples.count) + k] = layers.data[k * n + i];
-      }
+// The technique's visibility for the light into visibility_ (and perSample_), or nothing where
+// a closed mesh separates the light from the camera and the technique culls such lights.
+void Renderer::renderVisibility(FrameState& frame, LightState& l) {
+  Technique& technique = frame.technique;
+  StageTimer& timer = frame.result.timer;
+  const LightSampleSet& samples = l.samples;
+  l.wantSamples = technique.providesPerSample() && (settings_.perSampleResults || frame.sumsSamples);
+  if (l.wantSamples && (perSample_.width() != settings_.width || perSample_.layers() != samples.count))
+    perSample_ = gl::Texture::make2DArray(GL_R32F, settings_.width, settings_.height, samples.count);
+  visibility_.clear(glm::vec4(0.0f));
+  // Pixels without a surface get no per-sample value from a technique: cleared like the
+  // visibility, else they hold whatever the memory held (zink over lavapipe hands out freed
+  // memory: an earlier texture's uint bits read as NaN, MultiView.SemiOpaque... flaked).
+  if (l.wantSamples) perSample_.clear(glm::vec4(0.0f));
+  l.lr.samples = samples.count;
+  LightPass pass{scene_,
+                 l.light,
+                 int(l.index),
+                 samples,
+                 *gpu_,
+                 timer,
+                 [&frame]() -> const CpuGBuffer& { return frame.cpuGBuffer(); },
+                 visibility_,
+                 l.wantSamples ? &perSample_ : nullptr,
+                 &l.lr.perSample,
+                 &l.lr.visibility,
+                 &l.own};
+  gpu_->bindGBuffer();
+  const LightEnclosure* enclosure = nullptr;
+  if (settings_.cullSeparatedLights && technique.cullsSeparatedLights()) {
+    timer.time("light culling", [&] {
+      if (!enclosures_)
+        enclosures_ = std::make_unique<Enclosures>(
+            scene_, nearPlaneReach(scene_.camera, double(settings_.width) / double(settings_.height)));
+      enclosure = &enclosures_->classify(int(l.index), l.light, samples);
     });
-    if (std::size_t bad = nonFinitePixels(lr.visibility))
-      throw Error(name, fmt::format("light '{}': {} of {} visibility pixels are NaN or infinite", light.name, bad,
-                                    lr.visibility.pixelCount()));
-    // Eq. 2 is a weighted mean of transmittances: outside [0, 1] (beyond float rounding) is a
-    // fault, never an image (a negative emission texel once gave -5).
-    const auto [lo, hi] = std::minmax_element(lr.visibility.data.begin(), lr.visibility.data.end());
-    if (lo != lr.visibility.data.end() && (*lo < -1e-4f || *hi > 1.0f + 1e-4f))
-      throw Error(name, fmt::format("light '{}': visibility outside [0, 1] (from {} to {})", light.name, *lo, *hi));
-    lr.visibilityVariance = std::move(own.visibilityVariance);
-    if (std::any_of(lr.perSample.begin(), lr.perSample.end(), [](float v) { return !std::isfinite(v); }))
-      throw Error(name, fmt::format("light '{}': per-sample visibility holds NaN or infinite values", light.name));
-    result.lights.push_back(std::move(lr));
+    if (enclosure->separatedBy.empty() && !enclosure->straddled.empty() &&
+        warned_.insert({technique.serial(), l.index}).second)
+      PLOG_WARN(
+          "{}: light '{}' has {} of {} samples on the other side of closed mesh '{}' from its centre: the "
+          "technique sees the occluders from the centre, on one side of that surface only (light leaks "
+          "through it; compare measures how much)",
+          frame.name, l.light.name, enclosure->samplesInOtherCells, samples.positions.size(), enclosure->straddled);
   }
+  if (enclosure && !enclosure->separatedBy.empty()) {
+    ++frame.culledLights;  // visibility and per-sample results stay cleared: 0
+  } else {
+    technique.renderVisibility(pass);
+    l.lr.unshadowed = timer.harness("unshadowed readback", [&] { return technique.unshadowedPixels(); });
+  }
+  gl::Context::checkErrors("visibility");
+}
+
+// Filters `source` into the bound framebuffer with interleaved sampling's gather over the
+// K x K sets (blend state is the caller's).
+void Renderer::drawInterleaveFilter(const gl::Texture& source, int interleaveK) {
+  glDisable(GL_DEPTH_TEST);
+  gpu_->bindGBuffer();
+  source.bind(PENUMBRA_UNIT_FILTER_SOURCE);
+  filter_.use();
+  filter_.set("interleaveK", interleaveK);
+  filter_.set("eyePosition", gpu_->cameraPosition());
+  emptyVao_.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+// Interleaved sampling (DCS paper 5.2, Algorithm 2): the gather filter over the K x K sets,
+// into filtered_; l.vis is what shading reads.
+void Renderer::filterVisibility(FrameState& frame, LightState& l) {
+  l.filter = settings_.interleaveFilter && l.samples.pattern == PixelPattern::Interleaved && l.samples.interleaveK > 1;
+  if (l.filter && !filtered_) {  // only frames that interleave pay for these targets
+    filtered_ = gl::Texture::make2D(GL_RGBA32F, settings_.width, settings_.height);
+    filteredFbo_ = gl::Framebuffer({&filtered_}, nullptr);
+  }
+  if (l.filter && frame.sumsSamples && !lightColor_) {
+    lightColor_ = gl::Texture::make2D(GL_RGBA32F, settings_.width, settings_.height);
+    lightColorFbo_ = gl::Framebuffer({&lightColor_}, nullptr);
+  }
+  l.vis = &visibility_;
+  if (l.filter) {
+    frame.result.timer.time("interleave filter", [&] {
+      filteredFbo_.bind();
+      drawInterleaveFilter(visibility_, l.samples.interleaveK);
+    });
+    l.vis = &filtered_;
+  }
+}
+
+// The technique shaded the light itself: its radiance is added to the image read back, its
+// variances to the frame's (independent lights: variances add).
+void Renderer::addOwnShading(FrameState& frame, LightState& l) {
+  const auto rgbImage = [&](const Image& im) {
+    return im.width == settings_.width && im.height == settings_.height && im.channels == 3;
+  };
+  if (l.own.radiance.pixelCount() == 0)
+    throw Error(frame.name,
+                fmt::format("light '{}': the technique shades its lights but gave no shaded image", l.light.name));
+  if (!rgbImage(l.own.radiance) || (l.own.radianceVariance.pixelCount() && !rgbImage(l.own.radianceVariance)))
+    throw Error(frame.name, fmt::format("light '{}': the technique's shaded image or its variance is not {}x{} RGB",
+                                        l.light.name, settings_.width, settings_.height));
+  const auto add = [&](Image& sum, const Image& term) {
+    if (sum.pixelCount() == 0) sum = Image(settings_.width, settings_.height, 3, 0.0f);
+    for (std::size_t i = 0; i < sum.data.size(); ++i) sum.data[i] += term.data[i];
+  };
+  add(frame.cpuRadiance, l.own.radiance);
+  if (l.own.radianceVariance.pixelCount()) add(frame.result.colorVariance, l.own.radianceVariance);
+}
+
+// The light shaded into the image by the pipeline (shaders/pipeline_shade.frag), additively.
+void Renderer::shadeLight(FrameState& frame, LightState& l) {
+  StageTimer& timer = frame.result.timer;
+  if (frame.exact) {
+    const CpuGBuffer& g = frame.cpuGBuffer();
+    const Image u = timer.time("exact unshadowed", [&] {
+      return shading::unshadowedIntegral(g, scene_, l.light, settings_.time,
+                                         shading::IntegratorOptions{.lightColour = false});
+    });
+    exactUnshadowed_.upload(u.data.data(), 3);
+  }
+  timer.time("shading", [&] {
+    const gl::Program& prog = shade_;
+    // Eq. 6 and the ratio estimator with interleaving: the light's term is shaded apart (from
+    // the unfiltered per-sample results), then filtered into the image. Divergence from
+    // Heitz et al. 2018, who filter the ratio: the unshadowed factor is smooth, so filtering
+    // the product differs from it only where U varies within the K x K gather.
+    const bool separate = frame.sumsSamples && l.filter;
+    if (separate) {
+      lightColorFbo_.bind();
+      const float zero[4] = {0, 0, 0, 0};
+      glClearNamedFramebufferfv(lightColorFbo_.id(), GL_COLOR, 0, zero);
+    } else {
+      colorFbo_.bind();
+    }
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+    gpu_->bindGBuffer();
+    l.posBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_LIGHT_SAMPLES);
+    l.lumBuf.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_SAMPLE_RADIANCE);
+    if (l.wantSamples) perSample_.bind(PENUMBRA_UNIT_SAMPLE_VIS);
+    (frame.ratio ? visibility_ : *l.vis).bind(PENUMBRA_UNIT_VISIBILITY);
+    prog.use();
+    setLightUniforms(prog, l.light, l.samples);
+    prog.set("eyePosition", gpu_->cameraPosition());
+    if (frame.exact) exactUnshadowed_.bind(PENUMBRA_UNIT_UNSHADOWED);
+    if (frame.ratio) {
+      prog.set("ratioFromSamples", l.wantSamples ? 1 : 0);
+      prog.set("ltcSize", float(ltc_.width()));
+      ltc_.bind(PENUMBRA_UNIT_LTC);
+      const Prefiltered* chain = prefilteredFor(l.light);
+      prog.set("lightPrefiltered", chain ? 1 : 0);
+      if (chain) {
+        chain->texture.bind(PENUMBRA_UNIT_LIGHT_PREFILTERED);
+        prog.set("prefilterSigma0", chain->sigma0);
+        prog.set("prefilterLevels", chain->levels);
+      }
+    }
+    emptyVao_.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (separate) {
+      colorFbo_.bind();
+      drawInterleaveFilter(lightColor_, l.samples.interleaveK);
+    }
+    glDisable(GL_BLEND);
+  });
+}
+
+// The light's visibility and per-sample results read back, and checked: never a NaN, never a
+// visibility outside [0, 1].
+void Renderer::readBackLight(FrameState& frame, LightState& l) {
+  LightResult& lr = l.lr;
+  const int count = l.samples.count;
+  frame.result.timer.harness("readback", [&] {
+    // A CPU technique's own visibility is the buffer unless the filter changed it.
+    if (l.filter || lr.visibility.pixelCount() == 0) {
+      lr.visibility = l.vis->read(3);
+    }
+    if (l.wantSamples && settings_.perSampleResults && lr.perSample.empty()) {
+      // GPU per-sample results: gather the layers into [pixel * N + k].
+      std::size_t n = lr.visibility.pixelCount();
+      lr.perSample.resize(n * std::size_t(count));
+      Image layers = perSample_.read(1);
+      for (std::size_t k = 0; k < std::size_t(count); ++k)
+        for (std::size_t i = 0; i < n; ++i) lr.perSample[i * std::size_t(count) + k] = layers.data[k * n + i];
+    }
+  });
+  if (std::size_t bad = nonFinitePixels(lr.visibility))
+    throw Error(frame.name, fmt::format("light '{}': {} of {} visibility pixels are NaN or infinite", l.light.name, bad,
+                                        lr.visibility.pixelCount()));
+  // Eq. 2 is a weighted mean of transmittances: outside [0, 1] (beyond float rounding) is a
+  // fault, never an image (a negative emission texel once gave -5).
+  const auto [lo, hi] = std::minmax_element(lr.visibility.data.begin(), lr.visibility.data.end());
+  if (lo != lr.visibility.data.end() && (*lo < -1e-4f || *hi > 1.0f + 1e-4f))
+    throw Error(frame.name,
+                fmt::format("light '{}': visibility outside [0, 1] (from {} to {})", l.light.name, *lo, *hi));
+  lr.visibilityVariance = std::move(l.own.visibilityVariance);
+  if (std::any_of(lr.perSample.begin(), lr.perSample.end(), [](float v) { return !std::isfinite(v); }))
+    throw Error(frame.name,
+                fmt::format("light '{}': per-sample visibility holds NaN or infinite values", l.light.name));
+}
+
+// The image read back (with the lights techniques shaded themselves added) and checked, the
+// statistics and the memory the frame held.
+FrameResult Renderer::finishFrame(FrameState& frame) {
+  FrameResult& result = frame.result;
+  Technique& technique = frame.technique;
+  StageTimer& timer = result.timer;
   result.color = timer.harness("readback", [&] { return color_.read(3); });
-  for (std::size_t i = 0; i < cpuRadiance.data.size(); ++i) result.color.data[i] += cpuRadiance.data[i];
+  for (std::size_t i = 0; i < frame.cpuRadiance.data.size(); ++i) result.color.data[i] += frame.cpuRadiance.data[i];
   if (std::size_t bad = nonFinitePixels(result.color))
-    throw Error(name,
+    throw Error(frame.name,
                 fmt::format("{} of {} pixels of the shaded image are NaN or infinite", bad, result.color.pixelCount()));
   // Comparisons mask background pixels with it (RenderSettings::gbufferResults).
-  if (settings_.gbufferResults) cpuGBuffer();
+  if (settings_.gbufferResults) frame.cpuGBuffer();
   result.statistics = technique.statistics();
   if (settings_.cullSeparatedLights && technique.cullsSeparatedLights())
-    result.statistics.emplace_back("lights culled (a closed mesh between them and the camera)", double(culledLights));
+    result.statistics.emplace_back("lights culled (a closed mesh between them and the camera)",
+                                   double(frame.culledLights));
   result.memoryBytes = gpu_->memoryBytes() + color_.bytes() + visibility_.bytes() +
                        (filtered_ ? filtered_.bytes() : 0) + (lightColor_ ? lightColor_.bytes() : 0) +
                        (perSample_ ? perSample_.bytes() : 0) + (ltc_ ? ltc_.bytes() : 0) + technique.memoryBytes();
   for (const auto& [key, chain] : prefiltered_) result.memoryBytes += chain.texture.bytes();
   timer.setCounter(nullptr);
   gl::Context::checkErrors("frame");
-  return result;
+  return std::move(result);
 }
 
 }  // namespace penumbra

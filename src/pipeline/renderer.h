@@ -177,7 +177,19 @@ class Renderer {
   FrameResult render(Technique& technique, const std::string& name = "technique");
 
  private:
+  // A frame's steps (renderer.cpp): per light, renderLight's visibility, interleaving filter,
+  // shading and read-back; then finishFrame.
+  struct FrameState;
+  struct LightState;
   FrameResult renderFrame(Technique& technique, const std::string& name);
+  void renderLight(FrameState& frame, std::size_t lightIndex);
+  void renderVisibility(FrameState& frame, LightState& light);
+  void filterVisibility(FrameState& frame, LightState& light);
+  void drawInterleaveFilter(const gl::Texture& source, int interleaveK);
+  void addOwnShading(FrameState& frame, LightState& light);
+  void shadeLight(FrameState& frame, LightState& light);
+  void readBackLight(FrameState& frame, LightState& light);
+  FrameResult finishFrame(FrameState& frame);
   std::unique_ptr<Scene> local_;  // a camera-relative copy, when the scene given was not
   const Scene& scene_;            // the scene every technique renders: camera at the origin
   RenderSettings settings_;
