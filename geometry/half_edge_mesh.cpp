@@ -24,100 +24,108 @@ constexpr std::uint32_t kNone = 0xffffffffu;
 
 bool collapsed(const glm::uvec3& t) { return t.x == t.y || t.y == t.z || t.z == t.x; }
 
-}  // namespace
+// Directed edge d = 3t + k runs from corner k to corner k + 1 of triangle t. The direction
+// (0: lo -> hi) rides along so the loops over sorted halves need not read the triangle again (a
+// cache miss each). Eight bytes a half: most of the build's time is the first touch of its memory.
+struct Half {
+  std::uint32_t hi;
+  std::uint32_t code;  // 2d + direction
+  std::uint32_t directed() const { return code >> 1; }
+  std::uint32_t triangle() const { return (code >> 1) / 3; }
+  std::uint32_t corner() const { return (code >> 1) % 3; }
+  int direction() const { return int(code & 1u); }
+};
 
-OpenMesh::HalfedgeHandle HalfEdgeMesh::cornerHalfedge(OpenMesh::FaceHandle f, const glm::uvec3& tri, int corner) const {
-  OpenMesh::HalfedgeHandle h = mesh.halfedge_handle(f);
-  for (int i = 0; i < 3 && welded(mesh.from_vertex_handle(h)) != tri[corner]; ++i) h = mesh.next_halfedge_handle(h);
-  return h;
-}
+std::uint32_t direction(const glm::uvec3& t, std::uint32_t k) { return t[k] < t[(k + 1) % 3] ? 0u : 1u; }
 
-std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& weldedPositions,
-                                                const std::vector<glm::uvec3>& tris) {
-  const std::size_t vertexCount = weldedPositions.size(), triangleCount = tris.size();
-  // Directed edge d = 3t + k runs from corner k to corner k + 1 of triangle t; grouped by
-  // welded end points, sorted by (lo, hi, triangle, corner). Made straight into place by a
-  // counting sort on lo (bucket[lo] is where lo's halves start, so a half need not hold lo):
-  // a bucket then holds its halves in (triangle, corner) order, and a stable insertion sort on
-  // hi (a vertex's few edges) finishes the order. The direction (0: lo -> hi) rides along so
-  // the loops over sorted halves need not read the triangle again (a cache miss each). Eight
-  // bytes a half: most of this function's time is the first touch of its memory.
-  PENUMBRA_CHECK(triangleCount < (std::size_t(1) << 31) / 3, "buildHalfEdgeMesh: more than 715 million triangles");
-  struct Half {
-    std::uint32_t hi;
-    std::uint32_t code;  // 2d + direction
-    std::uint32_t directed() const { return code >> 1; }
-    std::uint32_t triangle() const { return (code >> 1) / 3; }
-    std::uint32_t corner() const { return (code >> 1) % 3; }
-    int direction() const { return int(code & 1u); }
-  };
-  std::vector<std::uint32_t> bucket(vertexCount + 1, 0);
-  for (std::size_t t = 0; t < triangleCount; ++t)
-    if (!collapsed(tris[t]))
-      for (std::uint32_t k = 0; k < 3; ++k) ++bucket[std::min(tris[t][k], tris[t][(k + 1) % 3]) + 1];
-  std::partial_sum(bucket.begin(), bucket.end(), bucket.begin());
-  std::vector<Half> halves(bucket[vertexCount]);
+// The directed edges grouped by welded end points (a group is one welded edge), sorted by
+// (lo, hi, triangle, corner).
+struct EdgeGroups {
+  std::vector<std::uint32_t> bucket;      // lo -> where its halves start (so a half need not hold lo)
+  std::vector<Half> halves;               // sorted
+  std::vector<std::uint32_t> groupOf;     // directed edge 3t + k -> its group
+  std::vector<std::uint32_t> groupStart;  // group -> first sorted half; one past the last half at the end
+  std::size_t count() const { return groupStart.size() - 1; }
+};
+
+// Made straight into place by a counting sort on lo: a bucket then holds its halves in
+// (triangle, corner) order, and a stable insertion sort on hi (a vertex's few edges) finishes
+// the order.
+EdgeGroups groupEdges(std::size_t vertexCount, const std::vector<glm::uvec3>& tris) {
+  EdgeGroups g;
+  g.bucket.assign(vertexCount + 1, 0);
+  for (const glm::uvec3& t : tris)
+    if (!collapsed(t))
+      for (std::uint32_t k = 0; k < 3; ++k) ++g.bucket[std::min(t[k], t[(k + 1) % 3]) + 1];
+  std::partial_sum(g.bucket.begin(), g.bucket.end(), g.bucket.begin());
+  g.halves.resize(g.bucket[vertexCount]);
   {
-    std::vector<std::uint32_t> next(bucket.begin(), bucket.end() - 1);
-    for (std::size_t t = 0; t < triangleCount; ++t) {
+    std::vector<std::uint32_t> next(g.bucket.begin(), g.bucket.end() - 1);
+    for (std::size_t t = 0; t < tris.size(); ++t) {
       if (collapsed(tris[t])) continue;
       for (std::uint32_t k = 0; k < 3; ++k) {
         const std::uint32_t a = tris[t][k], b = tris[t][(k + 1) % 3], lo = std::min(a, b);
-        halves[next[lo]++] = {std::max(a, b), std::uint32_t(2 * (3 * t + k) + (a < b ? 0 : 1))};
+        g.halves[next[lo]++] = {std::max(a, b), std::uint32_t(2 * (3 * t + k) + (a < b ? 0 : 1))};
       }
     }
   }
   for (std::size_t v = 0; v < vertexCount; ++v)
-    for (std::uint32_t i = bucket[v] + 1; i < bucket[v + 1]; ++i)
-      for (std::uint32_t j = i; j > bucket[v] && halves[j].hi < halves[j - 1].hi; --j)
-        std::swap(halves[j], halves[j - 1]);
-  std::vector<std::uint32_t> groupOf(3 * triangleCount, kNone);  // directed edge 3t + k -> its group
-  std::vector<std::uint32_t> groupStart;                         // group -> first sorted half
+    for (std::uint32_t i = g.bucket[v] + 1; i < g.bucket[v + 1]; ++i)
+      for (std::uint32_t j = i; j > g.bucket[v] && g.halves[j].hi < g.halves[j - 1].hi; --j)
+        std::swap(g.halves[j], g.halves[j - 1]);
+  g.groupOf.assign(3 * tris.size(), kNone);
   for (std::size_t v = 0; v < vertexCount; ++v)
-    for (std::uint32_t i = bucket[v]; i < bucket[v + 1]; ++i) {
-      if (i == bucket[v] || halves[i].hi != halves[i - 1].hi) groupStart.push_back(i);
-      groupOf[halves[i].directed()] = std::uint32_t(groupStart.size() - 1);
+    for (std::uint32_t i = g.bucket[v]; i < g.bucket[v + 1]; ++i) {
+      if (i == g.bucket[v] || g.halves[i].hi != g.halves[i - 1].hi) g.groupStart.push_back(i);
+      g.groupOf[g.halves[i].directed()] = std::uint32_t(g.groupStart.size() - 1);
     }
-  const std::size_t groupCount = groupStart.size();
-  groupStart.push_back(std::uint32_t(halves.size()));
-  const auto direction = [&](std::size_t t, std::uint32_t k) { return tris[t][k] < tris[t][(k + 1) % 3] ? 0u : 1u; };
+  g.groupStart.push_back(std::uint32_t(g.halves.size()));
+  return g;
+}
 
-  // Complex edges, in triangle order: a triangle is refused when an earlier kept one already
-  // runs one of its edges the same way (add_face: "complex edge"). What is kept is
-  // edge-manifold: each welded edge has at most one face per direction.
-  std::vector<std::uint32_t> owner(2 * groupCount, kNone);  // (group, direction) -> directed edge 3t + k
-  // Directed edge 3t + k of a kept triangle -> the kept one running its welded edge the other
-  // way (kNone at a boundary), linked as each triangle is kept: one look-up per step of the fan
-  // walks below instead of three.
-  std::vector<std::uint32_t> twin(3 * triangleCount, kNone);
-  std::vector<std::uint8_t> kept(triangleCount, 0);
-  for (std::size_t t = 0; t < triangleCount; ++t) {
+// The triangles kept, and across each kept directed edge 3t + k the kept one running its
+// welded edge the other way (kNone at a boundary).
+struct Kept {
+  std::vector<std::uint8_t> triangle;
+  std::vector<std::uint32_t> twin;
+};
+
+// Complex edges, in triangle order: a triangle is refused when an earlier kept one already
+// runs one of its edges the same way (add_face: "complex edge"). What is kept is
+// edge-manifold: each welded edge has at most one face per direction. Twins are linked as each
+// triangle is kept: one look-up per step of the fan walks below instead of three.
+Kept keepManifoldEdges(const EdgeGroups& groups, const std::vector<glm::uvec3>& tris) {
+  std::vector<std::uint32_t> owner(2 * groups.count(), kNone);  // (group, direction) -> directed edge
+  Kept kept{std::vector<std::uint8_t>(tris.size(), 0), std::vector<std::uint32_t>(3 * tris.size(), kNone)};
+  for (std::size_t t = 0; t < tris.size(); ++t) {
     if (collapsed(tris[t])) continue;
     bool free = true;
-    for (std::uint32_t k = 0; k < 3 && free; ++k) free = owner[2 * groupOf[3 * t + k] + direction(t, k)] == kNone;
+    for (std::uint32_t k = 0; k < 3 && free; ++k)
+      free = owner[2 * groups.groupOf[3 * t + k] + direction(tris[t], k)] == kNone;
     if (!free) continue;
-    kept[t] = 1;
+    kept.triangle[t] = 1;
     for (std::uint32_t k = 0; k < 3; ++k) {
-      const std::uint32_t d = std::uint32_t(3 * t + k), g = groupOf[d], dir = direction(t, k);
+      const std::uint32_t d = std::uint32_t(3 * t + k), g = groups.groupOf[d], dir = direction(tris[t], k);
       owner[2 * g + dir] = d;
-      if (const std::uint32_t other = owner[2 * g + 1 - dir]; other != kNone) twin[d] = other, twin[other] = d;
+      if (const std::uint32_t other = owner[2 * g + 1 - dir]; other != kNone)
+        kept.twin[d] = other, kept.twin[other] = d;
     }
   }
+  return kept;
+}
 
-  // Complex vertices: the kept corners at a vertex, joined across shared edges, form its fans
-  // (paths or cycles). A half-edge mesh has no room for a closed fan beside another fan at the
-  // same vertex (add_face: "complex vertex"): there the closed fan with the earliest triangle
-  // stays, and the triangles of the other fans at that vertex are refused. A walk round each
-  // vertex from its first corner finds the vertices with more than one fan; only those are
-  // sorted into fans.
-  // The corner of v next round the vertex: across the edge leaving v (forward) or arriving at it.
-  const auto step = [&](std::uint32_t corner, bool forward) -> std::uint32_t {
+// The kept corners at a vertex, joined across shared edges, form its fans (paths or cycles).
+struct FanWalker {
+  const std::vector<std::uint32_t>& twin;
+  // The corner of the same vertex next round it: across the edge leaving it (forward) or arriving at it.
+  std::uint32_t step(std::uint32_t corner, bool forward) const {
     const std::uint32_t k = corner % 3, other = twin[corner - k + (forward ? k : (k + 2) % 3)];
     if (other == kNone) return kNone;
     return forward ? 3 * (other / 3) + (other % 3 + 1) % 3 : other;
-  };
+  }
   // Walks the fan of `corner` and calls visit on each of its corners; returns whether it is closed.
-  const auto walkFan = [&](std::uint32_t corner, auto&& visit) {
+  template <class Visit>
+  bool walk(std::uint32_t corner, Visit&& visit) const {
     visit(corner);
     for (std::uint32_t c = step(corner, true); c != kNone; c = step(c, true)) {
       if (c == corner) return true;
@@ -125,100 +133,115 @@ std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& we
     }
     for (std::uint32_t c = step(corner, false); c != kNone; c = step(c, false)) visit(c);
     return false;
-  };
+  }
+};
+
+// The vertices whose kept corners are not all reached by a walk round the fan of the first.
+std::vector<std::uint8_t> verticesWithSeveralFans(std::size_t vertexCount, const std::vector<glm::uvec3>& tris,
+                                                  const Kept& kept) {
   std::vector<std::uint32_t> firstCorner(vertexCount, kNone), cornerCount(vertexCount, 0);
-  for (std::size_t t = 0; t < triangleCount; ++t) {
-    if (!kept[t]) continue;
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    if (!kept.triangle[t]) continue;
     for (std::uint32_t k = 0; k < 3; ++k) {
       if (firstCorner[tris[t][k]] == kNone) firstCorner[tris[t][k]] = std::uint32_t(3 * t + k);
       ++cornerCount[tris[t][k]];
     }
   }
-  std::vector<std::uint8_t> severalFans(vertexCount, 0);
-  bool anySeveral = false;
+  const FanWalker fans{kept.twin};
+  std::vector<std::uint8_t> several(vertexCount, 0);
   for (std::size_t v = 0; v < vertexCount; ++v) {
     if (firstCorner[v] == kNone) continue;
     std::uint32_t reached = 0;
-    walkFan(firstCorner[v], [&](std::uint32_t) { ++reached; });
-    severalFans[v] = reached != cornerCount[v];
-    anySeveral = anySeveral || severalFans[v];
+    fans.walk(firstCorner[v], [&](std::uint32_t) { ++reached; });
+    several[v] = reached != cornerCount[v];
   }
-  if (anySeveral) {
-    std::vector<std::uint32_t> corners;  // the corners at vertices with several fans, by vertex
-    for (std::size_t t = 0; t < triangleCount; ++t) {
-      if (!kept[t]) continue;
-      for (std::uint32_t k = 0; k < 3; ++k)
-        if (severalFans[tris[t][k]]) corners.push_back(std::uint32_t(3 * t + k));
-    }
-    corners = bucketSort(corners, vertexCount, [&](std::uint32_t c) { return tris[c / 3][c % 3]; });
-    std::vector<std::uint8_t> refuse(triangleCount, 0);
-    for (std::size_t i = 0, j = 0; i < corners.size(); i = j) {
-      const std::uint32_t v = tris[corners[i] / 3][corners[i] % 3];
-      for (j = i; j < corners.size() && tris[corners[j] / 3][corners[j] % 3] == v;) ++j;
-      // Label the fans (corners are sorted, so fans come in order of their earliest triangle).
-      std::vector<std::uint32_t> label(j - i, kNone);
-      const auto slot = [&](std::uint32_t c) {
-        return std::size_t(
-            std::lower_bound(corners.begin() + std::ptrdiff_t(i), corners.begin() + std::ptrdiff_t(j), c) -
-            (corners.begin() + std::ptrdiff_t(i)));
-      };
-      std::uint32_t keep = kNone, fans = 0;
-      for (std::size_t c = i; c < j; ++c) {
-        if (label[c - i] != kNone) continue;
-        const bool closed = walkFan(corners[c], [&](std::uint32_t x) { label[slot(x)] = fans; });
-        if (closed && keep == kNone) keep = fans;
-        ++fans;
-      }
-      if (keep == kNone) continue;  // only open fans: a non-manifold vertex the mesh can hold
-      for (std::size_t c = i; c < j; ++c)
-        if (label[c - i] != keep) refuse[corners[c] / 3] = 1;
-    }
-    for (std::size_t t = 0; t < triangleCount; ++t) kept[t] = kept[t] && !refuse[t];
-  }
+  return several;
+}
 
-  // Built in place: OpenMesh's kernel has no move constructor, so moving a HalfEdgeMesh would
-  // copy the whole mesh.
-  const auto built = std::make_shared<HalfEdgeMesh>();
-  HalfEdgeMesh& out = *built;
-  out.weldedCount = vertexCount;
-  out.faceOf.assign(triangleCount, -1);
-  for (std::size_t t = 0; t < triangleCount; ++t)
+// Complex vertices: a half-edge mesh has no room for a closed fan beside another fan at the
+// same vertex (add_face: "complex vertex"): there the closed fan with the earliest triangle
+// stays, and the triangles of the other fans at that vertex are refused. Only the vertices with
+// more than one fan are sorted into fans.
+void refuseComplexVertices(std::size_t vertexCount, const std::vector<glm::uvec3>& tris, Kept& kept) {
+  const std::vector<std::uint8_t> severalFans = verticesWithSeveralFans(vertexCount, tris, kept);
+  if (std::find(severalFans.begin(), severalFans.end(), 1) == severalFans.end()) return;
+  std::vector<std::uint32_t> corners;  // the corners at vertices with several fans, by vertex
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    if (!kept.triangle[t]) continue;
+    for (std::uint32_t k = 0; k < 3; ++k)
+      if (severalFans[tris[t][k]]) corners.push_back(std::uint32_t(3 * t + k));
+  }
+  const auto vertexOf = [&](std::uint32_t c) { return tris[c / 3][c % 3]; };
+  corners = bucketSort(corners, vertexCount, vertexOf);
+  const FanWalker walker{kept.twin};
+  std::vector<std::uint8_t> refuse(tris.size(), 0);
+  for (std::size_t i = 0, j = 0; i < corners.size(); i = j) {
+    const std::uint32_t v = vertexOf(corners[i]);
+    for (j = i; j < corners.size() && vertexOf(corners[j]) == v;) ++j;
+    // Label the fans (corners are sorted, so fans come in order of their earliest triangle).
+    std::vector<std::uint32_t> label(j - i, kNone);
+    const auto slot = [&](std::uint32_t c) {
+      return std::size_t(std::lower_bound(corners.begin() + std::ptrdiff_t(i), corners.begin() + std::ptrdiff_t(j), c) -
+                         (corners.begin() + std::ptrdiff_t(i)));
+    };
+    std::uint32_t keep = kNone, fans = 0;
+    for (std::size_t c = i; c < j; ++c) {
+      if (label[c - i] != kNone) continue;
+      const bool closed = walker.walk(corners[c], [&](std::uint32_t x) { label[slot(x)] = fans; });
+      if (closed && keep == kNone) keep = fans;
+      ++fans;
+    }
+    if (keep == kNone) continue;  // only open fans: a non-manifold vertex the mesh can hold
+    for (std::size_t c = i; c < j; ++c)
+      if (label[c - i] != keep) refuse[corners[c] / 3] = 1;
+  }
+  for (std::size_t t = 0; t < tris.size(); ++t) kept.triangle[t] = kept.triangle[t] && !refuse[t];
+}
+
+// Lists the refused triangles and gives each three copies of its vertices after the welded
+// ones; returns refused triangle -> its first copy.
+std::vector<std::uint32_t> copyRefused(HalfEdgeMesh& out, const std::vector<glm::uvec3>& tris,
+                                       const std::vector<std::uint8_t>& kept) {
+  for (std::size_t t = 0; t < tris.size(); ++t)
     if (!collapsed(tris[t]) && !kept[t]) out.refused.push_back(std::uint32_t(t));
-  std::vector<std::uint32_t> copyOf(triangleCount, kNone);  // refused triangle -> its first copied vertex
-  out.weldedOf.resize(vertexCount);
+  std::vector<std::uint32_t> copyOf(tris.size(), kNone);
+  out.weldedOf.resize(out.weldedCount);
   std::iota(out.weldedOf.begin(), out.weldedOf.end(), 0u);
   for (std::uint32_t t : out.refused) {
     copyOf[t] = std::uint32_t(out.weldedOf.size());
     for (int k = 0; k < 3; ++k) out.weldedOf.push_back(tris[t][k]);
   }
-  // One OpenMesh edge per group with kept faces, one per refused directed edge (on copies).
-  std::size_t edgeCount = 0;
-  for (std::size_t g = 0; g < groupCount; ++g) {
-    bool shared = false;
-    for (std::uint32_t i = groupStart[g]; i < groupStart[g + 1]; ++i) {
-      const bool k = kept[halves[i].triangle()];
-      shared = shared || k;
-      edgeCount += !k;
-    }
-    edgeCount += shared;
-  }
-  const std::size_t faceCount = triangleCount - std::size_t(std::count_if(tris.begin(), tris.end(), collapsed));
+  return copyOf;
+}
 
+// One OpenMesh edge per group with kept faces, one per refused directed edge (on copies).
+std::size_t edgeCount(const EdgeGroups& groups, const std::vector<std::uint8_t>& kept) {
+  std::size_t count = 0;
+  for (std::size_t g = 0; g < groups.count(); ++g) {
+    bool shared = false;
+    for (std::uint32_t i = groups.groupStart[g]; i < groups.groupStart[g + 1]; ++i) {
+      const bool k = kept[groups.halves[i].triangle()];
+      shared = shared || k;
+      count += !k;
+    }
+    count += shared;
+  }
+  return count;
+}
+
+// Sets the edges' vertices and out.edgeGroups; writes directed edge -> OpenMesh halfedge.
+void linkEdges(HalfEdgeMesh& out, const EdgeGroups& groups, const std::vector<std::uint8_t>& kept,
+               const std::vector<std::uint32_t>& copyOf, std::vector<std::uint32_t>& halfedgeOf) {
   SilhouetteTriMesh& m = out.mesh;
-  m.resize(out.weldedOf.size(), edgeCount, faceCount);
-  std::vector<OpenMesh::Vec3d>& points = m.property(m.points_pph()).data_vector();
-  for (std::size_t v = 0; v < out.weldedOf.size(); ++v) points[v] = toOpenMesh(weldedPositions[out.weldedOf[v]]);
-  // Directed edge -> OpenMesh halfedge, in the memory of groupOf (no longer needed).
-  std::vector<std::uint32_t>& halfedgeOf = groupOf;
-  out.edgeGroups.reserve(groupCount + 1);
+  out.edgeGroups.reserve(groups.count() + 1);
   int edge = 0;
   std::uint32_t lo = 0;  // the group's lower end point: the bucket its first half lies in
-  for (std::size_t g = 0; g < groupCount; ++g) {
-    while (bucket[lo + 1] <= groupStart[g]) ++lo;
+  for (std::size_t g = 0; g < groups.count(); ++g) {
+    while (groups.bucket[lo + 1] <= groups.groupStart[g]) ++lo;
     out.edgeGroups.push_back(std::uint32_t(edge));
     OpenMesh::EdgeHandle sharedEdge;
-    for (std::uint32_t i = groupStart[g]; i < groupStart[g + 1]; ++i) {
-      const Half& h = halves[i];
+    for (std::uint32_t i = groups.groupStart[g]; i < groups.groupStart[g + 1]; ++i) {
+      const Half& h = groups.halves[i];
       const std::uint32_t t = h.triangle();
       if (kept[t]) {
         if (!sharedEdge.is_valid()) {  // halfedge 0 runs lo -> hi
@@ -236,8 +259,13 @@ std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& we
     }
   }
   out.edgeGroups.push_back(std::uint32_t(edge));
-  // Faces: the kept triangles in order, then the refused ones (as OpenMesh's importer adds them).
-  out.triangleOf.reserve(faceCount);
+}
+
+// Faces: the kept triangles in order, then the refused ones (as OpenMesh's importer adds them).
+void linkFaces(HalfEdgeMesh& out, const std::vector<glm::uvec3>& tris, const std::vector<std::uint8_t>& kept,
+               const std::vector<std::uint32_t>& copyOf, const std::vector<std::uint32_t>& halfedgeOf) {
+  SilhouetteTriMesh& m = out.mesh;
+  out.triangleOf.reserve(m.n_faces());
   const auto addFace = [&](std::uint32_t t) {
     const OpenMesh::FaceHandle f(int(out.triangleOf.size()));
     const auto halfedge = [&](std::uint32_t k) { return OpenMesh::HalfedgeHandle(int(halfedgeOf[3 * t + k])); };
@@ -251,17 +279,21 @@ std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& we
       m.set_halfedge_handle(OpenMesh::VertexHandle(int(copyOf[t] == kNone ? tris[t][k] : copyOf[t] + k)), h);
     }
   };
-  for (std::uint32_t t = 0; t < triangleCount; ++t)
+  for (std::uint32_t t = 0; t < tris.size(); ++t)
     if (kept[t]) addFace(t);
   for (std::uint32_t t : out.refused) addFace(t);
-  // Boundary halfedges: each open fan at a vertex has one arriving (x -> v) and one leaving
-  // (v -> y); the arriving one of fan i continues with the leaving one of fan i + 1, so that
-  // circulating the vertex visits every fan, and the vertex keeps a leaving boundary halfedge
-  // (OpenMesh's conventions for boundary and non-manifold vertices).
+}
+
+// Boundary halfedges: each open fan at a vertex has one arriving (x -> v) and one leaving
+// (v -> y); the arriving one of fan i continues with the leaving one of fan i + 1, so that
+// circulating the vertex visits every fan, and the vertex keeps a leaving boundary halfedge
+// (OpenMesh's conventions for boundary and non-manifold vertices).
+void linkBoundaries(HalfEdgeMesh& out) {
+  SilhouetteTriMesh& m = out.mesh;
   struct Boundary {
     std::uint32_t vertex;
     int arriving, leaving;
-    bool operator<(const Boundary& o) const { return arriving < o.arriving; }
+    bool operator<(const Boundary& o) const { return arriving < o.arriving; }  // within a vertex's bucket
   };
   std::vector<Boundary> boundary;
   const int halfedgeCount = int(m.n_halfedges());
@@ -272,11 +304,8 @@ std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& we
     for (int steps = 0;; ++steps) {
       PENUMBRA_CHECK(steps < halfedgeCount, "buildHalfEdgeMesh: a fan without an end");
       const OpenMesh::HalfedgeHandle o = m.opposite_halfedge_handle(m.prev_halfedge_handle(h));
-      if (!m.face_handle(o).is_valid()) {
-        h = o;
-        break;
-      }
       h = o;
+      if (!m.face_handle(o).is_valid()) break;
     }
     boundary.push_back({std::uint32_t(m.to_vertex_handle(in).idx()), i, h.idx()});
   }
@@ -289,6 +318,43 @@ std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& we
     m.set_halfedge_handle(OpenMesh::VertexHandle(int(boundary[i].vertex)),
                           OpenMesh::HalfedgeHandle(boundary[i].leaving));
   }
+}
+
+}  // namespace
+
+OpenMesh::HalfedgeHandle HalfEdgeMesh::cornerHalfedge(OpenMesh::FaceHandle f, const glm::uvec3& tri, int corner) const {
+  OpenMesh::HalfedgeHandle h = mesh.halfedge_handle(f);
+  for (int i = 0; i < 3 && welded(mesh.from_vertex_handle(h)) != tri[corner]; ++i) h = mesh.next_halfedge_handle(h);
+  return h;
+}
+
+// Which triangles are kept (complex edges, then complex vertices refused, as add_face would),
+// then the OpenMesh arrays linked in bulk: vertices, edges, faces, boundaries.
+std::shared_ptr<HalfEdgeMesh> buildHalfEdgeMesh(const std::vector<glm::vec3>& weldedPositions,
+                                                const std::vector<glm::uvec3>& tris) {
+  const std::size_t vertexCount = weldedPositions.size(), triangleCount = tris.size();
+  PENUMBRA_CHECK(triangleCount < (std::size_t(1) << 31) / 3, "buildHalfEdgeMesh: more than 715 million triangles");
+  EdgeGroups groups = groupEdges(vertexCount, tris);
+  Kept kept = keepManifoldEdges(groups, tris);
+  refuseComplexVertices(vertexCount, tris, kept);
+
+  // Built in place: OpenMesh's kernel has no move constructor, so moving a HalfEdgeMesh would
+  // copy the whole mesh.
+  const auto built = std::make_shared<HalfEdgeMesh>();
+  HalfEdgeMesh& out = *built;
+  out.weldedCount = vertexCount;
+  out.faceOf.assign(triangleCount, -1);
+  const std::vector<std::uint32_t> copyOf = copyRefused(out, tris, kept.triangle);
+  const std::size_t faceCount = triangleCount - std::size_t(std::count_if(tris.begin(), tris.end(), collapsed));
+  SilhouetteTriMesh& m = out.mesh;
+  m.resize(out.weldedOf.size(), edgeCount(groups, kept.triangle), faceCount);
+  std::vector<OpenMesh::Vec3d>& points = m.property(m.points_pph()).data_vector();
+  for (std::size_t v = 0; v < out.weldedOf.size(); ++v) points[v] = toOpenMesh(weldedPositions[out.weldedOf[v]]);
+  // Directed edge -> OpenMesh halfedge, in the memory of groupOf (no longer needed).
+  std::vector<std::uint32_t> halfedgeOf = std::move(groups.groupOf);
+  linkEdges(out, groups, kept.triangle, copyOf, halfedgeOf);
+  linkFaces(out, tris, kept.triangle, copyOf, halfedgeOf);
+  linkBoundaries(out);
   return built;
 }
 

@@ -32,7 +32,6 @@
 #include "scene/scene.h"
 #include "shading/ltc.h"
 #include "shading/prefiltered_light.h"
-#include "techniques/dcs/edge_lut.h"
 #include "techniques/registry.h"
 
 namespace fs = std::filesystem;
@@ -515,7 +514,7 @@ int lut(const CommonOptions& o, const LutOptions& l) {
   if (!o.scene.empty()) {
     scene = loadSceneFor(o);
   } else {
-    scene.lights.push_back(dcs::unitLight(l.shape == "rect" ? LightShape::Rect : LightShape::Disk));
+    scene.lights.push_back(patternTables().front().unitLight(l.shape == "rect" ? LightShape::Rect : LightShape::Disk));
   }
   RenderSettings s = settingsFor(o, scene);
   checkWritableFolder(l.outDir, "--output", /*create=*/true);  // after the checks: no folder for a refused run
@@ -537,17 +536,17 @@ int lut(const CommonOptions& o, const LutOptions& l) {
   };
   for (const Light& light : scene.lights) {
     LightSampleSet samples = makeLightSamples(scene, light, s.sampling, s.time);
-    if (dcs::edgeLutSupports(light)) {
-      std::string path = (fs::path(l.outDir) / dcs::edgeLutFileName(samples)).string();
-      if (std::find(done.begin(), done.end(), path) == done.end()) {
-        done.push_back(path);
-        dcs::EdgeLut table =
-            dcs::buildEdgeLut(dcs::normalisedSamples(samples), samples.count, samples.setCount, {l.cube, l.line});
-        dcs::writeEdgeLut(path, table);
-        written.push_back({{"light", light.name}, {"kind", "edge"}, {"path", path}});
+    for (const PatternTable& table : patternTables()) {
+      if (!table.supports(light)) {
+        PLOG_INFO("lut: light '{}' is not a rect or disk light: no {} LUT ({} uses its exact test)", light.name,
+                  table.kind, table.technique);
+        continue;
       }
-    } else {
-      PLOG_INFO("lut: light '{}' is not a rect or disk light: no edge LUT (dcs uses its exact test)", light.name);
+      const std::string path = (fs::path(l.outDir) / table.fileName(samples)).string();
+      if (std::find(done.begin(), done.end(), path) != done.end()) continue;
+      done.push_back(path);
+      table.write(samples, path, l.cube, l.line);
+      written.push_back({{"light", light.name}, {"kind", table.kind}, {"path", path}});
     }
     if (!light.emissionFrames.empty()) {
       // DCS paper 7.1: the luminance of each sample, N columns x M sets rows.

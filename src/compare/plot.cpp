@@ -208,182 +208,229 @@ std::string errorAxisName(const CompareResult& r, ErrorAxis axis) {
   return {};
 }
 
-std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
-  const auto runs = plottedRuns(r, axis);
-  // Techniques grouped by family (in the families' order), each family's in first-appearance order.
-  std::vector<std::string> names;
-  std::map<std::string, TechniqueFamily> familyOf;
-  for (auto i : runs) familyOf.emplace(r.runs[i].technique, r.runs[i].family);
-  for (TechniqueFamily f : kTechniqueFamilies)
-    for (auto i : runs)
-      if (r.runs[i].family == f && std::find(names.begin(), names.end(), r.runs[i].technique) == names.end())
-        names.push_back(r.runs[i].technique);
-  std::map<std::string, Look> looks;
-  {
-    std::map<TechniqueFamily, int> variants;
-    for (auto& n : names) looks.emplace(n, lookOf(familyOf[n], variants[familyOf[n]]++));
-  }
-  int familiesShown = 0;
-  for (TechniqueFamily f : kTechniqueFamilies)
-    familiesShown += std::any_of(names.begin(), names.end(), [&](auto& n) { return familyOf[n] == f; });
+namespace {
 
-  const double left = 70, right = 200, top = 30, bottom = 50, W = 800, line = 14;
-  const double legendHeight = line * double(names.size() + std::size_t(familiesShown)) + 30.0;
-  const double H = std::max(480.0, top + legendHeight + bottom);
-  const double pw = W - left - right, ph = H - top - bottom;
-  constexpr double kExact = kExactErrorFloor;
-  bool anyExact = false;
-  for (auto i : runs) anyExact |= r.runs[i].errorOn(axis) < kExact;
-  auto errorOf = [&](std::size_t i) { return std::max(r.runs[i].errorOn(axis), kExact); };
-  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-  for (auto i : runs) {
-    x0 = std::min(x0, std::log10(r.runs[i].total.median)), x1 = std::max(x1, std::log10(r.runs[i].total.median));
-    y0 = std::min(y0, std::log10(errorOf(i))), y1 = std::max(y1, std::log10(errorOf(i)));
-  }
-  if (runs.empty()) x0 = 0, x1 = 1, y0 = -3, y1 = 0;
-  // The converged reference's own noise: a dotted floor per image size, inside the axis.
-  const auto floors = referenceNoiseOn(r, axis);
-  for (auto& [preset, noise] : floors)
-    if (noise > 0.0)
-      y0 = std::min(y0, std::log10(std::max(noise, kExact))), y1 = std::max(y1, std::log10(std::max(noise, kExact)));
-  auto pad = [](double& lo, double& hi) {
-    if (hi - lo < 0.5) {
-      double mid = 0.5 * (lo + hi);
-      lo = mid - 0.25, hi = mid + 0.25;
-    }
-    double p = 0.06 * (hi - lo);
-    lo -= p, hi += p;
-  };
-  pad(x0, x1), pad(y0, y1);
-  auto X = [&](double ms) { return left + (std::log10(ms) - x0) / (x1 - x0) * pw; };
-  auto Y = [&](double e) { return top + (1.0 - (std::log10(e) - y0) / (y1 - y0)) * ph; };
-
-  std::string s = fmt::format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
-      "font-family=\"sans-serif\" font-size=\"12\" role=\"img\" aria-label=\"speed against error\" data-axis=\"{2}\">\n"
-      "<style>.label{{font-size:{3}px}} .label.hidden{{display:none}} .show-all .label.hidden, "
-      ".pt:hover .label.hidden{{display:inline}} .pt:hover .label{{font-weight:bold}}</style>\n"
-      "<rect width=\"{0}\" height=\"{1}\" fill=\"white\"/>\n",
-      W, H, toString(axis), kLabelFont);
-  s += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">Speed against error: {}</text>\n", left,
-                   escapeMarkup(r.info.value("sceneName", std::string("scene"))));
-  for (double t : logTicks(x0, x1)) {
-    double x = left + (t - x0) / (x1 - x0) * pw;
-    s += fmt::format(
-        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
-        "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>\n",
-        x, top, top + ph, top + ph + 16, tickLabel(t));
-  }
-  for (double t : logTicks(y0, y1)) {
-    double y = top + (1.0 - (t - y0) / (y1 - y0)) * ph;
-    bool exact = anyExact && std::abs(t - std::log10(kExact)) < 1e-9;
-    s += fmt::format(
-        "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>"
-        "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
-        left, y, left + pw, left - 6, y + 4, exact ? "&#8804;1e-4" : tickLabel(t));
-  }
-  s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#333\"/>\n", left, top,
-                   pw, ph);
-  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">median ms per frame (log)</text>\n", left + pw / 2,
-                   H - 10);
-  s += fmt::format("<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\">{} (log)</text>\n",
-                   top + ph / 2, escapeMarkup(errorAxisName(r, axis)));
-
-  for (auto& [preset, noise] : floors) {
-    if (!(noise > 0.0)) continue;
-    const double y = Y(std::max(noise, kExact));
-    const std::string size = floors.size() > 1 ? fmt::format(" ({}x{})", preset->width, preset->height) : "";
-    s += fmt::format(
-        "<g class=\"reference-noise\"><line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" "
-        "stroke=\"#555\" stroke-dasharray=\"1,3\"/><text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\" "
-        "fill=\"#555\">reference noise{5} {6:.2g}</text></g>\n",
-        left, y, left + pw, left + pw - 4, y - 4, size, noise);
+// The plot of one axis, drawn in named steps: the techniques' looks by family, the axes fitted to
+// the points and the reference's noise, the frame, the Pareto front and each technique's curve,
+// the labels placed, the points, the legend.
+class SpeedErrorPlot {
+ public:
+  SpeedErrorPlot(const CompareResult& r, ErrorAxis axis) : r_(r), axis_(axis), runs_(plottedRuns(r, axis)) {
+    chooseLooks();
+    fitAxes();
   }
 
-  // Pareto front (dashed steps), then one curve per technique.
-  std::vector<std::pair<double, double>> pts;
-  for (auto i : runs) pts.emplace_back(r.runs[i].total.median, errorOf(i));
-  std::vector<std::size_t> front;  // indices into `runs`
-  for (auto i : paretoRuns(r, axis))
-    front.push_back(std::size_t(std::find(runs.begin(), runs.end(), i) - runs.begin()));
-  if (front.size() > 1) {
-    std::string path;
-    for (std::size_t k = 0; k < front.size(); ++k) {
-      double x = X(pts[front[k]].first), y = Y(pts[front[k]].second);
-      if (k == 0)
-        path += fmt::format("M{:.1f},{:.1f}", x, y);
-      else
-        path += fmt::format(" H{:.1f} V{:.1f}", x, y);
-    }
-    s += "<path class=\"pareto\" d=\"" + path + "\" fill=\"none\" stroke=\"#888\" stroke-dasharray=\"5,4\"/>\n";
-  }
-  for (auto& name : names) {
-    std::vector<std::size_t> mine;
-    for (std::size_t k = 0; k < runs.size(); ++k)
-      if (r.runs[runs[k]].technique == name) mine.push_back(k);
-    std::sort(mine.begin(), mine.end(), [&](auto a, auto b) { return pts[a].first < pts[b].first; });
-    if (mine.size() < 2) continue;
-    std::string path;
-    for (std::size_t k = 0; k < mine.size(); ++k)
-      path += fmt::format("{}{:.1f},{:.1f}", k ? " L" : "M", X(pts[mine[k]].first), Y(pts[mine[k]].second));
-    s += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.2\" opacity=\"0.7\"/>\n", path,
-                     looks[name].colour);
+  std::string svg() {
+    std::string s = frame() + referenceNoise() + curves();
+    placeLabels();
+    return s + points() + legend() + "</svg>\n";
   }
 
-  // Labels: the Pareto front first (by time), then each family's best point (lowest error,
-  // then fastest); each at the first of eight places around its point that stays inside the
-  // plot and clear of every point and every label placed before it.
-  const bool sweep = r.presets.size() > 1;
-  auto labelText = [&](std::size_t k) {
-    const CompareRun& run = r.runs[runs[k]];
-    const std::string preset = sweep ? presetShort(r.presets[run.preset].label) : "";
-    return std::pair(run.technique, preset.empty() ? std::string() : " " + preset);
-  };
-  std::vector<std::size_t> wanted(front.begin(), front.end());
-  for (TechniqueFamily f : kTechniqueFamilies) {
-    std::size_t best = runs.size();
-    for (std::size_t k = 0; k < runs.size(); ++k)
-      if (r.runs[runs[k]].family == f && (best == runs.size() || pts[k].second < pts[best].second ||
-                                          (pts[k].second == pts[best].second && pts[k].first < pts[best].first)))
-        best = k;
-    if (best < runs.size() && std::find(wanted.begin(), wanted.end(), best) == wanted.end()) wanted.push_back(best);
-  }
-  constexpr double kR = 4.5;
-  std::vector<Box> taken;
-  for (std::size_t k = 0; k < runs.size(); ++k) {
-    const double x = X(pts[k].first), y = Y(pts[k].second);
-    taken.push_back({x - kR - 1, y - kR - 1, x + kR + 1, y + kR + 1});
-  }
-  const Box area{left + 1, top + 1, left + pw - 1, top + ph - 1};
+ private:
+  static constexpr double kLeft = 70, kRight = 200, kTop = 30, kBottom = 50, kWidth = 800, kLine = 14;
+  static constexpr double kMarker = 4.5;  // a point's radius, for the labels' clearance
+
+  // A label's place: at (x, y) with its anchor, shown or on hover only; drawn away from its point,
+  // joined to it by a line from (lx0, ly0) to (lx1, ly1), when leader is set.
   struct Placed {
     double x, y;
     const char* anchor;
     bool shown;
-    bool leader = false;  // drawn away from its point, joined to it by a line from (lx0, ly0) to (lx1, ly1)
+    bool leader = false;
     double lx0 = 0, ly0 = 0, lx1 = 0, ly1 = 0;
   };
-  std::vector<Placed> placed(runs.size());
-  auto place = [&](std::size_t k, bool keep) {
-    const double x = X(pts[k].first), y = Y(pts[k].second);
+
+  double X(double ms) const { return kLeft + (std::log10(ms) - x0_) / (x1_ - x0_) * pw_; }
+  double Y(double e) const { return kTop + (1.0 - (std::log10(e) - y0_) / (y1_ - y0_)) * ph_; }
+  double errorOf(std::size_t i) const { return std::max(r_.runs[i].errorOn(axis_), kExactErrorFloor); }
+  TechniqueFamily familyOf(const std::string& name) const { return familyOf_.at(name); }
+  bool wanted(std::size_t k) const { return std::find(wanted_.begin(), wanted_.end(), k) != wanted_.end(); }
+
+  // Techniques grouped by family (in the families' order), each family's in first-appearance
+  // order; a look per technique (colour by family, shape and shade by variant).
+  void chooseLooks() {
+    for (auto i : runs_) familyOf_.emplace(r_.runs[i].technique, r_.runs[i].family);
+    for (TechniqueFamily f : kTechniqueFamilies)
+      for (auto i : runs_)
+        if (r_.runs[i].family == f && std::find(names_.begin(), names_.end(), r_.runs[i].technique) == names_.end())
+          names_.push_back(r_.runs[i].technique);
+    std::map<TechniqueFamily, int> variants;
+    for (auto& n : names_) looks_.emplace(n, lookOf(familyOf(n), variants[familyOf(n)]++));
+    for (TechniqueFamily f : kTechniqueFamilies)
+      familiesShown_ += std::any_of(names_.begin(), names_.end(), [&](auto& n) { return familyOf(n) == f; });
+  }
+
+  // The plot's size (tall enough for the legend) and its log ranges: every point and the
+  // converged reference's noise floors, padded.
+  void fitAxes() {
+    const double legendHeight = kLine * double(names_.size() + std::size_t(familiesShown_)) + 30.0;
+    height_ = std::max(480.0, kTop + legendHeight + kBottom);
+    pw_ = kWidth - kLeft - kRight, ph_ = height_ - kTop - kBottom;
+    for (auto i : runs_) anyExact_ |= r_.runs[i].errorOn(axis_) < kExactErrorFloor;
+    x0_ = INFINITY, x1_ = -INFINITY, y0_ = INFINITY, y1_ = -INFINITY;
+    for (auto i : runs_) {
+      x0_ = std::min(x0_, std::log10(r_.runs[i].total.median)),
+      x1_ = std::max(x1_, std::log10(r_.runs[i].total.median));
+      y0_ = std::min(y0_, std::log10(errorOf(i))), y1_ = std::max(y1_, std::log10(errorOf(i)));
+    }
+    if (runs_.empty()) x0_ = 0, x1_ = 1, y0_ = -3, y1_ = 0;
+    floors_ = referenceNoiseOn(r_, axis_);
+    for (auto& [preset, noise] : floors_)
+      if (noise > 0.0) {
+        const double y = std::log10(std::max(noise, kExactErrorFloor));
+        y0_ = std::min(y0_, y), y1_ = std::max(y1_, y);
+      }
+    auto pad = [](double& lo, double& hi) {
+      if (hi - lo < 0.5) {
+        double mid = 0.5 * (lo + hi);
+        lo = mid - 0.25, hi = mid + 0.25;
+      }
+      double p = 0.06 * (hi - lo);
+      lo -= p, hi += p;
+    };
+    pad(x0_, x1_), pad(y0_, y1_);
+    for (auto i : runs_) pts_.emplace_back(r_.runs[i].total.median, errorOf(i));
+  }
+
+  // The document's head, title, ticks and grid, the frame and the axes' titles.
+  std::string frame() const {
+    std::string s = fmt::format(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
+        "font-family=\"sans-serif\" font-size=\"12\" role=\"img\" aria-label=\"speed against error\" "
+        "data-axis=\"{2}\">\n"
+        "<style>.label{{font-size:{3}px}} .label.hidden{{display:none}} .show-all .label.hidden, "
+        ".pt:hover .label.hidden{{display:inline}} .pt:hover .label{{font-weight:bold}}</style>\n"
+        "<rect width=\"{0}\" height=\"{1}\" fill=\"white\"/>\n",
+        kWidth, height_, toString(axis_), kLabelFont);
+    s += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"14\">Speed against error: {}</text>\n", kLeft,
+                     escapeMarkup(r_.info.value("sceneName", std::string("scene"))));
+    for (double t : logTicks(x0_, x1_)) {
+      double x = kLeft + (t - x0_) / (x1_ - x0_) * pw_;
+      s += fmt::format(
+          "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
+          "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>\n",
+          x, kTop, kTop + ph_, kTop + ph_ + 16, tickLabel(t));
+    }
+    for (double t : logTicks(y0_, y1_)) {
+      double y = kTop + (1.0 - (t - y0_) / (y1_ - y0_)) * ph_;
+      bool exact = anyExact_ && std::abs(t - std::log10(kExactErrorFloor)) < 1e-9;
+      s += fmt::format(
+          "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>"
+          "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
+          kLeft, y, kLeft + pw_, kLeft - 6, y + 4, exact ? "&#8804;1e-4" : tickLabel(t));
+    }
+    s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#333\"/>\n", kLeft,
+                     kTop, pw_, ph_);
+    s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">median ms per frame (log)</text>\n",
+                     kLeft + pw_ / 2, height_ - 10);
+    s += fmt::format("<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\">{} (log)</text>\n",
+                     kTop + ph_ / 2, escapeMarkup(errorAxisName(r_, axis_)));
+    return s;
+  }
+
+  // The converged reference's own noise: a dotted floor per image size, inside the axis.
+  std::string referenceNoise() const {
+    std::string s;
+    for (auto& [preset, noise] : floors_) {
+      if (!(noise > 0.0)) continue;
+      const double y = Y(std::max(noise, kExactErrorFloor));
+      const std::string size = floors_.size() > 1 ? fmt::format(" ({}x{})", preset->width, preset->height) : "";
+      s += fmt::format(
+          "<g class=\"reference-noise\"><line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" "
+          "stroke=\"#555\" stroke-dasharray=\"1,3\"/><text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\" "
+          "fill=\"#555\">reference noise{5} {6:.2g}</text></g>\n",
+          kLeft, y, kLeft + pw_, kLeft + pw_ - 4, y - 4, size, noise);
+    }
+    return s;
+  }
+
+  // The Pareto front (dashed steps), then one curve per technique through its presets by time.
+  std::string curves() {
+    std::string s;
+    for (auto i : paretoRuns(r_, axis_))
+      front_.push_back(std::size_t(std::find(runs_.begin(), runs_.end(), i) - runs_.begin()));
+    if (front_.size() > 1) {
+      std::string path;
+      for (std::size_t k = 0; k < front_.size(); ++k) {
+        double x = X(pts_[front_[k]].first), y = Y(pts_[front_[k]].second);
+        if (k == 0)
+          path += fmt::format("M{:.1f},{:.1f}", x, y);
+        else
+          path += fmt::format(" H{:.1f} V{:.1f}", x, y);
+      }
+      s += "<path class=\"pareto\" d=\"" + path + "\" fill=\"none\" stroke=\"#888\" stroke-dasharray=\"5,4\"/>\n";
+    }
+    for (auto& name : names_) {
+      std::vector<std::size_t> mine;
+      for (std::size_t k = 0; k < runs_.size(); ++k)
+        if (r_.runs[runs_[k]].technique == name) mine.push_back(k);
+      std::sort(mine.begin(), mine.end(), [&](auto a, auto b) { return pts_[a].first < pts_[b].first; });
+      if (mine.size() < 2) continue;
+      std::string path;
+      for (std::size_t k = 0; k < mine.size(); ++k)
+        path += fmt::format("{}{:.1f},{:.1f}", k ? " L" : "M", X(pts_[mine[k]].first), Y(pts_[mine[k]].second));
+      s += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.2\" opacity=\"0.7\"/>\n", path,
+                       looks_.at(name).colour);
+    }
+    return s;
+  }
+
+  // A point's label: the technique's name and, in a sweep, its preset.
+  std::pair<std::string, std::string> labelText(std::size_t k) const {
+    const CompareRun& run = r_.runs[runs_[k]];
+    const std::string preset = r_.presets.size() > 1 ? presetShort(r_.presets[run.preset].label) : "";
+    return std::pair(run.technique, preset.empty() ? std::string() : " " + preset);
+  }
+
+  // Labels: the Pareto front first (by time), then each family's best point (lowest error, then
+  // fastest); each at the first of eight places around its point that stays inside the plot and
+  // clear of every point and every label placed before it. The rest go where there is room, shown
+  // on hover.
+  void placeLabels() {
+    wanted_.assign(front_.begin(), front_.end());
+    for (TechniqueFamily f : kTechniqueFamilies) {
+      std::size_t best = runs_.size();
+      for (std::size_t k = 0; k < runs_.size(); ++k)
+        if (r_.runs[runs_[k]].family == f &&
+            (best == runs_.size() || pts_[k].second < pts_[best].second ||
+             (pts_[k].second == pts_[best].second && pts_[k].first < pts_[best].first)))
+          best = k;
+      if (best < runs_.size() && !wanted(best)) wanted_.push_back(best);
+    }
+    for (std::size_t k = 0; k < runs_.size(); ++k) {
+      const double x = X(pts_[k].first), y = Y(pts_[k].second);
+      taken_.push_back({x - kMarker - 1, y - kMarker - 1, x + kMarker + 1, y + kMarker + 1});
+    }
+    placed_.resize(runs_.size());
+    for (std::size_t k : wanted_) place(k, true);
+    for (std::size_t k = 0; k < runs_.size(); ++k)
+      if (!wanted(k)) place(k, false);
+  }
+
+  bool fits(const Box& b) const {
+    const Box area{kLeft + 1, kTop + 1, kLeft + pw_ - 1, kTop + ph_ - 1};
+    return b.x0 >= area.x0 && b.x1 <= area.x1 && b.y0 >= area.y0 && b.y1 <= area.y1 &&
+           std::none_of(taken_.begin(), taken_.end(), [&](const Box& o) { return o.overlaps(b); });
+  }
+
+  // Places point k's label (and reserves its box when `keep`); returns whether it found room.
+  bool place(std::size_t k, bool keep) {
+    const double x = X(pts_[k].first), y = Y(pts_[k].second);
     auto [name, preset] = labelText(k);
-    const double w = kCharWidth * double(name.size() + preset.size()) + 2, d = kR + 3;
+    const double w = kCharWidth * double(name.size() + preset.size()) + 2, d = kMarker + 3;
     struct Try {
       double dx, dy;  // baseline anchor point
       const char* anchor;
     };
     const Try tries[] = {{d, 3.5, "start"},    {-d, 3.5, "end"},        {0, -d - 1, "middle"}, {0, d + 9, "middle"},
                          {d - 1, -d, "start"}, {d - 1, d + 8, "start"}, {-d + 1, -d, "end"},   {-d + 1, d + 8, "end"}};
-    auto fits = [&](const Box& b) {
-      return b.x0 >= area.x0 && b.x1 <= area.x1 && b.y0 >= area.y0 && b.y1 <= area.y1 &&
-             std::none_of(taken.begin(), taken.end(), [&](const Box& o) { return o.overlaps(b); });
-    };
     for (const Try& t : tries) {
       const double bx = x + t.dx, by = y + t.dy;
       const double x0b = t.anchor[0] == 's' ? bx : t.anchor[0] == 'e' ? bx - w : bx - w / 2;
       const Box b{x0b - 1, by - kLabelFont, x0b + w + 1, by + 3};
       if (!fits(b)) continue;
-      if (keep) taken.push_back(b);
-      placed[k] = {bx, by, t.anchor, keep};
+      if (keep) taken_.push_back(b);
+      placed_[k] = {bx, by, t.anchor, keep};
       return true;
     }
     // A label the plot must show (front, family best) that found no room beside its point goes
@@ -392,76 +439,100 @@ std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) {
     // family) the eight places are often all taken, and which ones depends on the timings.
     if (keep) {
       constexpr int kAngles = 16;
-      for (double radius = 2 * d + 6; radius <= 0.5 * std::max(pw, ph); radius += 6)
+      for (double radius = 2 * d + 6; radius <= 0.5 * std::max(pw_, ph_); radius += 6)
         for (int a = 0; a < kAngles; ++a) {
           const double phi = 2 * M_PI * a / kAngles, cx = x + radius * std::cos(phi), cy = y + radius * std::sin(phi);
           const Box b{cx - w / 2 - 1, cy - kLabelFont / 2 - 1.5, cx + w / 2 + 1, cy + kLabelFont / 2 + 1.5};
           if (!fits(b)) continue;
-          taken.push_back(b);
+          taken_.push_back(b);
           // The line from the marker's edge to the nearest point of the label's box.
           const double ex = std::clamp(x, b.x0, b.x1), ey = std::clamp(y, b.y0, b.y1);
           const double len = std::hypot(ex - x, ey - y), ux = (ex - x) / len, uy = (ey - y) / len;
-          placed[k] = {cx, cy + 3.5, "middle", true, true, x + ux * (kR + 1), y + uy * (kR + 1), ex, ey};
+          placed_[k] = {cx, cy + 3.5, "middle", true, true, x + ux * (kMarker + 1), y + uy * (kMarker + 1), ex, ey};
           return true;
         }
     }
-    placed[k] = {x + d, y + 3.5, "start", false};  // no room: on hover only, at the right
+    placed_[k] = {x + d, y + 3.5, "start", false};  // no room: on hover only, at the right
     return false;
-  };
-  for (std::size_t k : wanted) place(k, true);
-  for (std::size_t k = 0; k < runs.size(); ++k)
-    if (std::find(wanted.begin(), wanted.end(), k) == wanted.end()) place(k, false);
+  }
 
-  for (std::size_t k = 0; k < runs.size(); ++k) {
-    const CompareRun& run = r.runs[runs[k]];
-    const Look& look = looks[run.technique];
-    const bool onFront = std::find(front.begin(), front.end(), k) != front.end();
-    const std::string ids = fmt::format("data-technique=\"{}\" data-family=\"{}\"", escapeMarkup(run.technique),
-                                        escapeMarkup(toString(run.family)));
-    auto [name, preset] = labelText(k);
-    s += fmt::format("<g class=\"pt\" {}>\n", ids);
-    s += marker(
-        look.shape, X(pts[k].first), Y(pts[k].second), onFront ? 5 : 4,
-        fmt::format("class=\"point\" {} fill=\"{}\" stroke=\"{}\" stroke-width=\"{}\"", ids, look.colour,
-                    onFront ? "#000" : "white", onFront ? 1.5 : 1),
-        fmt::format("<title>{}: {:.2f} ms, {} {:.4g}{}</title>", escapeMarkup(runLabel(r, run)), run.total.median,
-                    escapeMarkup(errorAxisName(r, axis)), run.errorOn(axis), onFront ? " (Pareto front)" : ""));
-    if (placed[k].leader)
+  // Each point as a group: its marker (with a <title>), its leader line, its label.
+  std::string points() const {
+    std::string s;
+    for (std::size_t k = 0; k < runs_.size(); ++k) {
+      const CompareRun& run = r_.runs[runs_[k]];
+      const Look& look = looks_.at(run.technique);
+      const bool onFront = std::find(front_.begin(), front_.end(), k) != front_.end();
+      const std::string ids = fmt::format("data-technique=\"{}\" data-family=\"{}\"", escapeMarkup(run.technique),
+                                          escapeMarkup(toString(run.family)));
+      auto [name, preset] = labelText(k);
+      s += fmt::format("<g class=\"pt\" {}>\n", ids);
+      s += marker(
+          look.shape, X(pts_[k].first), Y(pts_[k].second), onFront ? 5 : 4,
+          fmt::format("class=\"point\" {} fill=\"{}\" stroke=\"{}\" stroke-width=\"{}\"", ids, look.colour,
+                      onFront ? "#000" : "white", onFront ? 1.5 : 1),
+          fmt::format("<title>{}: {:.2f} ms, {} {:.4g}{}</title>", escapeMarkup(runLabel(r_, run)), run.total.median,
+                      escapeMarkup(errorAxisName(r_, axis_)), run.errorOn(axis_), onFront ? " (Pareto front)" : ""));
+      const Placed& p = placed_[k];
+      if (p.leader)
+        s += fmt::format(
+            "<line class=\"leader\" x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#999\" "
+            "stroke-width=\"0.8\"/>\n",
+            p.lx0, p.ly0, p.lx1, p.ly1);
       s += fmt::format(
-          "<line class=\"leader\" x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#999\" "
-          "stroke-width=\"0.8\"/>\n",
-          placed[k].lx0, placed[k].ly0, placed[k].lx1, placed[k].ly1);
-    const bool isWanted = std::find(wanted.begin(), wanted.end(), k) != wanted.end();
-    s += fmt::format(
-        "<text class=\"label{}\"{} {} x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}<tspan "
-        "fill=\"#555\">{}</tspan></text>\n",
-        placed[k].shown ? "" : " hidden", isWanted ? " data-wanted=\"1\"" : "", ids, placed[k].x, placed[k].y,
-        placed[k].anchor, escapeMarkup(name), escapeMarkup(preset));
-    s += "</g>\n";
+          "<text class=\"label{}\"{} {} x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\">{}<tspan "
+          "fill=\"#555\">{}</tspan></text>\n",
+          p.shown ? "" : " hidden", wanted(k) ? " data-wanted=\"1\"" : "", ids, p.x, p.y, p.anchor, escapeMarkup(name),
+          escapeMarkup(preset));
+      s += "</g>\n";
+    }
+    return s;
   }
 
-  // The legend, grouped by family.
-  double ly = top + 8;
-  const double lx = left + pw + 14;
-  for (TechniqueFamily f : kTechniqueFamilies) {
-    if (std::none_of(names.begin(), names.end(), [&](auto& n) { return familyOf[n] == f; })) continue;
-    s += fmt::format("<text class=\"family\" x=\"{}\" y=\"{:.1f}\" font-weight=\"bold\" fill=\"{}\">{}</text>\n",
-                     lx - 6, ly + 4, familyColour(f), escapeMarkup(toString(f)));
-    ly += line;
-    for (auto& n : names) {
-      if (familyOf[n] != f) continue;
-      s += marker(looks[n].shape, lx, ly, 4, fmt::format("fill=\"{}\"", looks[n].colour), "") +
-           fmt::format("<text x=\"{}\" y=\"{:.1f}\">{}</text>\n", lx + 10, ly + 4, escapeMarkup(n));
-      ly += line;
+  // The legend, grouped by family, and the Pareto front's dash.
+  std::string legend() const {
+    std::string s;
+    double ly = kTop + 8;
+    const double lx = kLeft + pw_ + 14;
+    for (TechniqueFamily f : kTechniqueFamilies) {
+      if (std::none_of(names_.begin(), names_.end(), [&](auto& n) { return familyOf(n) == f; })) continue;
+      s += fmt::format("<text class=\"family\" x=\"{}\" y=\"{:.1f}\" font-weight=\"bold\" fill=\"{}\">{}</text>\n",
+                       lx - 6, ly + 4, familyColour(f), escapeMarkup(toString(f)));
+      ly += kLine;
+      for (auto& n : names_) {
+        if (familyOf(n) != f) continue;
+        s += marker(looks_.at(n).shape, lx, ly, 4, fmt::format("fill=\"{}\"", looks_.at(n).colour), "") +
+             fmt::format("<text x=\"{}\" y=\"{:.1f}\">{}</text>\n", lx + 10, ly + 4, escapeMarkup(n));
+        ly += kLine;
+      }
     }
+    ly += 4;
+    s += fmt::format(
+        "<line x1=\"{}\" y1=\"{:.1f}\" x2=\"{}\" y2=\"{:.1f}\" stroke=\"#888\" stroke-dasharray=\"5,4\"/>"
+        "<text x=\"{}\" y=\"{:.1f}\">Pareto front</text>\n",
+        lx - 6, ly, lx + 6, ly, lx + 10, ly + 4);
+    return s;
   }
-  ly += 4;
-  s += fmt::format(
-      "<line x1=\"{}\" y1=\"{:.1f}\" x2=\"{}\" y2=\"{:.1f}\" stroke=\"#888\" stroke-dasharray=\"5,4\"/>"
-      "<text x=\"{}\" y=\"{:.1f}\">Pareto front</text>\n",
-      lx - 6, ly, lx + 6, ly, lx + 10, ly + 4);
-  s += "</svg>\n";
-  return s;
-}
+
+  const CompareResult& r_;
+  const ErrorAxis axis_;
+  const std::vector<std::size_t> runs_;         // the plotted runs (indices into r_.runs)
+  std::vector<std::pair<double, double>> pts_;  // per plotted run: median ms, error floored
+  std::vector<std::string> names_;
+  std::map<std::string, TechniqueFamily> familyOf_;
+  std::map<std::string, Look> looks_;
+  int familiesShown_ = 0;
+  double height_ = 0, pw_ = 0, ph_ = 0;       // the document's height, the plot area's size
+  double x0_ = 0, x1_ = 0, y0_ = 0, y1_ = 0;  // log10 ranges
+  bool anyExact_ = false;
+  std::vector<std::pair<const ComparePreset*, double>> floors_;
+  std::vector<std::size_t> front_, wanted_;  // indices into runs_
+  std::vector<Box> taken_;
+  std::vector<Placed> placed_;
+};
+
+}  // namespace
+
+std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) { return SpeedErrorPlot(r, axis).svg(); }
 
 }  // namespace penumbra

@@ -33,6 +33,13 @@ std::vector<TechniqueInfo> findTechniques(const std::vector<std::string>& names)
   return out;
 }
 
+PatternTable dcsEdgeLutTable();  // dcs/rows.cpp
+
+const std::vector<PatternTable>& patternTables() {
+  static const std::vector<PatternTable> tables = {dcsEdgeLutTable()};
+  return tables;
+}
+
 std::unique_ptr<Technique> makeTechnique(const std::string& name, const TechniqueParams& params) {
   return findTechnique(name).make(params);
 }

@@ -52,33 +52,13 @@
 #include "techniques/dcs/edge_lut_gpu.h"
 #include "techniques/dcs/gpu_silhouette.h"
 #include "techniques/dcs/packing.h"
+#include "techniques/dcs/wedge_geometry.h"
 #include "techniques/common/shadow_volume/shadow_volume.h"
 #include "techniques/dcs/shaders/dcs_bindings.h"  // NOLINT: shared with GLSL
 
 namespace penumbra {
 namespace {
 
-// std430 layouts of src/techniques/dcs/shaders/common_dcs.glsl.
-struct GpuEdge {
-  glm::vec4 v0, v1;
-  glm::ivec4 meta;  // first incidence, incidence count, closed rule, units of the mesh
-};
-struct GpuIncidence {
-  glm::vec4 third;   // xyz third vertex, w the triangle's orientation along the edge (+-1)
-  glm::vec4 normal;  // the triangle's plane: n (its winding), w = d with n . x + d = 0
-};
-// A triangle the path from the light centre to a sample passes through (src/techniques/dcs/shaders/dcs_init.frag).
-struct GpuPathCrossing {
-  glm::vec4 plane;  // the triangle's plane as in GpuIncidence::normal
-  glm::ivec4 meta;  // x the centre's side, y the sample's side (+-1, 0 on it), z 1 for the closed rule, w units
-};
-// The triangle's plane n . x + d = 0 in its own winding, as the wedges store it (one expression,
-// so the init pass and the wedges decide a point's side of it alike).
-glm::vec4 trianglePlane(const std::vector<glm::vec3>& P, const glm::uvec3& tri) {
-  glm::dvec3 a(P[tri.x]), b(P[tri.y]), c(P[tri.z]);
-  glm::dvec3 n = glm::cross(b - a, c - a);
-  return glm::vec4(glm::vec3(n), float(-glm::dot(n, a)));
-}
 struct GpuStatus {
   std::uint32_t overflowPixels = 0, maxCount = 0, negativePixels = 0;
   std::uint32_t boundMax = 0;                 // largest D(c) + bias + positive updates of a pixel (dcs_wedge.frag)
@@ -95,52 +75,6 @@ constexpr int kFirstFrameCount = 255;
 // The largest count the widest layout (one counter per float channel) holds: float adds
 // integers exactly below 2^24 (packing.h).
 constexpr std::int64_t kMaxExactCount = std::int64_t(dcs::kLayouts[dcs::kLayoutCount - 1].base) - 1;
-
-geo::LightExtent extentOf(const Light& l) {
-  geo::LightExtent e;
-  e.centre = l.position;
-  e.normal = l.normal;
-  e.tangent = l.tangent;
-  e.bitangent = l.bitangent();
-  switch (l.shape) {
-    case LightShape::Point:
-      e.kind = geo::LightExtent::Kind::Point;
-      break;
-    case LightShape::Rect:
-      e.kind = geo::LightExtent::Kind::Rect;
-      e.halfWidth = 0.5 * l.size.x, e.halfHeight = 0.5 * l.size.y;
-      break;
-    case LightShape::Disk:
-      e.kind = geo::LightExtent::Kind::Disk, e.radius = l.size.x;
-      break;
-    case LightShape::Sphere:
-      e.kind = geo::LightExtent::Kind::Sphere, e.radius = l.size.x;
-      break;
-  }
-  return e;
-}
-
-// Corners of a convex polytope around the light (for the wedges) and its bounding
-// radius around the centre.
-std::vector<glm::vec3> lightCorners(const Light& l, float& radius) {
-  glm::vec3 c = l.position, t = l.tangent, b = l.bitangent(), n = l.normal;
-  std::vector<glm::vec3> out;
-  float hx = 0, hy = 0, hz = 0;
-  if (l.shape == LightShape::Rect) hx = 0.5f * l.size.x, hy = 0.5f * l.size.y;
-  if (l.shape == LightShape::Disk) hx = hy = l.size.x;
-  if (l.shape == LightShape::Sphere) hx = hy = hz = l.size.x;
-  // Grown by 0.1%: samples on the light's border stay strictly inside the wedges.
-  hx *= 1.001f, hy *= 1.001f, hz *= 1.001f;
-  radius = l.shape == LightShape::Disk ? l.size.x : std::sqrt(hx * hx + hy * hy + hz * hz);
-  // In cyclic order around the light (dcs_wedge.geom clips the polygon).
-  for (float sz : {-1.0f, 1.0f}) {
-    for (glm::vec2 s : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
-      out.push_back(c + s.x * hx * t + s.y * hy * b + sz * hz * n);
-    if (hz == 0.0f) break;
-  }
-  if (l.shape == LightShape::Point) out.assign(1, c);
-  return out;
-}
 
 // Blending for counters and visibility: every fragment adds.
 void additiveBlend() {
@@ -192,41 +126,9 @@ class DepthComplexitySampling final : public Technique {
     const glm::vec3 extent = scene.extent();
     wedgeMargin_ = 2.0f * shared::penumbraSurfaceEpsilon(extent);
     // All meshes' edges and incident triangles in two static buffers, edge ids global.
-    std::vector<GpuEdge> edges;
-    std::vector<GpuIncidence> incidences;
-    edgeOffset_.clear();
-    for (auto& m : volumes_.meshes()) {
-      edgeOffset_.push_back(std::uint32_t(edges.size()));
-      // The units of the mesh ride with each edge: an update is m_e(p) times them.
-      const auto& topo = m.topology;
-      const auto& P = topo.weldedPositions;
-      for (auto& e : topo.edges) {
-        GpuEdge g{glm::vec4(P[e.v0], 1.0f), glm::vec4(P[e.v1], 1.0f),
-                  glm::ivec4(int(incidences.size()), int(e.incidenceCount),
-                             m.rule == geo::VolumeRule::ClosedFrontFaces ? 1 : 0, m.units)};
-        for (std::uint32_t k = 0; k < e.incidenceCount; ++k) {
-          const auto& inc = topo.incidences[e.firstIncidence + k];
-          const glm::uvec3& tri = topo.weldedTriangles[inc.triangle];
-          std::uint32_t third = tri.x + tri.y + tri.z - e.v0 - e.v1;
-          incidences.push_back({glm::vec4(P[third], float(inc.orientation)), trianglePlane(P, tri)});
-        }
-        edges.push_back(g);
-      }
-    }
-    // The edge and incidence lists are storage blocks read whole by the wedge passes (not split
-    // into bands as vwss's points are): past the GL's block limit, a one-line refusal.
-    const double limit = double(gl::limits().maxStorageBlockSize);
-    const double bytes = double(std::max(edges.size() * sizeof(GpuEdge), incidences.size() * sizeof(GpuIncidence)));
-    if (limit > 0 && bytes > limit)
-      throw Error("dcs",
-                  fmt::format("the scene's {} edges need a {:.0f} MiB storage block, more than this GL's {:.0f} MiB "
-                              "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE)",
-                              edges.size(), bytes / 1048576.0, limit / 1048576.0));
-    edgeBuffer_ = gl::Buffer(edges);
-    edges_ = std::move(edges);
-    edgeRules_.clear();
-    for (auto& m : volumes_.meshes()) edgeRules_.push_back(m.rule);
-    incidenceBuffer_ = gl::Buffer(incidences);
+    edges_ = dcs::buildEdgeTable(volumes_.meshes(), std::size_t(gl::limits().maxStorageBlockSize));
+    edgeBuffer_ = gl::Buffer(edges_.edges);
+    incidenceBuffer_ = gl::Buffer(edges_.incidences);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
     profileImage_ = gl::Texture::make2D(GL_R32UI, 7, 1);
     checksum_ = gl::Texture::make2D(GL_RGBA32F, gpu.width(), gpu.height());
@@ -256,7 +158,7 @@ class DepthComplexitySampling final : public Technique {
         dcs::edgeLutSupports(f.light) && !stats_.shiftedOrigin ? options_.coverage : PENUMBRA_DCS_COVERAGE_EXACT;
     stats_.coverage = f.coverage;
     f.lut = f.coverage != PENUMBRA_DCS_COVERAGE_EXACT ? &lutFor(pass) : nullptr;
-    f.corners = lightCorners(lightPass.light, f.radius);
+    f.corners = dcs::lightCorners(lightPass.light, f.radius);
     f.radius += glm::length(f.light.position - lightPass.light.position);  // around the origin
     // The eye's largest distance to the near-plane window (src/techniques/dcs/shaders/dcs_wedge.geom), with room.
     const Camera& cam = pass.scene.camera;
@@ -370,7 +272,7 @@ class DepthComplexitySampling final : public Technique {
     placed.refuseLightOnAFace("dcs", light.name);
     stats_.pathCrossings = placed.crossings.size();
     f.maxPathGain = 0;
-    std::vector<GpuPathCrossing> gpuCrossings;
+    std::vector<dcs::GpuPathCrossing> gpuCrossings;
     for (std::size_t k = 0; k + 1 < placed.firstCrossing.size(); ++k) {
       int gain = 0;
       for (std::uint32_t j = placed.firstCrossing[k]; j < placed.firstCrossing[k + 1]; ++j) {
@@ -378,7 +280,7 @@ class DepthComplexitySampling final : public Technique {
         const auto& m = volumes_.meshes()[x.mesh];
         gain += m.units;
         gpuCrossings.push_back(
-            {trianglePlane(m.topology.weldedPositions, m.topology.weldedTriangles[x.at.triangle]),
+            {dcs::trianglePlane(m.topology.weldedPositions, m.topology.weldedTriangles[x.at.triangle]),
              glm::ivec4(x.at.sideC, x.at.sideS, placed.rules[x.mesh] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0,
                         m.units)});
       }
@@ -396,10 +298,10 @@ class DepthComplexitySampling final : public Technique {
   void selectEdges(LightPass& pass, LightFrame& f, const Light& unshifted) {
     std::vector<int>& edgeIds = f.edgeIds;
     pass.timer.time("dcs edges", [&] {
-      geo::LightExtent extent = extentOf(unshifted);
+      geo::LightExtent extent = dcs::extentOf(unshifted);
       if (options_.gpuSilhouettes && options_.silhouettes == SilhouetteMode::Accurate) {
         edgeIds = dcs::gpuAccurateSilhouette(programs_.get({"dcs_silhouette.comp"}), edgeBuffer_, incidenceBuffer_,
-                                             std::uint32_t(edgeBuffer_.size() / sizeof(GpuEdge)), extent);
+                                             std::uint32_t(edges_.edges.size()), extent);
         return;
       }
       const auto& meshes = volumes_.meshes();
@@ -408,11 +310,11 @@ class DepthComplexitySampling final : public Technique {
         if (m.units == 0) continue;  // never occludes
         if (options_.silhouettes == SilhouetteMode::Accurate) {
           for (auto e : geo::extractAccurateSilhouette(m.topology, extent, f.placed.rules[mi]))
-            edgeIds.push_back(int(edgeOffset_[mi] + e));
+            edgeIds.push_back(int(edges_.offset[mi] + e));
         } else {
           for (auto& s :
                geo::extractPointSilhouette(m.topology, glm::dvec3(f.light.position), f.placed.rules[mi]).sides)
-            edgeIds.push_back(int(edgeOffset_[mi] + s.edge));
+            edgeIds.push_back(int(edges_.offset[mi] + s.edge));
         }
       }
     });
@@ -714,18 +616,10 @@ class DepthComplexitySampling final : public Technique {
     return x;
   }
 
-  // The closed-rule flag of each edge (meta.z) as `rules` says for this light; the edge buffer
-  // is written again only when a mesh's rule changes.
+  // The closed-rule flag of each edge as `rules` says for this light; the edge buffer is
+  // written again only when a mesh's rule changes.
   void useRules(const std::vector<geo::VolumeRule>& rules) {
-    if (rules == edgeRules_) return;
-    const auto& meshes = volumes_.meshes();
-    for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
-      std::size_t end = mi + 1 < meshes.size() ? edgeOffset_[mi + 1] : edges_.size();
-      for (std::size_t e = edgeOffset_[mi]; e < end; ++e)
-        edges_[e].meta.z = rules[mi] == geo::VolumeRule::ClosedFrontFaces ? 1 : 0;
-    }
-    edgeBuffer_.write(edges_.data(), edges_.size() * sizeof(GpuEdge));
-    edgeRules_ = rules;
+    if (edges_.useRules(rules)) edgeBuffer_.write(edges_.edges.data(), edges_.edges.size() * sizeof(dcs::GpuEdge));
   }
 
   Programs programsFor(const dcs::PackingPlan& plan, int coverage) {
@@ -789,13 +683,11 @@ class DepthComplexitySampling final : public Technique {
   DcsOptions options_;
   dcs::OpacityCoding coding_;
   ShadowVolumeCounter volumes_;
-  std::vector<std::uint32_t> edgeOffset_;
   float wedgeMargin_ = 0.0f;
   gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_;
   dcs::PassRange passRange_;  // the pass's sample range (src/techniques/dcs/shaders/common_dcs_pass.glsl)
   gl::Texture profileImage_;
-  std::vector<GpuEdge> edges_;               // edgeBuffer_'s contents
-  std::vector<geo::VolumeRule> edgeRules_;   // the rule per mesh edgeBuffer_ holds
+  dcs::EdgeTable edges_;                     // edgeBuffer_'s and incidenceBuffer_'s contents
   gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (src/techniques/dcs/shaders/dcs_init.frag)
   dcs::ComputeWedges compute_;               // the compute path's solids and counts (path=compute)
   gl::Texture checksum_, counters_;

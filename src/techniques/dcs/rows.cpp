@@ -1,5 +1,7 @@
-// The dcs folder's rows in the table of techniques (registry.h): dcs and its presets.
+// The dcs folder's rows in the table of techniques (registry.h): dcs and its presets; and its
+// edge LUT as a pattern table that `penumbra lut` writes.
 #include "techniques/dcs/dcs.h"
+#include "techniques/dcs/edge_lut.h"
 #include "techniques/registry.h"
 
 namespace penumbra {
@@ -33,6 +35,18 @@ std::vector<TechniqueInfo> dcsRows() {
       dcsRow("dcs-lut", "dcs with the paper's edge LUT (cube-map sectors & line table, approximate)",
              SilhouetteMode::Accurate, OpacityMode::Product, PENUMBRA_DCS_COVERAGE_LUT),
   };
+}
+
+PatternTable dcsEdgeLutTable() {
+  return {"edge",
+          "dcs",
+          dcs::edgeLutSupports,
+          dcs::unitLight,
+          dcs::edgeLutFileName,
+          [](const LightSampleSet& samples, const std::string& path, int cube, int line) {
+            dcs::writeEdgeLut(path, dcs::buildEdgeLut(dcs::normalisedSamples(samples), samples.count, samples.setCount,
+                                                      {cube, line}));
+          }};
 }
 
 }  // namespace penumbra
