@@ -46,8 +46,7 @@ EdgeTable buildEdgeTable(const std::vector<ShadowVolumeCounter::MeshVolumes>& me
     }
   }
   const double limit = double(maxBlockBytes);
-  const double bytes =
-      double(std::max(t.edges.size() * sizeof(GpuEdge), t.incidences.size() * sizeof(GpuIncidence)));
+  const double bytes = double(std::max(t.edges.size() * sizeof(GpuEdge), t.incidences.size() * sizeof(GpuIncidence)));
   if (limit > 0 && bytes > limit)
     throw Error("dcs", fmt::format("the scene's {} edges need a {:.0f} MiB storage block, more than this GL's {:.0f} "
                                    "MiB (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)",

@@ -39,8 +39,8 @@ glm::vec4 trianglePlane(const std::vector<glm::vec3>& P, const glm::uvec3& tri);
 struct EdgeTable {
   std::vector<GpuEdge> edges;
   std::vector<GpuIncidence> incidences;
-  std::vector<std::uint32_t> offset;     // mesh -> its first edge
-  std::vector<geo::VolumeRule> rules;    // per mesh, the rule its edges' closed flag (meta.z) says
+  std::vector<std::uint32_t> offset;   // mesh -> its first edge
+  std::vector<geo::VolumeRule> rules;  // per mesh, the rule its edges' closed flag (meta.z) says
 
   // Sets each edge's closed flag as `rules` (one per mesh) says; returns whether one changed.
   bool useRules(const std::vector<geo::VolumeRule>& meshRules);

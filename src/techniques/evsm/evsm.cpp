@@ -15,7 +15,7 @@ namespace {
 
 class ExponentialVarianceShadowMaps final : public shadow_map::SingleViewTechnique {
  public:
-  ExponentialVarianceShadowMaps(const shadow_map::MapOptions& m, const EvsmOptions& o)
+  ExponentialVarianceShadowMaps(const shadow_map::SingleViewOptions& m, const EvsmOptions& o)
       : SingleViewTechnique("evsm", m), o_(o) {}
 
  protected:
@@ -81,7 +81,7 @@ double evsmExponentLimit(int satBits, double texels) {
 }
 
 std::vector<ParamSpec> evsmParams(const EvsmOptions& o) {
-  std::vector<ParamSpec> p = shadow_map::mapParams();
+  std::vector<ParamSpec> p = shadow_map::singleViewParams();
   p.push_back(ParamSpec::number("positive-exponent", o.positive, 0.1, 1000.0,
                                 "c+ of the positive warp exp(c+ u) (clamped to the table's limit, with a warning)"));
   p.push_back(ParamSpec::number("negative-exponent", o.negative, 0.1, 1000.0,
@@ -96,7 +96,7 @@ std::unique_ptr<Technique> makeExponentialVarianceShadowMaps(const TechniqueArgs
   o.negative = args.number("negative-exponent");
   o.subKernels = args.integer("sub-kernels");
   o.satBits = shadow_map::readSatBits(args);
-  return std::make_unique<ExponentialVarianceShadowMaps>(shadow_map::readMapOptions(args), o);
+  return std::make_unique<ExponentialVarianceShadowMaps>(shadow_map::readSingleView(args), o);
 }
 
 }  // namespace penumbra

@@ -10,7 +10,7 @@ namespace {
 
 class MomentShadowMapping final : public shadow_map::SingleViewTechnique {
  public:
-  MomentShadowMapping(const shadow_map::MapOptions& m, const MsmOptions& o)
+  MomentShadowMapping(const shadow_map::SingleViewOptions& m, const MsmOptions& o)
       : SingleViewTechnique(o.soft ? "msm-soft" : "msm", m), o_(o) {}
 
  protected:
@@ -50,7 +50,7 @@ class MomentShadowMapping final : public shadow_map::SingleViewTechnique {
 }  // namespace
 
 std::vector<ParamSpec> msmParams(const MsmOptions& o) {
-  std::vector<ParamSpec> p = shadow_map::mapParams();
+  std::vector<ParamSpec> p = shadow_map::singleViewParams();
   if (!o.soft)
     p.push_back(ParamSpec::integer("filter", o.filter, 1, 63,
                                    "width in texels of the box the moments are filtered over (odd)"));
@@ -71,7 +71,7 @@ std::unique_ptr<Technique> makeMomentShadowMapping(const TechniqueArgs& args, Ms
   if (o.soft) o.subKernels = args.integer("sub-kernels");
   o.momentBias = args.number("moment-bias");
   o.satBits = shadow_map::readSatBits(args);
-  return std::make_unique<MomentShadowMapping>(shadow_map::readMapOptions(args), o);
+  return std::make_unique<MomentShadowMapping>(shadow_map::readSingleView(args), o);
 }
 
 }  // namespace penumbra

@@ -25,7 +25,7 @@ struct Target {
 
 class PercentageCloserSoftShadows final : public shadow_map::SingleViewTechnique {
  public:
-  PercentageCloserSoftShadows(const shadow_map::MapOptions& m, const PcssOptions& o)
+  PercentageCloserSoftShadows(const shadow_map::SingleViewOptions& m, const PcssOptions& o)
       : SingleViewTechnique("pcss", m), o_(o) {}
 
  protected:
@@ -150,7 +150,7 @@ PcssOptions pcssPreset(PcssMode mode, bool ultra, bool checkerboard) {
 }
 
 std::vector<ParamSpec> pcssParams(const PcssOptions& o) {
-  std::vector<ParamSpec> p = shadow_map::mapParams();
+  std::vector<ParamSpec> p = shadow_map::singleViewParams(o.contact);
   p.push_back(
       ParamSpec::integer("blocker-samples", o.blockerSamples, 1, 256, "Vogel-disk samples of the blocker search"));
   p.push_back(ParamSpec::integer("pcf-samples", o.pcfSamples, 1, 256, "Vogel-disk samples of the PCF"));
@@ -181,7 +181,7 @@ std::unique_ptr<Technique> makePercentageCloserSoftShadows(const TechniqueArgs& 
   }
   if (o.mode == PcssMode::PenumbraMask || o.mode == PcssMode::MinFilter) o.blur = args.boolean("blur");
   if (o.mode == PcssMode::MinFilter) o.minRadius = args.integer("min-radius");
-  return std::make_unique<PercentageCloserSoftShadows>(shadow_map::readMapOptions(args), o);
+  return std::make_unique<PercentageCloserSoftShadows>(shadow_map::readSingleView(args), o);
 }
 
 }  // namespace penumbra

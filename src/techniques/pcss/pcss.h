@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "pipeline/technique.h"
+#include "techniques/common/shadow_map/contact.h"
 
 namespace penumbra {
 
@@ -24,10 +25,11 @@ struct PcssOptions {
   PcssMode mode = PcssMode::Regular;
   int blockerSamples = 32, pcfSamples = 16;  // Sterna's Table 1 (mask: 32, shadow: 16)
   bool checkerboard = false;
-  double kernelScale = 1.0;   // blocker-search scale (penumbra mask: 1.4, Sterna's 1.2-1.6)
-  bool noBlockerOne = false;  // penumbra mask: the largest radius, not 0, where nothing blocks
-  bool blur = true;           // penumbra mask / min filter: the 7x7 Gaussian (sigma 3)
-  int minRadius = 0;          // min filter: window half-size in texels; 0: from the light size
+  double kernelScale = 1.0;            // blocker-search scale (penumbra mask: 1.4, Sterna's 1.2-1.6)
+  bool noBlockerOne = false;           // penumbra mask: the largest radius, not 0, where nothing blocks
+  bool blur = true;                    // penumbra mask / min filter: the 7x7 Gaussian (sigma 3)
+  int minRadius = 0;                   // min filter: window half-size in texels; 0: from the light size
+  shadow_map::ContactOptions contact;  // contact shadows multiplied in (pcss-contact)
 };
 
 // Presets: Sterna (32 blocker-search samples, 16 PCF) and the "Ultra" of shipping games the

@@ -9,6 +9,10 @@ TechniqueInfo pcssRow(std::string name, std::string description, PcssOptions pre
   return presetRow(std::move(name), std::move(description), TechniqueFamily::SingleMap, pcssParams(preset), preset,
                    makePercentageCloserSoftShadows);
 }
+PcssOptions withContact(PcssOptions o) {
+  o.contact.enabled = true;
+  return o;
+}
 }  // namespace
 
 std::vector<TechniqueInfo> pcssRows() {
@@ -30,6 +34,9 @@ std::vector<TechniqueInfo> pcssRows() {
               pcssPreset(PcssMode::Dense, false, false)),
       pcssRow("pcss-checker", "pcss computed on a checkerboard (half the pixels), depth-aware upsampling",
               pcssPreset(PcssMode::Regular, false, true)),
+      pcssRow("pcss-contact",
+              "pcss with contact shadows multiplied in (a short screen-space march towards the light samples)",
+              withContact(pcssPreset(PcssMode::Regular, false, false))),
       pcssRow("pcss-fixed",
               "pcss without the blocker search: the search radius as every pixel's kernel (Sterna's regular shadow "
               "mask; not contact-hardening)",

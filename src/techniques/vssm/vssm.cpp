@@ -14,7 +14,7 @@ namespace {
 
 class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
  public:
-  VarianceSoftShadowMapping(const shadow_map::MapOptions& m, const VssmOptions& o)
+  VarianceSoftShadowMapping(const shadow_map::SingleViewOptions& m, const VssmOptions& o)
       : SingleViewTechnique(!o.exactSat          ? "vssm-fp32"
                             : o.shadowLevels > 0 ? "vssm"
                                                  : "vssm-uniform",
@@ -113,7 +113,7 @@ class VarianceSoftShadowMapping final : public shadow_map::SingleViewTechnique {
 }  // namespace
 
 std::vector<ParamSpec> vssmParams(const VssmOptions& o) {
-  std::vector<ParamSpec> p = shadow_map::mapParams();
+  std::vector<ParamSpec> p = shadow_map::singleViewParams();
   p.push_back(
       ParamSpec::integer("blocker-div", o.blockerDiv, 1, 16, "uniform m x m sub-kernels of the blocker search"));
   p.push_back(ParamSpec::integer("shadow-div", o.shadowDiv, 1, 16, "uniform n x n sub-kernels of the visibility"));
@@ -129,7 +129,7 @@ std::unique_ptr<Technique> makeVarianceSoftShadowMapping(const TechniqueArgs& ar
   o.shadowDiv = args.integer("shadow-div");
   o.blockerLevels = args.integer("blocker-levels");
   o.shadowLevels = args.integer("shadow-levels");
-  return std::make_unique<VarianceSoftShadowMapping>(shadow_map::readMapOptions(args), o);
+  return std::make_unique<VarianceSoftShadowMapping>(shadow_map::readSingleView(args), o);
 }
 
 }  // namespace penumbra

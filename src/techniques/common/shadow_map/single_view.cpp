@@ -55,6 +55,7 @@ void SingleViewTechnique::renderVisibility(LightPass& pass) {
   glDisable(GL_CULL_FACE);
   bindMap();
   renderShadow(pass);
+  contact_.apply(pass, name_);
   gl::Sampler::unbind(PENUMBRA_UNIT_PCSS_DEPTH);
   gl::Sampler::unbind(PENUMBRA_UNIT_PCSS_COMPARE);
   gl::Context::checkErrors(name_.c_str());
@@ -157,8 +158,17 @@ std::vector<std::pair<std::string, double>> SingleViewTechnique::statistics() co
                                                    {"light half size", halfSize_},
                                                    {"map bytes", double(depth_.bytes())},
                                                    {"semi-opaque triangles as opaque", double(semiOpaque_)}};
+  contact_.addStatistics(s);
   addStatistics(s);
   return s;
 }
+
+std::vector<ParamSpec> singleViewParams(const ContactOptions& contact) {
+  std::vector<ParamSpec> p = mapParams();
+  for (ParamSpec& c : contactParams(contact)) p.push_back(std::move(c));
+  return p;
+}
+
+SingleViewOptions readSingleView(const TechniqueArgs& args) { return {readMapOptions(args), readContactOptions(args)}; }
 
 }  // namespace penumbra::shadow_map

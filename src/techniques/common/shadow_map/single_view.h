@@ -14,6 +14,7 @@
 #include "gl/objects.h"
 #include "gl/program_cache.h"
 #include "pipeline/technique.h"
+#include "techniques/common/shadow_map/contact.h"
 #include "techniques/common/shadow_map/maps.h"
 #include "techniques/common/shadow_map/shaders/single_view_bindings.h"  // NOLINT: shared with GLSL
 
@@ -26,11 +27,21 @@ ParamSpec satBitsParam();
 ParamSpec subKernelsParam(int fallback);
 int readSatBits(const TechniqueArgs& args);
 
+// What every single-view technique takes: the map's options (maps.h) and contact shadows
+// (contact.h), declared once: singleViewParams, read by readSingleView.
+struct SingleViewOptions {
+  MapOptions map;
+  ContactOptions contact;
+};
+std::vector<ParamSpec> singleViewParams(const ContactOptions& contact = {});
+SingleViewOptions readSingleView(const TechniqueArgs& args);
+
 class SingleViewTechnique : public Technique {
  public:
-  SingleViewTechnique(std::string name, const MapOptions& map) : name_(std::move(name)), map_(map) {}
+  SingleViewTechnique(std::string name, const SingleViewOptions& o)
+      : name_(std::move(name)), map_(o.map), contact_(o.contact) {}
   void prepare(const Scene& scene, GpuScene& gpu) override;
-  // Views, the map ("<name> shadow map"), then renderShadow().
+  // Views, the map ("<name> shadow map"), then renderShadow(), then contact shadows if asked.
   void renderVisibility(LightPass& pass) override;
   std::size_t memoryBytes() const override { return depth_.bytes() + extraBytes(); }
   std::vector<std::pair<std::string, double>> statistics() const override;
@@ -87,6 +98,7 @@ class SingleViewTechnique : public Technique {
   MapFrame frame_;
   FrameFit fit_;
   NearestOccluder nearest_;
+  ContactShadows contact_;
   gl::Texture depth_;
   gl::Framebuffer depthFbo_;
   gl::Sampler raw_, compare_;

@@ -4,6 +4,7 @@
 #include "single_view_bindings.h"
 #include "common_light.glsl"
 #include "shadow_map_common.glsl"
+#include "light_rays.glsl"
 
 layout(binding = PENUMBRA_UNIT_GBUF_POSITION) uniform sampler2D gPosition;
 layout(binding = PENUMBRA_UNIT_GBUF_NORMAL) uniform sampler2D gNormal;
@@ -18,10 +19,8 @@ uniform float kernelScale;    // Sterna 2.2: the penumbra-mask pass searches 1.2
 
 const float TWO_PI = 6.28318530718;
 
-// Sterna, Listing 2 (Jimenez 2014). Checkerboarded passes stretch y by 4 (Listing 7).
-float interleavedGradientNoise(vec2 pixel) {
-  return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
-}
+// interleavedGradientNoise (Sterna, Listing 2) is light_rays.glsl's; checkerboarded passes
+// stretch y by 4 (Listing 7).
 
 // Sterna, Listing 1: sample i of n on the unit disk, rotated by phi.
 vec2 vogelDisk(int i, int n, float phi) {
