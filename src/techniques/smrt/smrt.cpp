@@ -8,7 +8,8 @@ namespace {
 
 class ShadowMapRayTracing final : public shadow_map::SingleViewTechnique {
  public:
-  ShadowMapRayTracing(const shadow_map::SingleViewOptions& m, const SmrtOptions& o) : SingleViewTechnique("smrt", m), o_(o) {}
+  ShadowMapRayTracing(const shadow_map::SingleViewOptions& m, const SmrtOptions& o)
+      : SingleViewTechnique("smrt", m), o_(o) {}
 
  protected:
   void renderShadow(LightPass& pass) override {
@@ -50,20 +51,22 @@ std::vector<ParamSpec> smrtParams(const SmrtOptions& o) {
   p.push_back(ParamSpec::integer("rays", o.rays, 1, 256,
                                  "rays a pixel, each to one of its light samples (all of them when rays >= samples)"));
   p.push_back(ParamSpec::integer("steps", o.steps, 1, 256, "map samples along each ray"));
-  p.push_back(ParamSpec::number("spacing", o.spacing, 1.0, 8.0,
-                                "step s of S at ((s + offset) / S)^spacing of the ray: 1 even, more near the receiver"));
+  p.push_back(
+      ParamSpec::number("spacing", o.spacing, 1.0, 8.0,
+                        "step s of S at ((s + offset) / S)^spacing of the ray: 1 even, more near the receiver"));
   p.push_back(ParamSpec::boolean("extrapolate", o.extrapolate,
                                  "a ray that comes out from behind the map's layer nearer the light than the occluder "
                                  "it was behind (extrapolated with `slope`) hit it"));
   p.push_back(ParamSpec::number("slope", o.slope, 0.0, 1e3,
                                 "extrapolation: the occluder's depth slope past where the ray left it, depth per "
                                 "lateral world unit"));
-  p.push_back(ParamSpec::number("thickness", o.thickness, 0.0, 1e3,
-                                "a point behind the layer by less than this x the layer's depth is inside an occluder"));
+  p.push_back(
+      ParamSpec::number("thickness", o.thickness, 0.0, 1e3,
+                        "a point behind the layer by less than this x the layer's depth is inside an occluder"));
   p.push_back(ParamSpec::number("max-ray-angle", o.maxRayAngle, 0.0, 3.2,
                                 "radians a ray may span seen from the light centre, the rest unoccluded; 0: no limit"));
-  p.push_back(ParamSpec::boolean("jitter", o.jitter,
-                                 "per-pixel noise rotates the rays' samples and offsets their steps"));
+  p.push_back(
+      ParamSpec::boolean("jitter", o.jitter, "per-pixel noise rotates the rays' samples and offsets their steps"));
   return p;
 }
 

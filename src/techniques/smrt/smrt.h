@@ -15,15 +15,15 @@
 namespace penumbra {
 
 struct SmrtOptions {
-  int rays = 7;                // UE 5 r.Shadow.Virtual.SMRT.RayCountLocal
-  int steps = 8;               // UE 5 r.Shadow.Virtual.SMRT.SamplesPerRayLocal
-  double spacing = 2.0;        // steps at ((s + offset) / steps)^spacing of the ray: denser near the receiver (ours)
-  bool extrapolate = true;     // the occluder-extrapolation rule (smrt_resolve.frag)
-  double slope = 1.0;          // its depth slope per lateral unit (ours: UE's cvar has other units)
-  double thickness = 0.0;      // assumed occluder thickness behind the layer, relative to its depth
-  double maxRayAngle = 0.03;   // radians seen from the light centre (UE 5 MaxRayAngleFromLight); 0: none
-  bool jitter = true;          // per-pixel rotation of the rays' samples and offset of their steps
-  int mapSize = 2048;          // the one map's resolution
+  int rays = 7;               // UE 5 r.Shadow.Virtual.SMRT.RayCountLocal
+  int steps = 8;              // UE 5 r.Shadow.Virtual.SMRT.SamplesPerRayLocal
+  double spacing = 2.0;       // steps at ((s + offset) / steps)^spacing of the ray: denser near the receiver (ours)
+  bool extrapolate = true;    // the occluder-extrapolation rule (smrt_resolve.frag)
+  double slope = 1.0;         // its depth slope per lateral unit (ours: UE's cvar has other units)
+  double thickness = 0.0;     // assumed occluder thickness behind the layer, relative to its depth
+  double maxRayAngle = 0.03;  // radians seen from the light centre (UE 5 MaxRayAngleFromLight); 0: none
+  bool jitter = true;         // per-pixel rotation of the rays' samples and offset of their steps
+  int mapSize = 2048;         // the one map's resolution
   shadow_map::ContactOptions contact;  // contact shadows multiplied in (smrt-contact)
 };
 

@@ -31,8 +31,7 @@ TEST(Smrt, WholeRaysConvergeUnderAParallelPlate) {
   const RenderSettings s = settings(128, 16);
   std::vector<double> rmse;
   for (const char* steps : {"steps=8", "steps=32", "steps=128"})
-    rmse.push_back(
-        renderAndCompare(scene, "smrt-unclamped", s, params({"rays=16", steps})).errors.visibility.rmse);
+    rmse.push_back(renderAndCompare(scene, "smrt-unclamped", s, params({"rays=16", steps})).errors.visibility.rmse);
   const Comparison ue = renderAndCompare(scene, "smrt-unclamped", s);
   RecordProperty("rmse_steps_8_32_128", fmt::format("{:.4f} {:.4f} {:.4f}", rmse[0], rmse[1], rmse[2]));
   RecordProperty("rmse_7_rays_8_steps", std::to_string(ue.errors.visibility.rmse));
@@ -78,8 +77,8 @@ TEST(Smrt, TheThicknessRuleAloneStepsOverAThinPlate) {
 // RMSE 0.053 at a ray per sample and 128 steps; mvr 0.010, dcs exact; the mean error positive).
 TEST(Smrt, AnOccluderHiddenBehindAnotherLeaks) {
   Scene scene = loadScene(scenePath("scenes/hard/15-two-plates.json"));
-  const Comparison smrt = renderAndCompare(scene, "smrt-unclamped", settings(128, 16),
-                                           params({"rays=16", "steps=128"}));
+  const Comparison smrt =
+      renderAndCompare(scene, "smrt-unclamped", settings(128, 16), params({"rays=16", "steps=128"}));
   const Comparison mvr = renderAndCompare(scene, "mvr", settings(128, 16));
   RecordProperty("rmse_smrt", std::to_string(smrt.errors.visibility.rmse));
   RecordProperty("rmse_mvr", std::to_string(mvr.errors.visibility.rmse));
