@@ -91,6 +91,14 @@ int shading(const StudyRun& r, std::FILE* out) {
   return shadingStudy(o, out);
 }
 
+int lightSize(const StudyRun& r, std::FILE* out) {
+  LightSizeOptions o;
+  o.backend = r.backend;
+  o.outDir = (std::filesystem::path(r.outDir) / "light-size").string();
+  if (r.quick) o.width = 64, o.scales = {0.1, 1.0}, o.techniques = {"dcs", "pcss", "smrt"}, o.warmup = 0;
+  return lightSizeStudy(o, out);
+}
+
 }  // namespace
 
 const std::vector<Study>& studyTable() {
@@ -102,6 +110,7 @@ const std::vector<Study>& studyTable() {
       {"techniques", "per-stage timings of the main techniques on the engine", timings},
       {"dcs-scale", "dcs raster and compute paths against raytrace, mvr and hard-sv on the engine", dcsScale},
       {"shading", "shading modes (ratio, modulate, per-sample) against the converged shaded reference", shading},
+      {"light-size", "error against light size, from near a point to larger than the occluders", lightSize},
   };
   return table;
 }

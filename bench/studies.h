@@ -112,6 +112,27 @@ struct ShadingStudyOptions {
 };
 int shadingStudy(const ShadingStudyOptions& o, std::FILE* out);
 
+// Error against light size (bench_light_size.cpp): each scene's lights scaled from near a point to
+// larger than its occluders, every technique against the same-sample reference at each size; a
+// chart and a table per scene. The scenes: occluders that overlap from the light centre (hard case
+// 15's offset plates), contact (16: a box on the floor, a plate over a plate) and a thin occluder
+// far above its receiver (23).
+struct LightSizeOptions {
+  std::vector<std::string> scenes = {"scenes/hard/15-two-plates.json", "scenes/hard/16-contact.json",
+                                     "scenes/hard/23-analytic-square.json"};
+  std::vector<double> scales = {0.05, 0.1, 0.25, 0.5, 1.0, 1.5, 2.0};
+  std::vector<std::string> techniques = {
+      "hard-sv", "dcs",      "mvr",  "vwss", "pcss",           "pcss-ultra",   "pcss-contact",
+      "vssm",    "msm-soft", "evsm", "smrt", "smrt-unclamped", "smrt-contact", "raytrace-denoised"};
+  int samples = 16;
+  int width = 128;  // height: the scene's aspect
+  int frames = 1, warmup = 1;
+  bool images = false;  // each size's PNG images (false: reports and plots only)
+  std::string outDir;   // required
+  gl::Backend backend = gl::Backend::Egl;
+};
+int lightSizeStudy(const LightSizeOptions& o, std::FILE* out);
+
 // What `penumbra bench` gives every study.
 struct StudyRun {
   gl::Backend backend = gl::Backend::Egl;

@@ -282,5 +282,21 @@ TEST(Report, AFailedRunIsARowEverywhere) {
   EXPECT_EQ(count(html, "<img src=\"broken"), 0u) << "no image for a failed run";
 }
 
+// The light-size study's chart: a line and a marker per point for each series, the floor for
+// exact errors, the legend by family, names escaped.
+TEST(Report, LineChartHasALinePerSeries) {
+  std::vector<ChartSeries> series = {
+      {"dcs", TechniqueFamily::ExactPerSample, {{0.1, 0.0}, {1.0, 0.0}}},
+      {"s<&>", TechniqueFamily::SingleMap, {{0.1, 0.01}, {0.5, 0.05}, {1.0, 0.2}}},
+  };
+  const std::string svg = lineChartSvg("Error against light size", "light width", "RMSE", series);
+  EXPECT_EQ(count(svg, "<g class=\"series\""), 2u);
+  EXPECT_EQ(count(svg, "<title>"), 5u);
+  EXPECT_EQ(svg.find("s<&>"), std::string::npos) << "names are escaped";
+  EXPECT_NE(svg.find(">exact per sample</text>"), std::string::npos);
+  EXPECT_NE(svg.find(">single map</text>"), std::string::npos);
+  EXPECT_NE(svg.find("fill=\"#E69F00\""), std::string::npos);
+}
+
 }  // namespace
 }  // namespace penumbra

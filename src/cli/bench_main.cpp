@@ -127,12 +127,27 @@ int shading(int argc, char** argv) {
   return runStudy(app, argc, argv, o, shadingStudy);
 }
 
+int lightSize(int argc, char** argv) {
+  CLI::App app{"error against light size", "penumbra_bench_light_size"};
+  LightSizeOptions o;
+  app.add_option("--scenes", o.scenes, "scene files")->delimiter(',');
+  app.add_option("--scales", o.scales, "light scales (comma-separated)")->delimiter(',');
+  app.add_option("--techniques", o.techniques)->delimiter(',');
+  app.add_option("--samples", o.samples);
+  app.add_option("-W", o.width, "image width (height: the scene's aspect)");
+  app.add_option("--frames", o.frames, "timed frames per technique and size");
+  app.add_option("--warmup", o.warmup);
+  app.add_option("--images", o.images, "write each size's PNG images (0: reports and plots only)");
+  app.add_option("-o", o.outDir, "output folder")->required();
+  return runStudy(app, argc, argv, o, lightSizeStudy);
+}
+
 }  // namespace
 
 int penumbraBenchMain(const char* study, int argc, char** argv) {
   // Keyed like studyTable() (bench/studies.h).
   static const std::map<std::string, std::function<int(int, char**)>> mains = {
-      {"speed-error", speedError}, {"dcs", dcs},        {"multiview", multiview}, {"single-map", singleMap},
-      {"techniques", timings},     {"shading", shading}};
+      {"speed-error", speedError}, {"dcs", dcs},         {"multiview", multiview}, {"single-map", singleMap},
+      {"techniques", timings},     {"shading", shading}, {"light-size", lightSize}};
   return mains.at(study)(argc, argv);
 }

@@ -111,6 +111,16 @@ std::string presetShort(const std::string& label) {
   return s;
 }
 
+// A log10 range widened to at least half a decade and padded by 6% a side.
+void padLogRange(double& lo, double& hi) {
+  if (hi - lo < 0.5) {
+    const double mid = 0.5 * (lo + hi);
+    lo = mid - 0.25, hi = mid + 0.25;
+  }
+  const double p = 0.06 * (hi - lo);
+  lo -= p, hi += p;
+}
+
 // Axis-aligned boxes for the label placement.
 struct Box {
   double x0, y0, x1, y1;
@@ -280,15 +290,7 @@ class SpeedErrorPlot {
         const double y = std::log10(std::max(noise, kExactErrorFloor));
         y0_ = std::min(y0_, y), y1_ = std::max(y1_, y);
       }
-    auto pad = [](double& lo, double& hi) {
-      if (hi - lo < 0.5) {
-        double mid = 0.5 * (lo + hi);
-        lo = mid - 0.25, hi = mid + 0.25;
-      }
-      double p = 0.06 * (hi - lo);
-      lo -= p, hi += p;
-    };
-    pad(x0_, x1_), pad(y0_, y1_);
+    padLogRange(x0_, x1_), padLogRange(y0_, y1_);
     for (auto i : runs_) pts_.emplace_back(r_.runs[i].total.median, errorOf(i));
   }
 
@@ -534,5 +536,84 @@ class SpeedErrorPlot {
 }  // namespace
 
 std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis) { return SpeedErrorPlot(r, axis).svg(); }
+
+std::string lineChartSvg(const std::string& title, const std::string& xLabel, const std::string& yLabel,
+                         const std::vector<ChartSeries>& series) {
+  constexpr double kLeft = 70, kRight = 200, kTop = 30, kBottom = 50, kWidth = 800, kLine = 14;
+  std::map<TechniqueFamily, int> variants;
+  std::vector<Look> looks;
+  for (const ChartSeries& c : series) looks.push_back(lookOf(c.family, variants[c.family]++));
+  const double legend = kLine * double(series.size() + variants.size()) + 30.0;
+  const double height = std::max(420.0, kTop + legend + kBottom), pw = kWidth - kLeft - kRight,
+               ph = height - kTop - kBottom;
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  const auto floored = [](double e) { return std::max(e, kExactErrorFloor); };
+  for (const ChartSeries& c : series)
+    for (auto [x, e] : c.points) {
+      if (!(x > 0.0) || !std::isfinite(e)) continue;
+      x0 = std::min(x0, std::log10(x)), x1 = std::max(x1, std::log10(x));
+      y0 = std::min(y0, std::log10(floored(e))), y1 = std::max(y1, std::log10(floored(e)));
+    }
+  if (!(x1 >= x0)) x0 = 0, x1 = 1, y0 = -3, y1 = 0;
+  padLogRange(x0, x1), padLogRange(y0, y1);
+  const auto X = [&](double x) { return kLeft + (std::log10(x) - x0) / (x1 - x0) * pw; };
+  const auto Y = [&](double e) { return kTop + (1.0 - (std::log10(floored(e)) - y0) / (y1 - y0)) * ph; };
+  std::string s = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" "
+      "font-family=\"sans-serif\" font-size=\"12\" role=\"img\" aria-label=\"{2}\">\n"
+      "<rect width=\"{0}\" height=\"{1}\" fill=\"white\"/>\n"
+      "<text x=\"{3}\" y=\"18\" font-size=\"14\">{2}</text>\n",
+      kWidth, height, escapeMarkup(title), kLeft);
+  for (double t : logTicks(x0, x1)) {
+    const double x = kLeft + (t - x0) / (x1 - x0) * pw;
+    s += fmt::format(
+        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
+        "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>\n",
+        x, kTop, kTop + ph, kTop + ph + 16, tickLabel(t));
+  }
+  for (double t : logTicks(y0, y1)) {
+    const double y = kTop + (1.0 - (t - y0) / (y1 - y0)) * ph;
+    s += fmt::format(
+        "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>"
+        "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
+        kLeft, y, kLeft + pw, kLeft - 6, y + 4, tickLabel(t));
+  }
+  s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#333\"/>\n", kLeft, kTop,
+                   pw, ph);
+  s += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{} (log)</text>\n", kLeft + pw / 2, height - 10,
+                   escapeMarkup(xLabel));
+  s += fmt::format("<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\">{} (log)</text>\n",
+                   kTop + ph / 2, escapeMarkup(yLabel));
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    const ChartSeries& c = series[i];
+    std::string path;
+    for (auto [x, e] : c.points)
+      if (x > 0.0 && std::isfinite(e)) path += fmt::format("{}{:.1f},{:.1f}", path.empty() ? "M" : " L", X(x), Y(e));
+    s += fmt::format(
+        "<g class=\"series\" data-technique=\"{}\"><path d=\"{}\" fill=\"none\" stroke=\"{}\" "
+        "stroke-width=\"1.5\"/>\n",
+        escapeMarkup(c.name), path, looks[i].colour);
+    for (auto [x, e] : c.points)
+      if (x > 0.0 && std::isfinite(e))
+        s += marker(looks[i].shape, X(x), Y(e), 3.5, fmt::format("fill=\"{}\"", looks[i].colour),
+                    fmt::format("<title>{}: {:.3g}, {:.4g}</title>", escapeMarkup(c.name), x, e));
+    s += "</g>\n";
+  }
+  double ly = kTop + 8;
+  const double lx = kLeft + pw + 14;
+  for (TechniqueFamily f : kTechniqueFamilies) {
+    if (!variants.count(f)) continue;
+    s += fmt::format("<text x=\"{}\" y=\"{:.1f}\" font-weight=\"bold\" fill=\"{}\">{}</text>\n", lx - 6, ly + 4,
+                     familyColour(f), escapeMarkup(toString(f)));
+    ly += kLine;
+    for (std::size_t i = 0; i < series.size(); ++i) {
+      if (series[i].family != f) continue;
+      s += marker(looks[i].shape, lx, ly, 4, fmt::format("fill=\"{}\"", looks[i].colour), "") +
+           fmt::format("<text x=\"{}\" y=\"{:.1f}\">{}</text>\n", lx + 10, ly + 4, escapeMarkup(series[i].name));
+      ly += kLine;
+    }
+  }
+  return s + "</svg>\n";
+}
 
 }  // namespace penumbra

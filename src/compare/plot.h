@@ -38,6 +38,17 @@ std::vector<std::size_t> paretoRuns(const CompareResult& r, ErrorAxis axis = Err
 // A standalone SVG document (also inlined in index.html).
 std::string speedErrorSvg(const CompareResult& r, ErrorAxis axis = ErrorAxis::Visibility);
 
+// A line chart of an error against a swept quantity (the light-size study): one line per series,
+// coloured by family and shaped by variant as the speed-against-error plot, both axes
+// logarithmic (errors below kExactErrorFloor on the floor), the legend grouped by family.
+struct ChartSeries {
+  std::string name;
+  TechniqueFamily family = TechniqueFamily::ExactPerSample;
+  std::vector<std::pair<double, double>> points;  // (x, error), x > 0
+};
+std::string lineChartSvg(const std::string& title, const std::string& xLabel, const std::string& yLabel,
+                         const std::vector<ChartSeries>& series);
+
 // Shared with report.cpp: text escaped for HTML and SVG; a run's name with its preset.
 std::string escapeMarkup(const std::string& s);
 std::string runLabel(const CompareResult& r, const CompareRun& run);
