@@ -28,10 +28,11 @@ struct MsmOptions {
   int subKernels = 4;        // msm-soft: each kernel split into subKernels^2 (own receiver depths)
   double momentBias = 1e-5;  // alpha on the standardised moments (common/shadow_map/shaders/moments.h penumbraMsmBias)
   int satBits = 64;          // 64: the table in doubles; 32: fp32
+  bool translucent = false;  // semi-opaque occluders blend their moments (msm_translucent.frag)
 };
 
 // The parameters of a preset, its values their defaults: the map ones, filter (msm only),
-// sub-kernels (msm-soft only), moment-bias, sat-bits.
+// sub-kernels (msm-soft only), moment-bias, sat-bits, translucent.
 std::vector<ParamSpec> msmParams(const MsmOptions& preset);
 std::unique_ptr<Technique> makeMomentShadowMapping(const TechniqueArgs& args, MsmOptions preset);
 

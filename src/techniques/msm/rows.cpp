@@ -5,9 +5,10 @@
 namespace penumbra {
 
 namespace {
-TechniqueInfo msmRow(std::string name, std::string description, bool soft) {
+TechniqueInfo msmRow(std::string name, std::string description, bool soft, bool translucent = false) {
   MsmOptions preset;
   preset.soft = soft;
+  preset.translucent = translucent;
   return presetRow(std::move(name), std::move(description), TechniqueFamily::SingleMap, msmParams(preset), preset,
                    makeMomentShadowMapping);
 }
@@ -21,6 +22,10 @@ std::vector<TechniqueInfo> msmRows() {
              false),
       msmRow("msm-soft",
              "moment soft shadows: PCSS blocker search and filtering from four-moment summed-area tables (4MSM)", true),
+      msmRow("msm-translucent",
+             "msm-soft with translucent occluders: semi-opaque surfaces blend their moments by their opacity (the "
+             "filtered competitor of dcs's product)",
+             true, true),
   };
 }
 

@@ -79,6 +79,27 @@ TEST(MsmSoft, Fp32SummedAreaTableFailsAtTheFarCornerDoublesDoNot) {
   EXPECT_EQ(statistic(doubles.frame, "sat bytes"), 2048.0 * 2048.0 * 32.0);
 }
 
+// Translucent occluders (msm-translucent: semi-opaque surfaces blend their moments by their
+// opacity): the panes of the semi-opaque scene and the stacked glass layers shadow by their
+// opacity instead of as opaque (measured RMSE 0.141 -> 0.071 and 0.150 -> 0.106 at N = 16; dcs
+// 0.0001, dcs-sum 0.053); with no semi-opaque occluder it is msm-soft (the moments read back
+// from a float map: equal to 1e-4).
+TEST(MsmTranslucent, SemiOpaqueOccludersShadowByTheirOpacity) {
+  for (auto [path, factor] : {std::pair{"scenes/semi-opaque.json", 0.6}, std::pair{"scenes/glass-layers.json", 0.8}}) {
+    Scene scene = loadScene(scenePath(path));
+    const double opaque = renderAndCompare(scene, "msm-soft", settings(128, 16)).errors.visibility.rmse;
+    const Comparison translucent = renderAndCompare(scene, "msm-translucent", settings(128, 16));
+    RecordProperty(sceneTestName(path),
+                   std::to_string(opaque) + " " + std::to_string(translucent.errors.visibility.rmse));
+    EXPECT_LE(translucent.errors.visibility.rmse, factor * opaque) << path;
+    EXPECT_EQ(statistic(translucent.frame, "translucent"), 1.0);
+  }
+  Scene plate = loadScene(scenePath("scenes/hard/23-analytic-square.json"));
+  const double soft = renderAndCompare(plate, "msm-soft", settings(128, 16)).errors.visibility.rmse;
+  const double translucent = renderAndCompare(plate, "msm-translucent", settings(128, 16)).errors.visibility.rmse;
+  EXPECT_NEAR(translucent, soft, 1e-4);
+}
+
 // Bad parameters are one-line usage errors.
 TEST(Msm, BadParametersAreRefused) {
   Scene scene = loadScene(scenePath("scenes/hard/01-cube-on-plane.json"));

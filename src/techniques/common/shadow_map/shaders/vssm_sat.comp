@@ -7,6 +7,8 @@
 //    swamp a box's variance (hard case 17).
 //  * MOMENTS4 (msm): (u, u^2, u^3, u^4) of u = 2 x - 1 in [-1, 1], in doubles (DOUBLE: a sum's
 //    rounding is 2^-53 of at most 2^22 texels, far below any moment bias) or fp32.
+//    MOMENT_MAP: those moments read from a map instead of computed from the depth (msm's
+//    translucent occluders, msm_translucent.frag).
 //  * MOMENTS4 and EVSM (evsm, Lauritzen and McCool 2008): the two warps' moments (e+, e+^2, e-,
 //    e-^2), e+ = exp(c+ u), e- = -exp(-c- u) (exponents evsmPositive, evsmNegative; the exp of
 //    half the exponent in float, squared in the table's precision: c up to 176 in doubles).
@@ -26,6 +28,10 @@
 layout(local_size_x = PENUMBRA_MAP_LOCAL_SIZE) in;
 layout(std430, binding = PENUMBRA_SSBO_VSSM_SAT) buffer Sat { SAT_T sat[]; };
 layout(binding = PENUMBRA_UNIT_PCSS_DEPTH) uniform sampler2D depthRaw;
+#ifdef MOMENT_MAP
+// msm with translucent occluders: the moments come blended from a map (msm_translucent.frag).
+layout(binding = PENUMBRA_UNIT_PCSS_AUX) uniform sampler2D momentMap;
+#endif
 uniform int satSize;
 uniform int pass;
 uniform float mapNear;
@@ -36,6 +42,9 @@ void main() {
   int i = int(globalIndex());
   if (pass == 0) {
     if (i >= satSize * satSize) return;
+#ifdef MOMENT_MAP
+    sat[i] = SAT_T(texelFetch(momentMap, ivec2(i % satSize, i / satSize), 0));
+#else
     float z = texelFetch(depthRaw, ivec2(i % satSize, i / satSize), 0).r;
     float x = normalisedMapDepth(z, mapNear);
 #if defined(MOMENTS4) && defined(EVSM)
@@ -51,6 +60,7 @@ void main() {
     sat[i] = dvec2(q, q * q);
 #else
     sat[i] = vec2(x, x * x);
+#endif
 #endif
     return;
   }
