@@ -12,11 +12,15 @@
 #include "gl/objects.h"
 #include "pipeline/renderer.h"
 #include "reference/embree_reference.h"
+#include "techniques/denoised/ffx_denoiser.h"
+#include "techniques/denoised/filtering.h"
 
 namespace penumbra {
 namespace {
 
 struct Options {
+  std::string denoiser = "ours";  // "ours" (denoise below) or "ffx" (ffx_denoiser.h)
+  double clamp = 1.0;             // ffx: the neighbourhood clamp, standard deviations
   int spp = 1;
   bool temporal = true;
   int history = 0;  // 0: N / spp
@@ -34,21 +38,6 @@ struct History {
   std::uint32_t frame = 0;
 };
 
-// body(y) for every row on all cores (rows from a shared counter; each pixel depends only on
-// its inputs, so the result does not depend on the thread count).
-template <class Body>
-void forEachRow(int height, Body body) {
-  std::atomic<int> next{0};
-  auto worker = [&] {
-    for (int y = next++; y < height; y = next++) body(y);
-  };
-  const unsigned threads = std::max(1u, std::min(std::thread::hardware_concurrency(), unsigned(std::max(height, 1))));
-  std::vector<std::thread> pool;
-  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-}
-
 // The cross-bilateral filter of `in` (RGB) with per-pixel radius (pixels; < 0.5: unfiltered):
 // Gaussian of sigma radius / 2 over the window, times max(n_i . n_j, 0)^16 and
 // exp(-|n_i . (p_j - p_i)| / (0.01 d_i)) (d_i the pixel's distance to the eye): surfaces that are
@@ -56,7 +45,7 @@ void forEachRow(int height, Body body) {
 Image crossBilateral(const Image& in, const CpuGBuffer& g, const std::vector<float>& radius) {
   Image out = in;
   const glm::vec3 eye = g.camera.value_or(glm::vec3(0.0f));
-  forEachRow(g.height, [&](int y) {
+  denoise::forEachRow(g.height, [&](int y) {
     for (int x = 0; x < g.width; ++x) {
       const std::size_t i = std::size_t(y) * g.width + x;
       const float r = radius[i];
@@ -108,7 +97,13 @@ class RaytraceDenoised final : public Technique {
     History& h = histories_[pass.lightIndex];
     SparseResult r =
         pass.timer.time("trace", [&] { return reference_->sparseSamples(g, set, spp, h.frame * std::uint32_t(spp)); });
-    Image visibility = pass.timer.time("denoise", [&] { return denoise(pass, g, r, h, n, spp); });
+    Image visibility = pass.timer.time("denoise", [&] {
+      if (o_.denoiser != "ffx") return denoise(pass, g, r, h, n, spp);
+      const denoise::FfxOptions ffx{o_.temporal, o_.history > 0 ? o_.history : std::max(1, n / spp), o_.clamp};
+      const Image ratio = denoise::ffxDenoise(g, pass.scene.camera, r.ratio, ffxHistories_[pass.lightIndex], ffx, ffx_);
+      meanHistory_ = ffx_.meanHistory;
+      return denoise::visibilityFromRatio(g, pass.samples, ratio);
+    });
     ++h.frame;
     pass.timer.harness("upload", [&] { pass.visibility.upload(visibility.data.data(), 3); });
     if (pass.cpuVisibility) *pass.cpuVisibility = std::move(visibility);
@@ -116,6 +111,8 @@ class RaytraceDenoised final : public Technique {
 
   std::vector<std::pair<std::string, double>> statistics() const override {
     return {{"spp", double(o_.spp)},
+            {"ffx denoiser", o_.denoiser == "ffx" ? 1.0 : 0.0},
+            {"uniform tiles", ffx_.uniformTiles},
             {"temporal", o_.temporal ? 1.0 : 0.0},
             {"mean radius", meanRadius_},
             {"mean history", meanHistory_},
@@ -133,7 +130,7 @@ class RaytraceDenoised final : public Technique {
     const float footprint = 2.0f * std::tan(glm::radians(pass.scene.camera.fovY) * 0.5f) / float(g.height);
     std::vector<float> radius(pixels, 0.0f);
     const int window = o_.maxRadius;
-    forEachRow(g.height, [&](int y) {
+    denoise::forEachRow(g.height, [&](int y) {
       for (int x = 0; x < g.width; ++x) {
         const std::size_t i = std::size_t(y) * g.width + x;
         if (!g.valid[i]) continue;
@@ -160,23 +157,17 @@ class RaytraceDenoised final : public Technique {
     const int maxHistory = o_.history > 0 ? o_.history : std::max(1, n / spp);
     std::vector<int> length(pixels, 1);
     if (o_.temporal && !h.valid.empty() && h.ratio.width == g.width && h.ratio.height == g.height) {
-      const float aspect = float(g.width) / float(g.height);
-      const glm::mat4 clip = clipFromViewReversedInfinite(h.camera, aspect) * viewFromWorld(h.camera);
-      const glm::vec3 shift(g.origin - h.origin);  // this frame's coordinates into the last one's
+      const denoise::PreviousView previous =
+          denoise::previousView(h.camera, h.origin, float(g.width) / float(g.height));
       for (int y = 0; y < g.height; ++y)
         for (int x = 0; x < g.width; ++x) {
           const std::size_t i = std::size_t(y) * g.width + x;
           if (!g.valid[i]) continue;
-          const glm::vec3 p = g.position[i] + shift;
-          const glm::vec4 c = clip * glm::vec4(p, 1.0f);
-          if (!(c.w > 0.0f)) continue;
-          // The G-buffer's rows are top row first (scene/gbuffer.h): ndc y = 1 is row 0. Range
-          // checked as floats before the conversion (a point near the camera plane projects far).
-          const float fx = std::floor((c.x / c.w * 0.5f + 0.5f) * float(g.width));
-          const float fy = std::floor((0.5f - c.y / c.w * 0.5f) * float(g.height));
-          if (!(fx >= 0.0f && fy >= 0.0f && fx < float(g.width) && fy < float(g.height))) continue;
-          const int px = int(fx), py = int(fy);
-          const std::size_t j = std::size_t(py) * g.width + px;
+          glm::vec3 p;
+          const long found = denoise::previousPixel(g, i, previous, p);
+          if (found < 0) continue;
+          const std::size_t j = std::size_t(found);
+          const int px = int(found % g.width), py = int(found / g.width);
           const float tolerance = 0.01f * glm::length(g.position[i] - eye);
           if (!h.valid[j] || glm::length(h.position[j] - p) > tolerance || glm::dot(h.normal[j], g.normal[i]) < 0.9f)
             continue;  // disoccluded: another surface was there
@@ -207,45 +198,40 @@ class RaytraceDenoised final : public Technique {
       h.camera = pass.scene.camera;
       h.origin = g.origin;
     }
-    // The visibility: the ratio times the pixel's unshadowed V over all its N samples.
-    Image visibility(g.width, g.height, 3, 0.0f);
-    const LightSampleSet& set = pass.samples;
-    for (int y = 0; y < g.height; ++y)
-      for (int x = 0; x < g.width; ++x) {
-        const std::size_t i = std::size_t(y) * g.width + x;
-        if (!g.valid[i]) continue;
-        const std::size_t first = std::size_t(set.setForPixel(x, y)) * std::size_t(n);
-        glm::vec3 unshadowed(0.0f);
-        for (int k = 0; k < n; ++k)
-          if (glm::dot(g.normal[i], set.positions[first + k] - g.position[i]) > 0.0f)
-            unshadowed += set.luminance[first + k];
-        unshadowed /= float(n);
-        for (int c = 0; c < 3; ++c) visibility.at(x, y, c) = std::clamp(ratio.at(x, y, c), 0.0f, 1.0f) * unshadowed[c];
-      }
-    return visibility;
+    return denoise::visibilityFromRatio(g, pass.samples, ratio);
   }
 
   Options o_;
   std::unique_ptr<EmbreeReference> reference_;
   std::map<int, History> histories_;
+  std::map<int, denoise::FfxHistory> ffxHistories_;
+  denoise::FfxStatistics ffx_;
   double meanRadius_ = 0.0, meanHistory_ = 0.0;
   bool warned_ = false;
 };
 
 }  // namespace
 
-std::vector<ParamSpec> denoisedParams() {
+std::vector<ParamSpec> denoisedParams(const std::string& denoiser) {
   const Options o;
-  return {ParamSpec::integer("spp", o.spp, 1, 64, "shadow rays per pixel and frame (of the pixel's N samples)"),
-          ParamSpec::boolean("temporal", o.temporal, "accumulate over frames with reprojection"),
-          ParamSpec::integer("history", o.history, 0, 1024,
-                             "frames of history at most (0: N / spp, one cycle of the samples)")
-              .shown("N / spp"),
-          ParamSpec::integer("max-radius", o.maxRadius, 1, 64, "the spatial filter's largest radius, pixels")};
+  return {
+      ParamSpec::choice("denoiser", denoiser, {"ours", "ffx"},
+                        "ours: penumbra-sized cross-bilateral filter; ffx: after FidelityFX's shadow denoiser "
+                        "(tile classification, neighbourhood-clamped history, a-trous passes)"),
+      ParamSpec::number("clamp", o.clamp, 0.0, 10.0,
+                        "ffx: the history clamped to the 7x7 neighbourhood's mean +- this many standard deviations"),
+      ParamSpec::integer("spp", o.spp, 1, 64, "shadow rays per pixel and frame (of the pixel's N samples)"),
+      ParamSpec::boolean("temporal", o.temporal, "accumulate over frames with reprojection"),
+      ParamSpec::integer("history", o.history, 0, 1024,
+                         "frames of history at most (0: N / spp, one cycle of the samples)")
+          .shown("N / spp"),
+      ParamSpec::integer("max-radius", o.maxRadius, 1, 64, "the spatial filter's largest radius, pixels")};
 }
 
 std::unique_ptr<Technique> makeRaytraceDenoised(const TechniqueArgs& args) {
   Options o;
+  o.denoiser = args.text("denoiser");
+  o.clamp = args.number("clamp");
   o.spp = args.integer("spp");
   o.temporal = args.boolean("temporal");
   o.history = args.integer("history");

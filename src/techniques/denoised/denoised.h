@@ -23,7 +23,8 @@
 
 namespace penumbra {
 
-std::vector<ParamSpec> denoisedParams();
+// `denoiser`: the default of the denoiser parameter ("ours" or "ffx": ffx_denoiser.h).
+std::vector<ParamSpec> denoisedParams(const std::string& denoiser);
 std::unique_ptr<Technique> makeRaytraceDenoised(const TechniqueArgs& args);
 
 }  // namespace penumbra

@@ -8,7 +8,11 @@ std::vector<TechniqueInfo> denoisedRows() {
   return {{"raytrace-denoised",
            "1-4 shadow rays per pixel through Embree, temporal accumulation and a penumbra-sized cross-bilateral "
            "filter (NRD SIGMA style)",
-           denoisedParams(), makeRaytraceDenoised, TechniqueFamily::Denoised}};
+           denoisedParams("ours"), makeRaytraceDenoised, TechniqueFamily::Denoised},
+          {"raytrace-ffx",
+           "the same rays denoised after AMD FidelityFX's shadow denoiser: 8x4 tile classification, depth "
+           "disocclusion, neighbourhood-clamped moments, three a-trous passes",
+           denoisedParams("ffx"), makeRaytraceDenoised, TechniqueFamily::Denoised}};
 }
 
 }  // namespace penumbra
