@@ -65,8 +65,7 @@ void localMoments(const CpuGBuffer& g, const Image& ratio, std::vector<float>& m
       for (int dy = -3; dy <= 3; ++dy)
         for (int dx = -3; dx <= 3; ++dx) {
           const int xx = x + dx, yy = y + dy;
-          if (xx < 0 || yy < 0 || xx >= g.width || yy >= g.height || !g.valid[std::size_t(yy) * g.width + xx])
-            continue;
+          if (xx < 0 || yy < 0 || xx >= g.width || yy >= g.height || !g.valid[std::size_t(yy) * g.width + xx]) continue;
           const double v = gray(ratio, xx, yy);
           s += v, s2 += v * v, ++n;
         }
@@ -110,7 +109,8 @@ void atrousPass(const CpuGBuffer& g, const std::vector<int>& uniform, int step, 
           const float nn = std::max(glm::dot(n, g.normal[j]), 0.0f), n2 = nn * nn, n4 = n2 * n2, n8 = n4 * n4;
           const float plane = std::abs(glm::dot(n, g.position[j] - p)) / tolerance;
           const float valueStop = std::abs(gray(in, xx, yy) - vp) / stop;
-          const double w = double(kernel[dx + 2] * kernel[dy + 2]) * double(n8 * n8) * std::exp(-double(plane + valueStop));
+          const double w =
+              double(kernel[dx + 2] * kernel[dy + 2]) * double(n8 * n8) * std::exp(-double(plane + valueStop));
           if (!(w > 1e-9)) continue;
           sum += w * glm::dvec3(in.at(xx, yy, 0), in.at(xx, yy, 1), in.at(xx, yy, 2));
           weights += w;
