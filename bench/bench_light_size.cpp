@@ -95,10 +95,11 @@ int lightSizeStudy(const LightSizeOptions& o, std::FILE* out) {
         header += fmt::format(" {:.3g} |", double(base.lights[0].size.x) * scale);
         rule += "---|";
       }
-      std::string section = fmt::format("## {} ({})\n\nVisibility RMSE against the same-sample reference by light width (world units; "
-                        "the scene's own: {:.3g}). Chart: [{}.svg]({}.svg); each size's report, its speed-error plot "
-                        "among them: `{}/size-<scale>/`.\n\n{}\n{}\n",
-                        base.name, path, double(base.lights[0].size.x), name, name, name, header, rule);
+      std::string section = fmt::format(
+          "## {} ({})\n\nVisibility RMSE against the same-sample reference by light width (world units; "
+          "the scene's own: {:.3g}). Chart: [{}.svg]({}.svg); each size's report, its speed-error plot "
+          "among them: `{}/size-<scale>/`.\n\n{}\n{}\n",
+          base.name, path, double(base.lights[0].size.x), name, name, name, header, rule);
       std::vector<ChartSeries> series;
       for (const std::string& t : o.techniques) {
         std::string row = "| " + t + " |";
