@@ -28,9 +28,24 @@ struct SpeedErrorOptions {
                                      "scenes/example.json",
                                      "scenes/glossy.json",
                                      "scenes/engine.json"};  // "default": the built-in scene
-  std::vector<std::string> techniques = {"hard-sv",   "dcs",  "dcs-lut",          "mvr",       "vwss",
-                                         "reproject", "pcss", "pcss-ultra",       "pcss-mask", "vssm",
-                                         "msm-soft",  "evsm", "raytrace-denoised"};
+  std::vector<std::string> techniques = {"hard-sv",
+                                         "dcs",
+                                         "dcs-lut",
+                                         "mvr",
+                                         "vwss",
+                                         "reproject",
+                                         "pcss",
+                                         "pcss-ultra",
+                                         "pcss-mask",
+                                         "pcss-contact",
+                                         "vssm",
+                                         "msm-soft",
+                                         "msm-translucent",
+                                         "evsm",
+                                         "smrt",
+                                         "smrt-unclamped",
+                                         "raytrace-denoised",
+                                         "raytrace-ffx"};
   std::vector<int> samples = {8, 16, 32, 64};  // the samples sweep
   int width = 128;                             // image width (height: the scene's aspect)
   int frames = 3, warmup = 1;                  // timed frames per technique and preset
