@@ -31,6 +31,7 @@ penumbra_layer_probe(refused penumbra_pipeline compare/compare.h)
 penumbra_layer_probe(refused penumbra_techniques compare/compare.h)
 penumbra_layer_probe(refused penumbra_compare techniques/registry.h)
 penumbra_layer_probe(refused penumbra_compare cli/options.h)
+penumbra_layer_probe(refused penumbra_techniques study/plan.h)
 # A technique's binding header (beside its shaders) is its own: neither the pipeline nor compare
 # sees it, by its path or by its bare name (no layer exports a shader folder wholesale), and the
 # ground floor is the bottom: it sees no layer.

@@ -32,6 +32,8 @@
 #include "scene/scene.h"
 #include "shading/ltc.h"
 #include "shading/prefiltered_light.h"
+#include "study/plan.h"
+#include "study/study_file.h"
 #include "techniques/registry.h"
 
 namespace fs = std::filesystem;
@@ -579,6 +581,18 @@ int lut(const CommonOptions& o, const LutOptions& l) {
       std::printf("%s: %s LUT %s\n", w["light"].get<std::string>().c_str(), w["kind"].get<std::string>().c_str(),
                   w["path"].get<std::string>().c_str());
   }
+  return 0;
+}
+
+int studyPlan(const StudyPlanOptions& o) {
+  const study::StudySpec spec = study::readStudy(o.study);
+  checkWritableFolder(o.outDir, "--output", /*create=*/true);
+  const std::vector<study::Job> jobs = study::planJobs(spec);
+  study::writePlan(jobs, spec, o.outDir);
+  std::size_t references = 0;
+  for (const study::Job& j : jobs) references += j.kind != "technique";
+  std::printf("study %s: %zu jobs (%zu references, %zu technique jobs) -> %s\n", spec.name.c_str(), jobs.size(),
+              references, jobs.size() - references, (fs::path(o.outDir) / "jobs.jsonl").string().c_str());
   return 0;
 }
 

@@ -46,6 +46,14 @@ struct CompareCliOptions {
 // (compare/report.h) into the output folder.
 int compare(const CommonOptions& o, const CompareCliOptions& c);
 
+struct StudyPlanOptions {
+  std::string study;   // the study file
+  std::string outDir;  // DIR: jobs.jsonl and study.json are written there
+};
+// `penumbra study plan`: reads and checks the study file (study/study_file.h), expands it into
+// jobs (study/plan.h) and writes DIR/jobs.jsonl; prints the counts.
+int studyPlan(const StudyPlanOptions& o);
+
 struct BenchOptions {
   std::vector<std::string> studies;  // empty: all (bench/studies.h)
   bool quick = false;

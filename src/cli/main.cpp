@@ -129,6 +129,13 @@ int main(int argc, char** argv) {
   bench->add_option("--backend", benchOptions.backend, "GL backend: " + namesOf(gl::kBackendNames))
       ->capture_default_str();
 
+  cli::StudyPlanOptions planOptions;
+  auto* study = app.add_subcommand("study", "studies as data: plan a study file into jobs (docs/studies.md)");
+  study->require_subcommand(1);
+  auto* plan = study->add_subcommand("plan", "expand a study file into DIR/jobs.jsonl, one row per unit of work");
+  plan->add_option("study", planOptions.study, "the study file (JSON)")->required();
+  plan->add_option("-o,--output", planOptions.outDir, "the study's folder")->required();
+
   cli::LutOptions lutOptions;
   auto* lut = app.add_subcommand(
       "lut",
@@ -161,6 +168,7 @@ int main(int argc, char** argv) {
     if (*render) return cli::render(o, technique, output);
     if (*lut) return cli::lut(o, lutOptions);
     if (*bench) return cli::bench(benchOptions);
+    if (*plan) return cli::studyPlan(planOptions);
     if (*compare) {
       std::vector<std::string> names;
       std::string cur;

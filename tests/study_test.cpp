@@ -1,0 +1,175 @@
+// Studies as data (study/study_file.h, study/plan.h): a study file is checked as a scene file is
+// (one line naming the file, the key and the problem), expands into the jobs its axes multiply
+// to, and gives each job an id that changes exactly when the job's row, a file it reads or the
+// build changes.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "core/error.h"
+#include "study/plan.h"
+#include "study/study_file.h"
+
+namespace fs = std::filesystem;
+
+namespace penumbra::study {
+namespace {
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    char name[] = "/tmp/penumbra-study-XXXXXX";
+    path = mkdtemp(name);
+  }
+  ~TempDir() { fs::remove_all(path); }
+  std::string write(const std::string& file, const std::string& text) const {
+    const fs::path p = path / file;
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << text;
+    return p.string();
+  }
+};
+
+std::string scenes() { return std::string(PENUMBRA_SOURCE_DIR) + "/scenes"; }
+
+// The tests' study: 2 scenes x 3 techniques x 2 sample counts x 2 seeds.
+std::string study(const std::string& extra = "") {
+  return R"({"name": "small", "scenes": [")" + scenes() + R"(/hard/23-analytic-square.json", ")" + scenes() +
+         R"(/hard/16-contact.json"], "techniques": ["dcs", "pcss", {"name": "smrt", "params": {"rays": 4}}],
+             "samples": [8, 16], "seeds": [1, 2], "sizes": [64])" +
+         extra + "}";
+}
+
+// 1000 seeds x 100 sample counts x 100 sizes of one scene and one technique: 10^7
+// configurations, 2 x 10^7 jobs with their references.
+std::string huge() {
+  std::string seeds, samples, sizes;
+  for (int i = 0; i < 1000; ++i) seeds += (i ? "," : "") + std::to_string(i);
+  for (int i = 1; i <= 100; ++i) samples += (i > 1 ? "," : "") + std::to_string(i);
+  for (int i = 1; i <= 100; ++i) sizes += (i > 1 ? "," : "") + std::to_string(16 * i);
+  return R"({"scenes": ["default"], "techniques": ["pcss"], "seeds": [)" + seeds + R"(], "samples": [)" + samples +
+         R"(], "sizes": [)" + sizes + "]}";
+}
+
+std::string errorOf(const std::string& path) {
+  try {
+    readStudy(path);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.exitCode(), ExitCode::Usage) << e.what();
+    return e.what();
+  }
+  ADD_FAILURE() << "accepted " << path;
+  return {};
+}
+
+TEST(Study, ExpandsIntoOneJobPerConfigurationAndSharedReferences) {
+  TempDir dir;
+  const StudySpec s = readStudy(dir.write("s.json", study()));
+  EXPECT_EQ(s.scenes.size(), 2u);
+  EXPECT_EQ(jobCount(s), 2u * 2 * 2 * (3 + 1));
+  const std::vector<Job> jobs = planJobs(s);
+  ASSERT_EQ(jobs.size(), 32u);
+  std::set<std::string> ids, references;
+  std::size_t technique = 0;
+  for (const Job& j : jobs) {
+    ids.insert(j.id);
+    if (j.kind == "reference") references.insert(j.id);
+    if (j.kind != "technique") continue;
+    ++technique;
+    EXPECT_TRUE(references.count(j.reference)) << "a technique job names a reference planned before it";
+    EXPECT_EQ(j.size.width, 64);
+  }
+  EXPECT_EQ(technique, 24u);
+  EXPECT_EQ(references.size(), 8u);
+  EXPECT_EQ(ids.size(), jobs.size()) << "ids are unique";
+  writePlan(jobs, s, (dir.path / "plan").string());
+  std::ifstream in(dir.path / "plan" / "jobs.jsonl");
+  std::size_t lines = 0;
+  for (std::string line; std::getline(in, line);) ++lines;
+  EXPECT_EQ(lines, jobs.size());
+}
+
+// Sweeps multiply: two values of two parameters are four sets, each with the fixed params.
+TEST(Study, SweepsAreTheProductOfTheirValues) {
+  TempDir dir;
+  const StudySpec s = readStudy(dir.write(
+      "s.json", R"({"scenes": ["default"], "techniques": [{"name": "pcss", "params": {"map": 512},
+                    "sweep": {"blocker-samples": [8, 16], "pcf-samples": [4, 8]}}]})"));
+  ASSERT_EQ(s.techniques.size(), 1u);
+  ASSERT_EQ(s.techniques[0].paramSets.size(), 4u);
+  EXPECT_EQ(s.techniques[0].paramSets[3], (std::vector<std::string>{"map=512", "blocker-samples=16", "pcf-samples=8"}));
+  EXPECT_EQ(jobCount(s), 5u) << "one configuration: four technique jobs and their reference";
+}
+
+// A job's id is its row's, its scene's files' and the build's: the same plan twice gives the same
+// ids; editing a texture the scene names changes the ids of that scene's jobs only.
+TEST(Study, IdsChangeExactlyWithWhatAJobReads) {
+  TempDir dir;
+  const fs::path texture = dir.path / "tex.png";
+  fs::copy_file(scenes() + "/textures/stained-glass.png", texture);
+  dir.write("textured.json", std::string(R"({"objects": [{"shape": "plane", "size": 4}, {"shape": "box", "size": 1,
+      "translate": [0, 1, 0]}], "lights": [{"type": "rect", "position": [0, 3, 0], "normal": [0, -1, 0],
+      "size": [1, 1], "texture": "tex.png"}]})"));
+  const std::string path = dir.write(
+      "s.json", R"({"scenes": ["textured.json", ")" + scenes() + R"(/hard/23-analytic-square.json"],
+                   "techniques": ["pcss"]})");
+  const StudySpec s = readStudy(path);
+  const std::vector<Job> first = planJobs(s), again = planJobs(s);
+  ASSERT_EQ(first.size(), again.size());
+  for (std::size_t i = 0; i < first.size(); ++i) EXPECT_EQ(first[i].id, again[i].id);
+  const std::vector<std::string> inputs = sceneInputs((dir.path / "textured.json").string());
+  ASSERT_EQ(inputs.size(), 2u);
+  EXPECT_EQ(fs::path(inputs[1]).filename(), "tex.png");
+  fs::copy_file(scenes() + "/textures/stripes.png", texture, fs::copy_options::overwrite_existing);
+  const std::vector<Job> edited = planJobs(s);
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    const bool textured = fs::path(first[i].scene).filename() == "textured.json";
+    EXPECT_EQ(first[i].id != edited[i].id, textured) << first[i].scene << " " << first[i].kind;
+  }
+}
+
+// Bad study files: one line naming the file, the key and the problem, exit 2; the job count is
+// refused before anything is expanded.
+TEST(Study, BadFilesAreOneLineErrors) {
+  TempDir dir;
+  const std::pair<std::string, std::string> cases[] = {
+      {study(R"(, "colour": "red")"), "colour: unknown key"},
+      {study(R"(, "seeds": [])"), "seeds: must not be empty"},
+      {R"({"scenes": ["missing.json"], "techniques": ["dcs"]})", "scenes[0]: no such file"},
+      {R"({"scenes": ["nothing-*.json"], "techniques": ["dcs"]})", "matches no file"},
+      {R"({"scenes": ["default"], "techniques": [{"name": "pcss", "params": {"map": 7}}]})", "techniques[0]"},
+      {R"({"scenes": ["default"], "techniques": ["nope"]})", "unknown technique 'nope'"},
+      {R"({"scenes": ["default"], "techniques": ["dcs"], "samples": [8, 100000]})", "samples[1]"},
+      {R"({"scenes": ["default"], "techniques": ["dcs"], "strategies": ["sobol"]})", "unknown strategy 'sobol'"},
+      {huge(), "expands to 20000000 jobs"},
+      {"{\"scenes\": ", "not valid JSON"},
+  };
+  for (auto& [text, want] : cases) {
+    const std::string path = dir.write("bad.json", text);
+    const std::string what = errorOf(path);
+    EXPECT_NE(what.find(want), std::string::npos) << "got: " << what;
+    EXPECT_NE(what.find("bad.json"), std::string::npos) << "names the file: " << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+  }
+}
+
+// A scene that does not load is refused when the study is planned, naming the study and the scene.
+TEST(Study, ASceneThatDoesNotLoadIsRefusedAtPlanTime) {
+  TempDir dir;
+  dir.write("broken.json", R"({"objects": [{"shape": "sphere", "radius": -1}]})");
+  const StudySpec s = readStudy(dir.write("s.json", R"({"scenes": ["broken.json"], "techniques": ["dcs"]})"));
+  try {
+    planJobs(s);
+    ADD_FAILURE() << "planned a scene that does not load";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("s.json"), std::string::npos) << what;
+    EXPECT_NE(what.find("broken.json"), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace penumbra::study
