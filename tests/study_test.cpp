@@ -95,8 +95,8 @@ TEST(Study, ExpandsIntoOneJobPerConfigurationAndSharedReferences) {
 // Sweeps multiply: two values of two parameters are four sets, each with the fixed params.
 TEST(Study, SweepsAreTheProductOfTheirValues) {
   TempDir dir;
-  const StudySpec s = readStudy(dir.write(
-      "s.json", R"({"scenes": ["default"], "techniques": [{"name": "pcss", "params": {"map": 512},
+  const StudySpec s =
+      readStudy(dir.write("s.json", R"({"scenes": ["default"], "techniques": [{"name": "pcss", "params": {"map": 512},
                     "sweep": {"blocker-samples": [8, 16], "pcf-samples": [4, 8]}}]})"));
   ASSERT_EQ(s.techniques.size(), 1u);
   ASSERT_EQ(s.techniques[0].paramSets.size(), 4u);
@@ -113,8 +113,8 @@ TEST(Study, IdsChangeExactlyWithWhatAJobReads) {
   dir.write("textured.json", std::string(R"({"objects": [{"shape": "plane", "size": 4}, {"shape": "box", "size": 1,
       "translate": [0, 1, 0]}], "lights": [{"type": "rect", "position": [0, 3, 0], "normal": [0, -1, 0],
       "size": [1, 1], "texture": "tex.png"}]})"));
-  const std::string path = dir.write(
-      "s.json", R"({"scenes": ["textured.json", ")" + scenes() + R"(/hard/23-analytic-square.json"],
+  const std::string path =
+      dir.write("s.json", R"({"scenes": ["textured.json", ")" + scenes() + R"(/hard/23-analytic-square.json"],
                    "techniques": ["pcss"]})");
   const StudySpec s = readStudy(path);
   const std::vector<Job> first = planJobs(s), again = planJobs(s);

@@ -73,18 +73,9 @@ std::string hashOf(const json& row, const std::vector<std::string>& inputs) {
 const char* buildIdentity() { return PENUMBRA_BUILD_IDENTITY; }
 
 json Job::json() const {
-  nlohmann::json j = {{"id", id},
-                      {"kind", kind},
-                      {"scene", scene},
-                      {"technique", technique},
-                      {"params", params},
-                      {"samples", samples},
-                      {"width", size.width},
-                      {"height", size.height},
-                      {"seed", seed},
-                      {"strategy", strategy},
-                      {"frames", frames},
-                      {"warmup", warmup}};
+  nlohmann::json j = {{"id", id},         {"kind", kind},         {"scene", scene},      {"technique", technique},
+                      {"params", params}, {"samples", samples},   {"width", size.width}, {"height", size.height},
+                      {"seed", seed},     {"strategy", strategy}, {"frames", frames},    {"warmup", warmup}};
   if (!reference.empty()) j["reference"] = reference;
   if (!converged.empty()) j["converged"] = converged;
   return j;

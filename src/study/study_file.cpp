@@ -27,10 +27,14 @@ constexpr std::uint64_t kMostJobs = 1'000'000;
 KeyValue valueOf(const json& j) {
   KeyValue v;
   v.shown = j.dump();
-  if (j.is_number_integer() || j.is_number_unsigned()) v.kind = KeyValue::Kind::Integer, v.number = j.get<double>();
-  else if (j.is_number()) v.kind = KeyValue::Kind::Number, v.number = j.get<double>();
-  else if (j.is_boolean()) v.kind = KeyValue::Kind::Boolean, v.boolean = j.get<bool>();
-  else if (j.is_string()) v.kind = KeyValue::Kind::String, v.text = j.get<std::string>();
+  if (j.is_number_integer() || j.is_number_unsigned())
+    v.kind = KeyValue::Kind::Integer, v.number = j.get<double>();
+  else if (j.is_number())
+    v.kind = KeyValue::Kind::Number, v.number = j.get<double>();
+  else if (j.is_boolean())
+    v.kind = KeyValue::Kind::Boolean, v.boolean = j.get<bool>();
+  else if (j.is_string())
+    v.kind = KeyValue::Kind::String, v.text = j.get<std::string>();
   return v;
 }
 
@@ -69,8 +73,7 @@ class Object {
   void refuseUnknown() const {
     std::vector<std::string> known(known_.begin(), known_.end());
     for (auto it = j_.begin(); it != j_.end(); ++it)
-      if (!known_.count(it.key()))
-        place(it.key()).fail("unknown key (known: " + joinKeys(known) + ")");
+      if (!known_.count(it.key())) place(it.key()).fail("unknown key (known: " + joinKeys(known) + ")");
   }
 
  private:
@@ -107,7 +110,8 @@ std::vector<std::vector<std::string>> expandSweeps(const json& sweeps, const std
     std::vector<std::vector<std::string>> next;
     for (const auto& set : sets)
       for (const json& v : values) {
-        if (!(v.is_number() || v.is_boolean() || v.is_string())) place.fail("values must be numbers, booleans or strings");
+        if (!(v.is_number() || v.is_boolean() || v.is_string()))
+          place.fail("values must be numbers, booleans or strings");
         auto s = set;
         s.push_back(it.key() + "=" + (v.is_string() ? v.get<std::string>() : v.dump()));
         next.push_back(std::move(s));
@@ -171,34 +175,41 @@ StudySpec readStudy(const std::string& path) {
   s.name = o.has("name") ? readString(valueOf(o.raw("name")), o.place("name")) : fs::path(path).stem().string();
   for (const char* required : {"scenes", "techniques"})
     if (!o.has(required)) o.place(required).fail("missing");
-  for (auto& group : o.list("scenes", [&](const json& v, const KeyPlace& p) {
-         return expandScene(readString(valueOf(v), p), base, p);
-       }))
+  for (auto& group : o.list(
+           "scenes", [&](const json&v, const KeyPlace&p) { return expandScene(readString(valueOf(v), p), base, p); }))
     for (auto& scene : group)
       if (std::find(s.scenes.begin(), s.scenes.end(), scene) == s.scenes.end()) s.scenes.push_back(scene);
   s.techniques = o.list("techniques", readTechnique);
-  s.samples = o.has("samples") ? o.list("samples", [](const json& v, const KeyPlace& p) {
-    return readInteger(valueOf(v), p, 1, PENUMBRA_MAX_SAMPLES);
-  })
-                               : std::vector<int>{16};
-  s.sizes = o.has("sizes") ? o.list("sizes", [](const json& v, const KeyPlace& p) {
-    if (v.is_array()) {
-      if (v.size() != 2) p.fail("a size is a width or [width, height]");
-      return Size{readInteger(valueOf(v[0]), p, 1, 16384), readInteger(valueOf(v[1]), p, 1, 16384)};
-    }
-    return Size{readInteger(valueOf(v), p, 1, 16384), 0};
-  })
-                           : std::vector<Size>{{128, 0}};
-  s.seeds = o.has("seeds") ? o.list("seeds", [](const json& v, const KeyPlace& p) {
-    return std::uint32_t(readInteger(valueOf(v), p, 0, 2147483647));
-  })
+  s.samples =
+      o.has("samples")
+          ? o.list("samples",
+                   [](const json& v, const KeyPlace& p) { return readInteger(valueOf(v), p, 1, PENUMBRA_MAX_SAMPLES); })
+          : std::vector<int>{16};
+  s.sizes =
+      o.has("sizes")
+          ? o.list("sizes",
+                   [](const json& v, const KeyPlace& p) {
+                     if (v.is_array()) {
+                       if (v.size() != 2) p.fail("a size is a width or [width, height]");
+                       return Size{readInteger(valueOf(v[0]), p, 1, 16384), readInteger(valueOf(v[1]), p, 1, 16384)};
+                     }
+                     return Size{readInteger(valueOf(v), p, 1, 16384), 0};
+                   })
+          : std::vector<Size>{{128, 0}};
+  s.seeds = o.has("seeds") ? o.list("seeds",
+                                    [](const json& v, const KeyPlace& p) {
+                                      return std::uint32_t(readInteger(valueOf(v), p, 0, 2147483647));
+                                    })
                            : std::vector<std::uint32_t>{1};
-  s.strategies = o.has("strategies") ? o.list("strategies", [](const json& v, const KeyPlace& p) {
-    const std::string name = readString(valueOf(v), p);
-    if (!valueNamed(kSampleStrategyNames, name)) p.fail("unknown strategy '" + name + "' (" + namesOf(kSampleStrategyNames) + ")");
-    return name;
-  })
-                                     : std::vector<std::string>{"stratified"};
+  s.strategies = o.has("strategies")
+                     ? o.list("strategies",
+                              [](const json& v, const KeyPlace& p) {
+                                const std::string name = readString(valueOf(v), p);
+                                if (!valueNamed(kSampleStrategyNames, name))
+                                  p.fail("unknown strategy '" + name + "' (" + namesOf(kSampleStrategyNames) + ")");
+                                return name;
+                              })
+                     : std::vector<std::string>{"stratified"};
   if (o.has("reference")) {
     Object r(o.raw("reference"), path, "reference");
     if (r.has("converged")) s.converged = readBoolean(valueOf(r.raw("converged")), r.place("converged"));
