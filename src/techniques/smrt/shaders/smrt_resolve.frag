@@ -30,10 +30,12 @@ uniform int jitter;  // 0: fixed offsets; 1: per-pixel interleaved gradient nois
 
 out vec4 outVisibility;
 
-// The angle between the directions from the light centre to a and b.
+// The angle between the directions from the light centre to a and b; 0 where either is the
+// centre itself (a point light's sample, or a ray's end on it), never NaN.
 float angleFromLight(vec3 a, vec3 b) {
-  vec3 u = normalize(a - lightPosition), v = normalize(b - lightPosition);
-  return atan(length(cross(u, v)), dot(u, v));
+  vec3 u = a - lightPosition, v = b - lightPosition;
+  float s = length(cross(u, v)), c = dot(u, v);
+  return s == 0.0 && c == 0.0 ? 0.0 : atan(s, c);
 }
 
 // 1 where the ray from the receiver r to the light point q reaches it through the map, else 0.
