@@ -5,6 +5,8 @@
 # shading scene to out/glossy/.
 #   ./setup.sh          install + build + main job
 #   ./setup.sh --deps   install the packages only (used by .ci/run)
+# Slurm, munge and GNU parallel are for the study tests (tests/study_run_test.sh), which start
+# daemons of their own on localhost with a configuration of their own.
 set -eu
 cd "$(dirname "$0")"
 PACKAGES="cmake ninja-build g++ pkg-config
@@ -12,7 +14,8 @@ PACKAGES="cmake ninja-build g++ pkg-config
   libglm-dev libopenmesh-dev libtinygltf-dev libopenexr-dev libimath-dev libembree-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libpng-dev
   libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels chromium
-  mesa-vulkan-drivers clang-format"
+  mesa-vulkan-drivers clang-format
+  slurm-wlm munge parallel"
 missing=""
 for p in $PACKAGES; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

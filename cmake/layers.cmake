@@ -22,7 +22,7 @@ set(PENUMBRA_LAYERS
   "penumbra_reference:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_shading"
   "penumbra_techniques:penumbra_core,penumbra_geometry,penumbra_scene,penumbra_sampling,penumbra_gl,penumbra_pipeline,penumbra_reference"
   "penumbra_compare:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_gl,penumbra_pipeline"
-  "penumbra_study:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_techniques"
+  "penumbra_study:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_gl,penumbra_pipeline,penumbra_techniques,penumbra_compare"
   "penumbra_cli_options:penumbra_sampling,penumbra_gl,penumbra_pipeline,penumbra_compare"
   "penumbra_bench_studies:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_gl,penumbra_pipeline,penumbra_techniques,penumbra_compare"
 )

@@ -38,6 +38,21 @@ inputs() {
   expect 2 "not expected: \-\-param" -- "$P" lut --param map=64 -o "$T"
   expect 2 "not expected: \-\-samples" -- "$P" info --samples 4
   expect 0 "" -- "$P" lut --samples 8 --line 16 --cube 4 -o "$T"
+  # Studies (docs/studies.md): a folder without a plan, a bad shard or index, a corrupt plan row;
+  # all refused before any job runs (tests/study_run_test.sh runs them).
+  expect 2 "penumbra study plan" -- "$P" study run "$T"
+  expect 2 "penumbra study plan" -- "$P" study merge "$T"
+  expect 0 "" -- "$P" study plan "$SRC/tests/studies/tiny.json" -o "$T/study"
+  for shard in 2/2 1/0 -1/2 x 1/2/3 "1 /2"; do
+    expect 2 "\-\-shard" -- "$P" study run "$T/study" --shard "$shard"
+  done
+  expect 2 "\-\-index" -- "$P" study run "$T/study" --index 34
+  expect 2 "not both" -- "$P" study run "$T/study" --index 1 --shard 0/2
+  expect 2 "\-j" -- "$P" study run "$T/study" -j 0
+  sed '3s/"kind":"[a-z]*"/"kind":"guess"/' "$T/study/jobs.jsonl" > "$T/jobs" && mv "$T/jobs" "$T/study/jobs.jsonl"
+  expect 2 "jobs.jsonl:3: a job of unknown kind 'guess'" -- "$P" study run "$T/study"
+  printf '{"id": 1}\n' > "$T/study/jobs.jsonl"
+  expect 2 "jobs.jsonl:1: not a job row" -- "$P" study merge "$T/study"
   test -s "$T/edge_rect_stratified_correlated_n8_seed1.lut" || { echo "FAIL: lut wrote no table"; fail=1; }
   # Lut creates a missing output folder as compare does (it refused it),
   # and a device or a file given as a folder says so (it said "does not exist").

@@ -3,9 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "core/error.h"
+#include "compare/frame_file.h"
+#include "compare/output.h"
 #include "compare/report.h"
 #include "cli/options.h"
 
@@ -296,6 +301,104 @@ TEST(Report, LineChartHasALinePerSeries) {
   EXPECT_NE(svg.find(">exact per sample</text>"), std::string::npos);
   EXPECT_NE(svg.find(">single map</text>"), std::string::npos);
   EXPECT_NE(svg.find("fill=\"#E69F00\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// A study merges its jobs' rows back into a comparison (study/merge.h): a run read back from
+// report.json's JSON writes the same JSON, failed runs, converged errors, noise and FLIP included.
+TEST(Report, RunsReadBackFromTheirJson) {
+  CompareResult r = handMade();
+  r.runs[1].statistics = {{"maps", 4}};
+  r.runs[1].memoryBytes = 12345;
+  r.runs[1].flip = 0.25;
+  r.runs[1].errors.sampleAgreement = 0.9, r.runs[1].errors.sampleMismatches = 7;
+  r.runs[1].errors.visibility.rmse = std::nan("");  // written as null, read back as NaN
+  r.runs[0].referenceNoise = ReferenceNoise{0.001, 0.002};
+  r.runs[0].referenceStatistics = {{"spp", 1024}};
+  CompareRun failed;
+  failed.technique = "slow", failed.preset = 0, failed.failed = true, failed.failure = "out of memory";
+  r.runs[2] = failed;
+  const nlohmann::json written = r.json();
+  CompareResult back = r;
+  for (std::size_t i = 0; i < r.runs.size(); ++i)
+    back.runs[i] = runFromJson(written["runs"][i], r.runs[i].preset, "report.json");
+  const nlohmann::json reread = back.json();
+  for (std::size_t i = 0; i < r.runs.size(); ++i) EXPECT_EQ(reread["runs"][i].dump(), written["runs"][i].dump()) << i;
+  EXPECT_TRUE(std::isnan(back.runs[1].errors.visibility.rmse));
+  nlohmann::json bad = written["runs"][1];
+  bad.erase("errors");
+  EXPECT_THROW(runFromJson(bad, 0, "row.json"), Error);
+  bad = written["runs"][1];
+  bad["family"] = "psychic";
+  EXPECT_THROW(runFromJson(bad, 0, "row.json"), Error);
+}
+
+// A reference's frame kept for other processes (compare/frame_file.h) reads back bit for bit;
+// a file cut short, padded or of another kind is an error naming it.
+TEST(Report, FramesReadBackBitForBit) {
+  FrameResult f;
+  f.color = Image(3, 2, 3, 0.25f);
+  f.color.data[4] = -0.0f;
+  f.colorVariance = Image(3, 2, 3, 1e-9f);
+  LightResult l;
+  l.visibility = Image(3, 2, 3, 0.5f);
+  l.perSample = {0, 1, 0.5f, 0.125f, 1, 1, 0, 0, 1, 0.25f, 0.75f, 1};  // [pixel * 2 + k]
+  l.samples = 2;
+  l.unshadowed = {0, 1, 0, 0, 1, 0};
+  f.lights = {l, l};
+  f.lights[1].visibilityVariance = Image(3, 2, 3, 0.01f);
+  f.gbuffer.width = 3, f.gbuffer.height = 2;
+  f.gbuffer.position.assign(6, glm::vec3(1, 2, 3));
+  f.gbuffer.normal.assign(6, glm::vec3(0, 1, 0));
+  f.gbuffer.valid = {1, 1, 0, 1, 1, 1};
+  f.gbuffer.camera = glm::vec3(0, 0, 5);
+  f.gbuffer.origin = glm::dvec3(1e9, 0, -1e9);
+  f.memoryBytes = 4096;
+  f.statistics = {{"maps", 16}, {"edges", 1e6}};
+  const std::string dir = ::testing::TempDir(), path = dir + "/frame.bin";
+  writeFrameFile(path, f);
+  const FrameResult g = readFrameFile(path);
+  EXPECT_EQ(g.color.data, f.color.data);
+  EXPECT_EQ(g.colorVariance.data, f.colorVariance.data);
+  ASSERT_EQ(g.lights.size(), 2u);
+  EXPECT_EQ(g.lights[1].visibility.data, l.visibility.data);
+  EXPECT_EQ(g.lights[0].perSample, l.perSample);
+  EXPECT_EQ(g.lights[0].samples, 2);
+  EXPECT_EQ(g.lights[0].unshadowed, l.unshadowed);
+  EXPECT_EQ(g.lights[1].visibilityVariance.data, f.lights[1].visibilityVariance.data);
+  EXPECT_EQ(g.gbuffer.position, f.gbuffer.position);
+  EXPECT_EQ(g.gbuffer.valid, f.gbuffer.valid);
+  EXPECT_TRUE(g.gbuffer.shadingNormal.empty());
+  EXPECT_EQ(g.gbuffer.camera, f.gbuffer.camera);
+  EXPECT_EQ(g.gbuffer.origin, f.gbuffer.origin);
+  EXPECT_EQ(g.memoryBytes, 4096u);
+  EXPECT_EQ(g.statistics, f.statistics);
+  // The same errors against the frame read back as against the frame in memory.
+  EXPECT_EQ(errorsJson(measureErrors(f, g)).dump(), errorsJson(measureErrors(f, f)).dump());
+
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto rewrite = [&](const std::string& content) {
+    std::ofstream(path, std::ios::binary) << content;
+    try {
+      readFrameFile(path);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("read");
+  };
+  for (std::size_t cut : {std::size_t(0), std::size_t(5), std::size_t(40), bytes.size() / 2, bytes.size() - 1})
+    EXPECT_NE(rewrite(bytes.substr(0, cut)).find("frame.bin"), std::string::npos) << cut;
+  EXPECT_NE(rewrite(bytes + "x").find("after its end"), std::string::npos);
+  std::string huge = bytes;
+  huge[sizeof(std::int32_t) * 3 + 8 + 4] = '\x7f';  // the colour's float count: far past the file
+  EXPECT_NE(rewrite(huge).find("cut short"), std::string::npos);
+  EXPECT_NE(rewrite("PNMBFRM0" + bytes.substr(8)).find("not a penumbra frame file"), std::string::npos);
 }
 
 }  // namespace

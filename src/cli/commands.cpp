@@ -22,6 +22,7 @@
 #include "core/files.h"
 #include "core/image_io.h"
 #include "core/log.h"
+#include "core/machine.h"
 #include "core/metrics.h"
 #include "core/progress.h"
 #include "studies.h"
@@ -32,7 +33,9 @@
 #include "scene/scene.h"
 #include "shading/ltc.h"
 #include "shading/prefiltered_light.h"
+#include "study/merge.h"
 #include "study/plan.h"
+#include "study/run.h"
 #include "study/study_file.h"
 #include "techniques/registry.h"
 
@@ -374,43 +377,6 @@ int compare(const CommonOptions& o, const CompareCliOptions& c) {
   return 0;
 }
 
-namespace {
-
-std::string firstLine(const std::string& path, const std::string& key) {
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind(key, 0) == 0) {
-      auto p = line.find_first_of(":=", key.size());
-      std::string v = p == std::string::npos ? line : line.substr(p + 1);
-      v.erase(0, v.find_first_not_of(" \t\""));
-      while (!v.empty() && (v.back() == '"' || v.back() == ' ')) v.pop_back();
-      return v;
-    }
-  return "unknown";
-}
-
-// "cpu-2core-llvmpipe" for Mesa's CPU rasteriser, else the renderer's first words
-// ("NVIDIA H200/PCIe/SSE2" -> "nvidia-h200").
-std::string machineName(const std::string& renderer) {
-  if (renderer.find("llvmpipe") != std::string::npos)
-    return fmt::format("cpu-{}core-llvmpipe", std::thread::hardware_concurrency());
-  std::string out;
-  int words = 0;
-  for (char c : renderer) {
-    if (std::isalnum(static_cast<unsigned char>(c))) {
-      out += char(std::tolower(static_cast<unsigned char>(c)));
-    } else if (!out.empty() && out.back() != '-') {
-      if (++words == 2) break;
-      out += '-';
-    }
-  }
-  while (!out.empty() && out.back() == '-') out.pop_back();
-  return out.empty() ? "unknown-gpu" : out;
-}
-
-}  // namespace
-
 int bench(const BenchOptions& b) {
   const auto& table = bench::studyTable();
   std::vector<const bench::Study*> run;
@@ -436,11 +402,11 @@ int bench(const BenchOptions& b) {
   const std::string dir = b.outDir.empty() ? (fs::path("bench/results") / machineName(renderer)).string() : b.outDir;
   checkWritableFolder(dir, dir, /*create=*/true);
   const FolderLock lock(dir);
+  const MachineFacts facts = machineFacts();
   const std::string machine = fmt::format(
       "date      {}\ncpu       {}\ncores     {}\nmemory    {}\nos        {}\nrenderer  {}\ngl        {}\nbackend   "
       "{}\nsuite     {}\n",
-      utcNow(), firstLine("/proc/cpuinfo", "model name"), std::thread::hardware_concurrency(),
-      firstLine("/proc/meminfo", "MemTotal"), firstLine("/etc/os-release", "PRETTY_NAME"), renderer, version, b.backend,
+      utcNow(), facts.cpu, facts.cores, facts.memory, facts.os, renderer, version, b.backend,
       b.quick ? "quick" : "full");
   writeTextFile((fs::path(dir) / "machine.txt").string(), machine);
   PLOG_INFO("bench: {} studies into {} ({})", run.size(), dir, renderer);
@@ -594,6 +560,35 @@ int studyPlan(const StudyPlanOptions& o) {
   std::printf("study %s: %zu jobs (%zu references, %zu technique jobs) -> %s\n", spec.name.c_str(), jobs.size(),
               references, jobs.size() - references, (fs::path(o.outDir) / "jobs.jsonl").string().c_str());
   return 0;
+}
+
+int studyRun(const StudyRunOptions& o) {
+  study::RunOptions r;
+  r.dir = o.dir;
+  if (o.index >= 0) r.index = std::size_t(o.index);
+  if (!o.shard.empty()) {
+    if (o.index >= 0) throw Error("--shard", "give --index or --shard, not both", ExitCode::Usage);
+    std::tie(r.shard, r.shards) = parseShard(o.shard);
+  }
+  if (o.jobs < 1 || o.jobs > 1024)
+    throw Error("-j", fmt::format("{}: give 1 to 1024 processes", o.jobs), ExitCode::Usage);
+  r.parallel = o.jobs;
+  r.force = o.force;
+  r.retryFailed = o.retryFailed;
+  r.backend = parseBackend(o.backend);
+  const study::RunSummary s = study::runStudy(r);
+  std::printf("study run: %zu jobs selected: %zu rendered, %zu already done, %zu failed\n", s.selected, s.rendered,
+              s.done, s.failed);
+  return s.failed > 0 ? int(ExitCode::Error) : 0;
+}
+
+int studyMerge(const std::string& dir) {
+  const study::MergeSummary s = study::mergeStudy(dir, stdout);
+  for (const std::string& r : s.reports) std::printf("report: %s/index.html\n", r.c_str());
+  std::printf("results: %s, %s\n", (fs::path(dir) / "results.csv").string().c_str(),
+              (fs::path(dir) / "results.jsonl").string().c_str());
+  if (s.failed > 0) return int(ExitCode::Error);
+  return s.missing > 0 ? int(ExitCode::ThresholdExceeded) : 0;
 }
 
 }  // namespace penumbra::cli

@@ -54,6 +54,20 @@ struct StudyPlanOptions {
 // jobs (study/plan.h) and writes DIR/jobs.jsonl; prints the counts.
 int studyPlan(const StudyPlanOptions& o);
 
+struct StudyRunOptions {
+  std::string dir;
+  long index = -1;    // --index I (-1: not given)
+  std::string shard;  // --shard i/N
+  int jobs = 1;       // -j N
+  bool force = false, retryFailed = false;
+  std::string backend = "egl";
+};
+// `penumbra study run`: runs the selected jobs of DIR (study/run.h); exit 1 if any of them failed.
+int studyRun(const StudyRunOptions& o);
+// `penumbra study merge`: DIR's rows into results.jsonl, results.csv and the report
+// (study/merge.h); exit 1 if a job failed, 3 if jobs are missing.
+int studyMerge(const std::string& dir);
+
 struct BenchOptions {
   std::vector<std::string> studies;  // empty: all (bench/studies.h)
   bool quick = false;

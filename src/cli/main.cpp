@@ -130,11 +130,24 @@ int main(int argc, char** argv) {
       ->capture_default_str();
 
   cli::StudyPlanOptions planOptions;
-  auto* study = app.add_subcommand("study", "studies as data: plan a study file into jobs (docs/studies.md)");
+  auto* study = app.add_subcommand(
+      "study", "studies as data: plan a study file into jobs, run them, merge their rows (docs/studies.md)");
   study->require_subcommand(1);
   auto* plan = study->add_subcommand("plan", "expand a study file into DIR/jobs.jsonl, one row per unit of work");
   plan->add_option("study", planOptions.study, "the study file (JSON)")->required();
   plan->add_option("-o,--output", planOptions.outDir, "the study's folder")->required();
+  cli::StudyRunOptions runOptions;
+  auto* run = study->add_subcommand("run", "run a planned study's jobs (all, one, or a shard), skipping those done");
+  run->add_option("dir", runOptions.dir, "the study's folder (DIR/jobs.jsonl)")->required();
+  run->add_option("--index", runOptions.index, "run the job on this line of jobs.jsonl (from 0): a Slurm array task");
+  run->add_option("--shard", runOptions.shard, "i/N: run the jobs whose index modulo N is i");
+  run->add_option("-j,--jobs", runOptions.jobs, "processes at once")->capture_default_str();
+  run->add_flag("--force", runOptions.force, "redo the selected jobs even where their rows exist");
+  run->add_flag("--retry-failed", runOptions.retryFailed, "redo the selected jobs whose rows say they failed");
+  run->add_option("--backend", runOptions.backend, "GL backend: " + namesOf(gl::kBackendNames))->capture_default_str();
+  std::string mergeDir;
+  auto* merge = study->add_subcommand("merge", "merge the jobs' rows: results.jsonl, results.csv and the report");
+  merge->add_option("dir", mergeDir, "the study's folder")->required();
 
   cli::LutOptions lutOptions;
   auto* lut = app.add_subcommand(
@@ -169,6 +182,8 @@ int main(int argc, char** argv) {
     if (*lut) return cli::lut(o, lutOptions);
     if (*bench) return cli::bench(benchOptions);
     if (*plan) return cli::studyPlan(planOptions);
+    if (*run) return cli::studyRun(runOptions);
+    if (*merge) return cli::studyMerge(mergeDir);
     if (*compare) {
       std::vector<std::string> names;
       std::string cur;

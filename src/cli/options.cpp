@@ -1,6 +1,8 @@
 #include "cli/options.h"
 
 #include <CLI/CLI.hpp>
+
+#include <cstdio>
 #include <fmt/format.h>
 
 #include "core/error.h"
@@ -44,6 +46,16 @@ std::string flagFor(const std::string& field, const std::string& subcommand) {
   for (const auto& [name, flag] : kFlags)
     if (field == name) return flag;
   return {};
+}
+
+std::pair<int, int> parseShard(const std::string& text) {
+  int i = -1, n = 0;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &i, &n, &extra) != 2 || n < 1 || i < 0 || i >= n ||
+      text.find_first_not_of("0123456789/") != std::string::npos)
+    throw Error("--shard", "'" + abbreviate(text) + "': give i/N with 0 <= i < N (\"0/4\" is the first of four)",
+                ExitCode::Usage);
+  return {i, n};
 }
 
 double parseByteSize(const std::string& what, const std::string& text) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 
 #include "compare/compare.h"
 #include "gl/context.h"
@@ -26,6 +27,9 @@ PixelPattern parsePixelPattern(const std::string& s);  // "correlated|decorrelat
 SweepAxis parseSweep(const std::string& arg);
 // "x,y,w,h"; throws Error("--inset") (usage).
 Inset parseInset(const std::string& arg);
+
+// "i/N" (0 <= i < N, N >= 1): a study run's shard; throws Error("--shard") (usage).
+std::pair<int, int> parseShard(const std::string& text);
 
 // A size in bytes: a decimal number and a binary unit, "512MiB", "1.5GiB" (KiB, MiB, GiB, TiB).
 // Throws Error(what) (usage).

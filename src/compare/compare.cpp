@@ -90,8 +90,10 @@ Plan planComparison(const RenderSettings& settings, const CompareOptions& o) {
   plan.presets = makePresets(settings, o.params, o.sweeps);
   plan.converged =
       o.converged || std::any_of(o.sweeps.begin(), o.sweeps.end(), [](auto& a) { return a.key == "samples"; });
-  if (!o.reference.create || (plan.converged && !o.convergedReference.create))
+  if (!o.reference.create || (plan.converged && !o.convergedReference.create && !o.givenConverged))
     throw Error("compare", "no reference technique was handed in (CompareOptions::reference, convergedReference)");
+  if ((o.givenReference || o.givenConverged) && (plan.presets.size() != 1 || o.frames > 1))
+    throw Error("compare", "references rendered elsewhere are for one preset and one frame", ExitCode::Usage);
   for (auto& r : o.insets)
     if (r.x + r.w > plan.presets[0].width || r.y + r.h > plan.presets[0].height)
       throw Error("compare",
@@ -153,7 +155,7 @@ class Comparison {
     for (auto& j : jobs_) steps += int(j.size()) + 1 + (converged_ ? 1 : 0);
     Progress progress(steps, o_.progress);
     rows_ = 0;
-    for (auto& j : jobs_) rows_ += j.size() + 1;  // each preset's reference and techniques
+    for (auto& j : jobs_) rows_ += j.size() + (o_.givenReference ? 0 : 1);  // each preset's reference and techniques
     for (std::size_t p = 0; p < result_.presets.size(); ++p) runPreset(p, progress);
     progress.finish();
     result_.info = info();
@@ -252,51 +254,62 @@ class Comparison {
   // measured without them: a failure ends the comparison.
   References renderReferences(Progress& progress) {
     References refs;
-    progress.step("reference: " + o_.reference.name + at());
     CompareRun run;
     run.technique = o_.reference.name, run.preset = presetIndex_, run.reference = true;
     run.family = o_.reference.family;
-    auto tech = o_.reference.make(TechniqueParams{});
-    try {
-      refs.frame = renderRun(*tech, run, preset_.shading, frames_ > 1 ? &refs.frames : nullptr);
-    } catch (const Error& e) {
-      throw Error("compare", "the reference (" + o_.reference.name + at() + ") failed: " + e.what(), e.exitCode());
+    if (o_.givenReference) {
+      refs.frame = *o_.givenReference;
+    } else {
+      progress.step("reference: " + o_.reference.name + at());
+      auto tech = o_.reference.make(TechniqueParams{});
+      try {
+        refs.frame = renderRun(*tech, run, preset_.shading, frames_ > 1 ? &refs.frames : nullptr);
+      } catch (const Error& e) {
+        throw Error("compare", "the reference (" + o_.reference.name + at() + ") failed: " + e.what(), e.exitCode());
+      }
+      if (o_.onReference) o_.onReference(refs.frame);
     }
     if (presetIndex_ == 0) {
       result_.insets = o_.insets.empty() ? chooseInsets(refs.frame) : o_.insets;
       result_.insetSource = o_.insets.empty() ? "chosen" : "given";
     }
     if (converged_) {
-      TechniqueParams params(result_.presets[presetIndex_].params, result_.presets[presetIndex_].swept);
-      auto conv = o_.convergedReference.make(params);
-      // One per image size (and reference-* parameters, should a sweep vary them).
-      std::string key = fmt::format("{}x{}", preset_.width, preset_.height);
-      const std::string file = key + (params.read().empty() ? "" : fmt::format("_{}", convergedRefs_.size()));
-      for (auto& r : params.read()) key += " " + r;
-      progress.step("reference: " + o_.convergedReference.name + at());
-      if (!convergedRefs_.count(key)) {
-        Slot slot;
-        convergedRefs_[key] = rendererFor(0, preset_.shading, slot).render(*conv);
-        if (!o_.outDir.empty() && o_.writeExr)
-          writeFrame((std::filesystem::path(o_.outDir) / (o_.convergedReference.name + "_" + file + ".exr")).string(),
-                     convergedRefs_[key]);
-      }
-      refs.converged = &convergedRefs_[key];
+      refs.converged = o_.givenConverged ? o_.givenConverged : &renderConverged(progress);
       run.converged = measureErrors(refs.frame, *refs.converged);
       run.referenceNoise = referenceNoise(*refs.converged);
       run.referenceStatistics = refs.converged->statistics;
       if (!run.referenceNoise)
         PLOG_WARN("{}{} states no noise: the report shows no error floor", o_.convergedReference.name, at());
     }
-    run.errors = measureErrors(refs.frame, refs.frame);
     refs.flip =
         std::make_unique<HdrFlipReference>((refs.converged ? *refs.converged : refs.frame).color, o_.pixelsPerDegree);
+    if (o_.givenReference) return refs;  // its row is the run's that rendered it
+    run.errors = measureErrors(refs.frame, refs.frame);
     Image flip;
     if (refs.converged) flip = measureFlip(refs.frame, refs, run);
     writeImages(o_.reference.name, refs.frame, refs.converged, refs.converged ? &flip : nullptr, run);
     result_.runs.push_back(std::move(run));
     rowDone();
     return refs;
+  }
+
+  // raytrace-converged of this preset's image size (and reference-* parameters, should a sweep
+  // vary them), rendered once.
+  const FrameResult& renderConverged(Progress& progress) {
+    TechniqueParams params(result_.presets[presetIndex_].params, result_.presets[presetIndex_].swept);
+    auto conv = o_.convergedReference.make(params);
+    std::string key = fmt::format("{}x{}", preset_.width, preset_.height);
+    const std::string file = key + (params.read().empty() ? "" : fmt::format("_{}", convergedRefs_.size()));
+    for (auto& r : params.read()) key += " " + r;
+    progress.step("reference: " + o_.convergedReference.name + at());
+    if (!convergedRefs_.count(key)) {
+      Slot slot;
+      convergedRefs_[key] = rendererFor(0, preset_.shading, slot).render(*conv);
+      if (!o_.outDir.empty() && o_.writeExr)
+        writeFrame((std::filesystem::path(o_.outDir) / (o_.convergedReference.name + "_" + file + ".exr")).string(),
+                   convergedRefs_[key]);
+    }
+    return convergedRefs_[key];
   }
 
   // One technique's run; its failure (an Error or another exception while it was created or

@@ -54,6 +54,14 @@ struct CompareOptions {
   std::function<void(const CompareResult&)> onRow;
   // FLIP's observer (core/flip.h): pixels per degree of visual angle, the papers' default.
   double pixelsPerDegree = kFlipDefaultPixelsPerDegree;
+  // References rendered by another run (a study's reference jobs, study/run.h), used instead of
+  // rendering them: the same-sample one (its row is then not part of the result: it is that other
+  // run's) and the converged one. Only for one preset, one frame.
+  const FrameResult* givenReference = nullptr;
+  const FrameResult* givenConverged = nullptr;
+  // Called with the same-sample reference's frame 0 once it is rendered (a study keeps it for its
+  // technique jobs).
+  std::function<void(const FrameResult&)> onReference;
 };
 
 // What a speed-against-error plot puts on its error axis.

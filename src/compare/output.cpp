@@ -1,6 +1,7 @@
 #include "compare/output.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -79,6 +80,95 @@ nlohmann::json errorsJson(const TechniqueErrors& e) {
     j["sampleMismatchesOutsideBand"] = e.sampleMismatches;
   }
   return j;
+}
+
+namespace {
+
+Spread spreadFrom(const nlohmann::json& j) {
+  return {j.at("median").get<double>(), j.at("min").get<double>(), j.at("max").get<double>()};
+}
+
+TechniqueErrors errorsFrom(const nlohmann::json& j) {
+  auto stats = [](const nlohmann::json& s) {
+    ErrorStats e;
+    // A NaN error is written as null (JSON has no NaN) and read back as NaN.
+    auto number = [&](const char* k) { return s.at(k).is_null() ? std::nan("") : s.at(k).get<double>(); };
+    e.rmse = number("rmse"), e.meanAbs = number("meanAbs"), e.maxAbs = number("maxAbs");
+    e.pixelsOver = s.at("pixelsOver1_255").get<std::int64_t>(), e.pixelsCounted = s.at("pixels").get<std::int64_t>();
+    return e;
+  };
+  TechniqueErrors e;
+  e.visibility = stats(j.at("visibility")), e.visibilityOutsideBand = stats(j.at("visibilityOutsideBand"));
+  e.shaded = stats(j.at("shaded")), e.shadedOutsideBand = stats(j.at("shadedOutsideBand"));
+  e.misclassifiedPixels = j.at("misclassifiedPixelsOutsideBand").get<std::int64_t>();
+  e.unshadowedPixels = j.at("unshadowedPixels").get<std::int64_t>();
+  e.visibilityExceptUnshadowed = stats(j.at("visibilityExceptUnshadowed"));
+  if (j.contains("sampleAgreementOutsideBand")) {
+    e.sampleAgreement = j.at("sampleAgreementOutsideBand").get<double>();
+    e.sampleMismatches = j.at("sampleMismatchesOutsideBand").get<std::int64_t>();
+  }
+  return e;
+}
+
+PipelineCounts countsFrom(const nlohmann::json& j) {
+  PipelineCounts c;
+  c.primitivesSubmitted = j.value("primitives", std::uint64_t(0)), c.vertexInvocations = j.value("vertex", 0ull);
+  c.geometryInvocations = j.value("geometry", 0ull), c.clippingOutputPrimitives = j.value("rasterized", 0ull);
+  c.fragmentInvocations = j.value("fragment", 0ull), c.computeInvocations = j.value("compute", 0ull);
+  return c;
+}
+
+}  // namespace
+
+CompareRun runFromJson(const nlohmann::json& j, std::size_t preset, const std::string& where) {
+  CompareRun r;
+  try {
+    r.technique = j.at("name").get<std::string>();
+    r.family = TechniqueFamily::Hard;
+    const std::string family = j.at("family").get<std::string>();
+    bool known = false;
+    for (TechniqueFamily f : kTechniqueFamilies)
+      if (family == toString(f)) r.family = f, known = true;
+    if (!known) throw Error(where, "a run of an unknown family '" + family + "'");
+    r.preset = preset;
+    r.reference = j.at("reference").get<bool>();
+    r.params = j.at("params").get<std::vector<std::string>>();
+    r.shading = j.at("shading").get<std::string>();
+    r.image = j.value("image", ""), r.heat = j.value("heat", ""), r.flipHeat = j.value("flipHeat", "");
+    r.unshadowedMask = j.value("unshadowedMask", "");
+    r.insetImages = j.value("insets", std::vector<std::string>{});
+    if (j.at("status").get<std::string>() == "failed") {
+      r.failed = true;
+      r.failure = j.at("error").get<std::string>();
+      return r;
+    }
+    for (auto& [k, v] : j.at("stagesSpreadMs").items()) r.stages.emplace_back(k, spreadFrom(v));
+    r.total = spreadFrom(j.at("totalSpreadMs"));
+    for (auto& [k, v] : j.at("harnessStagesMs").items()) r.harnessStages.emplace_back(k, Spread{v, v, v});
+    r.harness = spreadFrom(j.at("harnessSpreadMs"));
+    r.prepareMs = j.at("prepareMs").get<double>();
+    r.memoryBytes = j.at("memoryBytes").get<std::size_t>();
+    for (auto& [k, v] : j.at("statistics").items()) r.statistics.emplace_back(k, v.get<double>());
+    r.errors = errorsFrom(j.at("errors"));
+    if (j.contains("pipelineStatistics"))
+      for (auto& [k, v] : j.at("pipelineStatistics").at("stages").items()) r.counts.emplace_back(k, countsFrom(v));
+    if (j.contains("convergedErrors")) r.converged = errorsFrom(j.at("convergedErrors"));
+    if (j.contains("convergedReferenceNoise")) {
+      const auto& n = j.at("convergedReferenceNoise");
+      r.referenceNoise = ReferenceNoise{n.at("visibilityRmse").get<double>(), n.at("shadedRmse").get<double>()};
+      for (auto& [k, v] : n.at("statistics").items()) r.referenceStatistics.emplace_back(k, v.get<double>());
+    }
+    if (j.contains("flip"))
+      r.flip = j.at("flip").at("mean").is_null() ? std::nan("") : j.at("flip").at("mean").get<double>();
+    if (j.contains("temporal")) {
+      const auto& t = j.at("temporal");
+      r.flicker = t.at("flicker").get<double>(), r.referenceMotion = t.at("referenceMotion").get<double>();
+      r.meanFrameRmse = t.at("meanVisibilityRmse").get<double>();
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(where, std::string("not a run of a comparison: ") + e.what());
+  }
+  return r;
 }
 
 void writeRunImages(const RunImages& out, const std::string& base, const FrameResult& f, const FrameResult* against,

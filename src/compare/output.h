@@ -37,4 +37,10 @@ nlohmann::json frameSummary(const FrameResult& frame);
 nlohmann::json countsJson(const PipelineCounts& c);
 nlohmann::json errorsJson(const TechniqueErrors& e);
 
+// A run as CompareResult::json writes it (an element of "runs"), read back: a study merges its
+// jobs' rows into the reports a comparison writes (study/merge.h). The preset is the caller's
+// (`preset` into its CompareResult::presets); the run's image file names are as written. A row
+// that is not such a run: penumbra::Error naming `where`.
+CompareRun runFromJson(const nlohmann::json& run, std::size_t preset, const std::string& where);
+
 }  // namespace penumbra

@@ -21,6 +21,8 @@ std::vector<std::string> whichTechniqueWhen(const CompareResult& r);
 std::string reportTable(const CompareResult& r);
 
 std::string reportCsv(const CompareResult& r);
+// A CSV field: as is, or quoted (quotes doubled) when it holds a comma, a quote or a newline.
+std::string csvField(const std::string& s);
 std::string reportHtml(const CompareResult& r);
 
 // Writes report.json, report.csv, table.txt, plot.svg and index.html into `dir`, each whole or

@@ -110,11 +110,20 @@ void writeTextFile(const std::string& path, const std::string& text) {
   });
 }
 
+namespace {
+
+int openLockFile(const std::string& path, const char* what) {
+  errno = 0;
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw Error(path, std::string("cannot create ") + what + ": " + std::strerror(errno));
+  return fd;
+}
+
+}  // namespace
+
 FolderLock::FolderLock(const std::string& dir) {
   const std::string path = dir + "/.penumbra-lock";
-  errno = 0;
-  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw Error(path, std::string("cannot create the folder's lock: ") + std::strerror(errno));
+  fd_ = openLockFile(path, "the folder's lock");
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const int e = errno;
     ::close(fd_);
@@ -130,5 +139,18 @@ FolderLock::FolderLock(const std::string& dir) {
 FolderLock::~FolderLock() {
   if (fd_ >= 0) ::close(fd_);  // closing drops the lock
 }
+
+FileLock::FileLock(const std::string& path) : fd_(openLockFile(path, "a lock file")) {
+  int rc;
+  while ((rc = ::flock(fd_, LOCK_EX)) != 0 && errno == EINTR) {
+  }
+  if (rc != 0) {
+    const int e = errno;
+    ::close(fd_);
+    throw Error(path, std::string("cannot lock: ") + std::strerror(e));
+  }
+}
+
+FileLock::~FileLock() { ::close(fd_); }
 
 }  // namespace penumbra

@@ -41,4 +41,18 @@ class FolderLock {
   int fd_ = -1;
 };
 
+// An exclusive advisory lock (flock) on the file `path` (created if absent), waited for while
+// another process holds it; kept while the object lives, dropped by the system if the process
+// dies (a study's job: study/run.h).
+class FileLock {
+ public:
+  explicit FileLock(const std::string& path);
+  ~FileLock();
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
 }  // namespace penumbra

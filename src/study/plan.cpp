@@ -81,6 +81,44 @@ json Job::json() const {
   return j;
 }
 
+Job Job::fromJson(const nlohmann::json& row, const std::string& where) {
+  try {
+    Job j;
+    j.id = row.at("id").get<std::string>(), j.kind = row.at("kind").get<std::string>();
+    j.scene = row.at("scene").get<std::string>(), j.technique = row.at("technique").get<std::string>();
+    j.params = row.at("params").get<std::vector<std::string>>();
+    j.samples = row.at("samples").get<int>();
+    j.size = {row.at("width").get<int>(), row.at("height").get<int>()};
+    j.seed = row.at("seed").get<std::uint32_t>(), j.strategy = row.at("strategy").get<std::string>();
+    j.frames = row.at("frames").get<int>(), j.warmup = row.at("warmup").get<int>();
+    j.reference = row.value("reference", ""), j.converged = row.value("converged", "");
+    if (j.kind != "technique" && j.kind != "reference" && j.kind != "converged")
+      throw Error(where, "a job of unknown kind '" + j.kind + "'", ExitCode::Usage);
+    if (j.id.size() != 16 || j.id.find_first_not_of("0123456789abcdef") != std::string::npos)
+      throw Error(where, "a job id that is not 16 hex digits: " + abbreviate(j.id), ExitCode::Usage);
+    return j;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(where, std::string("not a job row: ") + e.what(), ExitCode::Usage);
+  }
+}
+
+std::vector<Job> readPlan(const std::string& dir) {
+  const std::string path = (fs::path(dir) / "jobs.jsonl").string();
+  std::ifstream in(path);
+  if (!in) throw Error(path, "cannot read the plan (make it with `penumbra study plan STUDY -o DIR`)", ExitCode::Usage);
+  std::vector<Job> jobs;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (line.empty()) continue;
+    const std::string where = fmt::format("{}:{}", path, n);
+    const json row = json::parse(line, nullptr, false);
+    if (row.is_discarded()) throw Error(where, "not JSON", ExitCode::Usage);
+    jobs.push_back(Job::fromJson(row, where));
+  }
+  if (jobs.empty()) throw Error(path, "a plan with no jobs", ExitCode::Usage);
+  return jobs;
+}
+
 std::vector<std::string> sceneInputs(const std::string& scene) {
   if (scene == "default") return {};
   std::vector<std::string> out, queue{fs::weakly_canonical(scene).string()};

@@ -32,6 +32,8 @@ struct Job {
   std::string converged;  // technique and reference jobs with a converged reference: its id
 
   nlohmann::json json() const;
+  // A row of jobs.jsonl read back; `where` ("DIR/jobs.jsonl:12") names it in errors.
+  static Job fromJson(const nlohmann::json& row, const std::string& where);
 };
 
 // The files a scene reads, its own first, then every file its text names that exists (relative
@@ -45,6 +47,10 @@ std::vector<Job> planJobs(const StudySpec& spec);
 
 // Writes DIR/jobs.jsonl (one job a line) and DIR/study.json (the study as read), each atomically.
 void writePlan(const std::vector<Job>& jobs, const StudySpec& spec, const std::string& dir);
+
+// DIR/jobs.jsonl, every row checked (a missing file or a row that is not a job: penumbra::Error
+// naming the file and line, exit 2).
+std::vector<Job> readPlan(const std::string& dir);
 
 // The penumbra build a job's id includes (its source revision where the build knew it).
 const char* buildIdentity();
