@@ -17,6 +17,7 @@
 
 #include "bench_common.h"
 #include "studies.h"
+#include "study/study_file.h"
 #include "core/error.h"
 #include "core/files.h"
 #include "core/log.h"
@@ -63,7 +64,9 @@ int shadingStudy(const ShadingStudyOptions& o, std::FILE* out) {
                  "ratio ms", "modulate ms", "per-sample ms");
     std::map<ShadingMode, double> errorSum, msSum, shadingSum;
     int scenes = 0, failures = 0;
-    for (const std::string& path : o.scenes) {
+    const std::vector<std::string> paths =
+        o.scenes.empty() ? study::readStudy(SpeedErrorOptions{}.study).scenes : o.scenes;
+    for (const std::string& path : paths) {
       try {
         Scene scene = loadStudyScene(path);
         RenderSettings s;

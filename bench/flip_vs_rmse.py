@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Where FLIP and RMSE disagree: over the speed-error study's per-scene reports
-(bench/results/<machine>/speed-error/<scene>/report.json), per scene and sample count, the rank
+(bench/results/<machine>/speed-error/report/<scene>/report.json), per scene and sample count, the rank
 correlation (Spearman) of the techniques' mean HDR-FLIP with their shaded-image and visibility
 RMSE against the converged reference, and the pairs of techniques the two order differently by
 more than 25% each way.
@@ -40,7 +40,7 @@ def main(root):
     print("FLIP against RMSE (both against the converged reference), per scene and sample count")
     print("rho: Spearman rank correlation over the techniques; disagreements: pairs A, B where FLIP(A) < FLIP(B) / 1.25")
     print("while img RMSE(A) > 1.25 x img RMSE(B)\n")
-    for report in sorted(pathlib.Path(root).glob("*/report.json")):
+    for report in sorted(pathlib.Path(root).glob("report/*/report.json")):
         j = json.loads(report.read_text())
         by_preset = {}
         for run in j["runs"]:

@@ -13,7 +13,7 @@ int speedError(const StudyRun& r, std::FILE* out) {
   SpeedErrorOptions o;
   o.backend = r.backend;
   o.outDir = (std::filesystem::path(r.outDir) / "speed-error").string();
-  if (r.quick) o.width = 96, o.samples = {8, 16}, o.frames = 1;
+  if (r.quick) o.study = "bench/studies/speed-error-quick.json";
   return speedErrorStudy(o, out);
 }
 
@@ -88,6 +88,7 @@ int shading(const StudyRun& r, std::FILE* out) {
   o.backend = r.backend;
   o.outDir = (std::filesystem::path(r.outDir) / "shading").string();
   if (r.quick) o.width = 64, o.frames = 1, o.scenes = {"default", "scenes/glossy.json"};
+  // Full: the speed-error study's scenes.
   return shadingStudy(o, out);
 }
 

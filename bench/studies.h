@@ -15,42 +15,12 @@
 
 namespace penumbra::bench {
 
-// Speed against error on the shipped scenes but the bunny crowd (bench_speed_error.cpp): compare reports with a
-// samples sweep against the converged reference, and the cross-scene headline table.
+// Speed against error on the shipped scenes but the bunny crowd (bench_speed_error.cpp): a study
+// file (docs/studies.md) planned, run and merged into outDir, its per-scene reports and the
+// cross-scene headline.
 struct SpeedErrorOptions {
-  std::vector<std::string> scenes = {"default",
-                                     "scenes/stained-glass.json",
-                                     "scenes/animated-window.json",
-                                     "scenes/dcs-silhouettes.json",
-                                     "scenes/semi-opaque.json",
-                                     "scenes/glass-layers.json",
-                                     "scenes/spinning-fan.json",
-                                     "scenes/example.json",
-                                     "scenes/glossy.json",
-                                     "scenes/engine.json"};  // "default": the built-in scene
-  std::vector<std::string> techniques = {"hard-sv",
-                                         "dcs",
-                                         "dcs-lut",
-                                         "mvr",
-                                         "vwss",
-                                         "reproject",
-                                         "pcss",
-                                         "pcss-ultra",
-                                         "pcss-mask",
-                                         "pcss-contact",
-                                         "vssm",
-                                         "msm-soft",
-                                         "msm-translucent",
-                                         "evsm",
-                                         "smrt",
-                                         "smrt-unclamped",
-                                         "raytrace-denoised",
-                                         "raytrace-ffx"};
-  std::vector<int> samples = {8, 16, 32, 64};  // the samples sweep
-  int width = 128;                             // image width (height: the scene's aspect)
-  int frames = 3, warmup = 1;                  // timed frames per technique and preset
-  bool images = true;                          // each scene's PNG images and insets (false: reports only)
-  std::string outDir;                          // required
+  std::string study = "bench/studies/speed-error.json";
+  std::string outDir;  // required: the study's folder
   gl::Backend backend = gl::Backend::Egl;
 };
 int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out);
@@ -115,9 +85,9 @@ int techniqueTimings(const TimingOptions& o, std::FILE* out);
 // Shading modes against the converged shaded reference on every shipped scene (bench_shading.cpp):
 // ratio, modulate and per-sample, their error and their cost per frame.
 struct ShadingStudyOptions {
-  // The speed-error study's scenes (every shipped scene, the glossy one's metallic-roughness
-  // materials among them).
-  std::vector<std::string> scenes = SpeedErrorOptions{}.scenes;
+  // Empty: the speed-error study's scenes (every shipped scene, the glossy one's
+  // metallic-roughness materials among them), read from its study file.
+  std::vector<std::string> scenes;
   std::string technique = "dcs";
   int samples = 16;
   int width = 128;  // height: the scene's aspect

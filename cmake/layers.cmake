@@ -24,7 +24,7 @@ set(PENUMBRA_LAYERS
   "penumbra_compare:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_gl,penumbra_pipeline"
   "penumbra_study:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_gl,penumbra_pipeline,penumbra_techniques,penumbra_compare"
   "penumbra_cli_options:penumbra_sampling,penumbra_gl,penumbra_pipeline,penumbra_compare"
-  "penumbra_bench_studies:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_gl,penumbra_pipeline,penumbra_techniques,penumbra_compare"
+  "penumbra_bench_studies:penumbra_core,penumbra_scene,penumbra_sampling,penumbra_gl,penumbra_pipeline,penumbra_techniques,penumbra_compare,penumbra_study"
 )
 
 # penumbra_include_root(target folder source_dir): `#include "<folder>/x.h"` finds source_dir/x.h

@@ -96,7 +96,7 @@ local)
   run "$T/a" "$JOBS jobs selected: 3 rendered, $((JOBS - 3)) already done, 0 failed" -j 2
   rewritten=$(find "$T/a/jobs" -name row.json -newer "$T/marker" | sed 's|.*/jobs/\([0-9a-f]*\)/row.json|\1|' | sort)
   [ "$rewritten" = "$(printf '%s\n' "$1" "$2" "$3" | sort)" ] || fail "rerun rewrote: $rewritten (not $1 $2 $3)"
-  [ -z "$(ls -d "$T/a/jobs/"*.tmp-* "$T/a/jobs/"*.old-* 2>/dev/null)" ] || fail "temporary folders left"
+  [ -z "$(ls -d "$T/a/jobs/"*.tmp "$T/a/jobs/"*.old 2>/dev/null)" ] || fail "temporary folders left"
   run "$T/a" "1 jobs selected: 1 rendered, 0 already done, 0 failed" --index 20 --force
   merge "$T/a"
   plan "$T/b"
@@ -146,7 +146,7 @@ kill)
     if kill -9 "$pid" 2>/dev/null; then
       wait "$pid" 2>/dev/null
       kills=$((kills + 1))
-      for tmp in "$T/k/jobs/"*.tmp-*; do
+      for tmp in "$T/k/jobs/"*.tmp; do
         [ -d "$tmp" ] || continue
         id=$(basename "$tmp" | cut -d. -f1)
         [ -e "$T/k/jobs/$id/row.json" ] && fail "job $id killed half way has a row"
@@ -161,7 +161,7 @@ kill)
   [ "$kills" -ge 2 ] && [ "$halfway" -ge 1 ] || fail "no run was killed half way through a job"
   run "$T/k" "0 failed"
   merge "$T/k"
-  [ -z "$(ls -d "$T/k/jobs/"*.tmp-* 2>/dev/null)" ] || fail "temporary folders left after the last run"
+  [ -z "$(ls -d "$T/k/jobs/"*.tmp 2>/dev/null)" ] || fail "temporary folders left after the last run"
   plan "$T/u"
   run "$T/u" "$JOBS rendered"
   merge "$T/u"

@@ -38,16 +38,11 @@ int runStudy(CLI::App& app, int argc, char** argv, Options& o, int (*study)(cons
 }
 
 int speedError(int argc, char** argv) {
-  CLI::App app{"speed against error on the shipped scenes", "penumbra_bench_speed_error"};
+  CLI::App app{"speed against error on the shipped scenes: a study file planned, run and merged",
+               "penumbra_bench_speed_error"};
   SpeedErrorOptions o;
-  app.add_option("--scenes", o.scenes, "scene files ('default': the built-in scene)")->delimiter(',');
-  app.add_option("--techniques", o.techniques)->delimiter(',');
-  app.add_option("--samples", o.samples, "the samples sweep (comma-separated)")->delimiter(',');
-  app.add_option("-W", o.width, "image width (height: the scene's aspect)");
-  app.add_option("--frames", o.frames, "timed frames per technique and preset");
-  app.add_option("--warmup", o.warmup);
-  app.add_option("--images", o.images, "write each scene's PNG images and insets (0: reports only)");
-  app.add_option("-o", o.outDir, "output folder")->required();
+  app.add_option("--study", o.study, "the study file (docs/studies.md)")->capture_default_str();
+  app.add_option("-o", o.outDir, "the study's folder")->required();
   return runStudy(app, argc, argv, o, speedErrorStudy);
 }
 
@@ -117,7 +112,8 @@ int timings(int argc, char** argv) {
 int shading(int argc, char** argv) {
   CLI::App app{"shading modes against the converged shaded reference", "penumbra_bench_shading"};
   ShadingStudyOptions o;
-  app.add_option("--scenes", o.scenes, "scene files ('default': the built-in scene)")->delimiter(',');
+  app.add_option("--scenes", o.scenes, "scene files ('default': the built-in scene; default: speed-error's)")
+      ->delimiter(',');
   app.add_option("--technique", o.technique);
   app.add_option("--samples", o.samples);
   app.add_option("-W", o.width, "image width (height: the scene's aspect)");

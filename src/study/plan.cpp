@@ -75,7 +75,8 @@ const char* buildIdentity() { return PENUMBRA_BUILD_IDENTITY; }
 json Job::json() const {
   nlohmann::json j = {{"id", id},         {"kind", kind},         {"scene", scene},      {"technique", technique},
                       {"params", params}, {"samples", samples},   {"width", size.width}, {"height", size.height},
-                      {"seed", seed},     {"strategy", strategy}, {"frames", frames},    {"warmup", warmup}};
+                      {"seed", seed},     {"strategy", strategy}, {"frames", frames},    {"warmup", warmup},
+                      {"images", images}};
   if (!reference.empty()) j["reference"] = reference;
   if (!converged.empty()) j["converged"] = converged;
   return j;
@@ -91,6 +92,7 @@ Job Job::fromJson(const nlohmann::json& row, const std::string& where) {
     j.size = {row.at("width").get<int>(), row.at("height").get<int>()};
     j.seed = row.at("seed").get<std::uint32_t>(), j.strategy = row.at("strategy").get<std::string>();
     j.frames = row.at("frames").get<int>(), j.warmup = row.at("warmup").get<int>();
+    j.images = row.at("images").get<std::string>();
     j.reference = row.value("reference", ""), j.converged = row.value("converged", "");
     if (j.kind != "technique" && j.kind != "reference" && j.kind != "converged")
       throw Error(where, "a job of unknown kind '" + j.kind + "'", ExitCode::Usage);
@@ -159,7 +161,8 @@ std::vector<Job> planJobs(const StudySpec& s) {
     };
     std::map<int, std::string> convergedOf;  // size index -> the converged reference's id
     for (std::size_t z = 0; z < s.sizes.size() && s.converged; ++z) {
-      Job c{"", "converged", scene, "raytrace-converged", {}, s.convergedSamples, s.sizes[z], 1, "stratified", 1, 0};
+      Job c{"", "converged", scene,   "raytrace-converged", {}, s.convergedSamples, s.sizes[z], 1, "stratified",
+            1,  0,           s.images};
       finish(c);
       convergedOf[int(z)] = c.id;
       refs.push_back(c);
@@ -168,13 +171,14 @@ std::vector<Job> planJobs(const StudySpec& s) {
       for (int n : s.samples)
         for (std::uint32_t seed : s.seeds)
           for (const std::string& strategy : s.strategies) {
-            Job r{"", "reference", scene, "raytrace", {}, n, s.sizes[z], seed, strategy, s.frames, s.warmup};
+            Job r{"", "reference", scene, "raytrace", {}, n, s.sizes[z], seed, strategy, s.frames, s.warmup, s.images};
             if (s.converged) r.converged = convergedOf[int(z)];
             finish(r);
             refs.push_back(r);
             for (const TechniqueAxis& t : s.techniques)
               for (const auto& params : t.paramSets) {
-                Job j{"", "technique", scene, t.name, params, n, s.sizes[z], seed, strategy, s.frames, s.warmup};
+                Job j{"",         "technique", scene,    t.name,   params,   n,
+                      s.sizes[z], seed,        strategy, s.frames, s.warmup, s.images};
                 j.reference = r.id;
                 j.converged = r.converged;
                 finish(j);

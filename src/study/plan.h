@@ -28,8 +28,9 @@ struct Job {
   std::uint32_t seed = 0;
   std::string strategy;
   int frames = 1, warmup = 0;
-  std::string reference;  // technique jobs: the id of their same-sample reference
-  std::string converged;  // technique and reference jobs with a converged reference: its id
+  std::string images = "all";  // StudySpec::images
+  std::string reference;       // technique jobs: the id of their same-sample reference
+  std::string converged;       // technique and reference jobs with a converged reference: its id
 
   nlohmann::json json() const;
   // A row of jobs.jsonl read back; `where` ("DIR/jobs.jsonl:12") names it in errors.

@@ -131,13 +131,11 @@ class Runner {
   // failure is a failed row. `needs`: the rows of the references it reads, by id.
   json render(const Job& j, const std::vector<std::pair<std::string, json>>& needs) {
     const fs::path final = jobsDir() / j.id;
-    // Whatever a killed run of this job left (this process holds the job's lock: no one else is
-    // writing them).
-    for (const auto& e : fs::directory_iterator(jobsDir())) {
-      const std::string name = e.path().filename().string();
-      if (name.rfind(j.id + ".tmp-", 0) == 0 || name.rfind(j.id + ".old-", 0) == 0) fs::remove_all(e.path());
-    }
-    const fs::path tmp = jobsDir() / fmt::format("{}.tmp-{}", j.id, ::getpid());
+    // One name each for the job's temporary folder and its previous folder on the way out: only
+    // the holder of the job's lock writes them, and whatever a killed run left is removed here.
+    const fs::path tmp = jobsDir() / (j.id + ".tmp"), old = jobsDir() / (j.id + ".old");
+    fs::remove_all(tmp);
+    fs::remove_all(old);
     fs::create_directories(tmp);
     json row = j.json();
     const auto t0 = std::chrono::steady_clock::now();
@@ -165,17 +163,16 @@ class Runner {
     row["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     row["files"] = filesUnder(tmp);
     writeTextFile((tmp / kRow).string(), row.dump() + "\n");
-    publish(tmp, final);
+    publish(tmp, final, old);
     return row;
   }
 
   // `tmp` becomes `final`; a folder already there (a forced job, or one whose row or images were
-  // deleted) is moved aside first and removed after.
-  void publish(const fs::path& tmp, const fs::path& final) {
-    std::error_code ec;
-    const fs::path old = final.string() + fmt::format(".old-{}", ::getpid());
+  // deleted) is moved to `old` first and removed after.
+  static void publish(const fs::path& tmp, const fs::path& final, const fs::path& old) {
     if (fs::exists(final)) fs::rename(final, old);
     fs::rename(tmp, final);
+    std::error_code ec;
     fs::remove_all(old, ec);
   }
 
@@ -193,6 +190,7 @@ class Runner {
     c.givenConverged = converged ? &*converged : nullptr;
     c.timingFrames = j.frames, c.warmup = j.warmup;
     c.outDir = tmp.string();
+    c.writeImages = j.images != "none", c.writeExr = j.images == "all";
     c.progress = 0;
     if (j.kind == "technique") {
       reference = readFrameFile((jobsDir() / j.reference / kFrame).string());
@@ -224,7 +222,7 @@ class Runner {
     const FrameResult f = renderer.render(*tech, "raytrace-converged");
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     writeFrameFile((tmp / kFrame).string(), f);
-    writeFrame((tmp / "raytrace-converged.exr").string(), f);
+    if (j.images == "all") writeFrame((tmp / "raytrace-converged.exr").string(), f);
     json stats = json::object();
     for (const auto& [k, v] : f.statistics) stats[k] = v;
     json result = {{"name", "raytrace-converged"}, {"ms", ms}, {"statistics", stats}, {"memoryBytes", f.memoryBytes}};

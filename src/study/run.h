@@ -3,7 +3,7 @@
 // done (its row and every file the row names exist) or not there at all. A job whose row exists
 // is skipped (unless forced); a job takes an exclusive lock (DIR/jobs/<id>.lock) while it works,
 // so two processes never render the same job, and a process killed mid-job leaves no row (its
-// temporary folder is removed by the next run of that job). A technique job reads its
+// temporary folder, DIR/jobs/<id>.tmp, is removed by the next run of that job). A technique job reads its
 // references' frames from DIR and runs their jobs first when they are not done: jobs run in any
 // order, on any machine that sees DIR (Slurm arrays, GNU parallel: bench/cluster/).
 #pragma once

@@ -218,6 +218,11 @@ StudySpec readStudy(const std::string& path) {
   }
   s.frames = o.integer("frames", s.frames, 1, 100);
   s.warmup = o.integer("warmup", s.warmup, 0, 100);
+  if (o.has("images")) {
+    s.images = readString(valueOf(o.raw("images")), o.place("images"));
+    if (s.images != "all" && s.images != "png" && s.images != "none")
+      o.place("images").fail("'" + abbreviate(s.images) + "' is not all, png or none");
+  }
   o.refuseUnknown();
   const std::uint64_t jobs = jobCount(s);
   if (jobs > kMostJobs)

@@ -34,6 +34,7 @@ struct StudySpec {
   bool converged = false;               // also measure against raytrace-converged
   int convergedSamples = 1024;          // its light samples a pixel
   int frames = 3, warmup = 1;           // timed frames and warm-up frames per job
+  std::string images = "all";           // what a job keeps: "all" (EXR and PNG), "png", "none"
 };
 
 // Reads and checks a study file (JSON). Scene paths and globs are relative to the study file's
