@@ -3,9 +3,9 @@
 # 2 sample counts x 2 seeds = 24 technique jobs, 8 same-sample and 2 converged references.
 # Usage: study_run_test.sh PENUMBRA EXR_DIFF SRCDIR MODE, MODE one of
 #   local     plan, run with -j 2, merge; a second run renders nothing (no row rewritten); two
-#             rows and one image deleted: exactly those three jobs rerun; a serial run of the same
-#             plan elsewhere gives the same ids, bit-identical images and the same CSV (timings
-#             aside);
+#             rows and one image deleted: exactly those three jobs rerun; --index --force;
+#   shards    the same plan run whole in one process and elsewhere in two shards (one with a
+#             process a job): the same ids, bit-identical images and the same CSV (timings aside);
 #   failed    a scene whose texture is cut short (its header whole: the plan loads it, the jobs do
 #             not): its reference job fails with the texture named, its technique jobs fail
 #             naming their reference, the other scene's jobs go on; the run and the merge exit 1,
@@ -99,11 +99,16 @@ local)
   [ -z "$(ls -d "$T/a/jobs/"*.tmp "$T/a/jobs/"*.old 2>/dev/null)" ] || fail "temporary folders left"
   run "$T/a" "1 jobs selected: 1 rendered, 0 already done, 0 failed" --index 20 --force
   merge "$T/a"
+  ;;
+shards)
+  plan "$T/a"
+  run "$T/a" "$JOBS jobs selected: $JOBS rendered, 0 already done, 0 failed"
+  merge "$T/a"
   plan "$T/b"
   [ "$(cat "$T/a/jobs.jsonl")" = "$(cat "$T/b/jobs.jsonl")" ] || fail "the same study planned twice gave different jobs"
-  # Shard 1 renders the references its jobs read (jobs of shard 0) on the way: shard 0 finds
-  # those done.
-  run "$T/b" "$((JOBS / 2)) jobs selected: $((JOBS / 2)) rendered, 0 already done, 0 failed" --shard 1/2
+  # Shard 1 (a process a job) renders the references its jobs read (jobs of shard 0) on the way:
+  # shard 0 (one process) finds those done.
+  run "$T/b" "$((JOBS / 2)) jobs selected: $((JOBS / 2)) rendered, 0 already done, 0 failed" --shard 1/2 -j 2
   run "$T/b" "$((JOBS / 2)) jobs selected: .* 0 failed" --shard 0/2
   merge "$T/b"
   same_results "$T/a" "$T/b"

@@ -42,7 +42,9 @@ std::string flagFor(const std::string& field, const std::string& subcommand) {
                                                                {"sweep", "--sweep"},
                                                                {"override", "--set"},
                                                                {"samples", "--samples"},
-                                                               {"reference-samples", "--param reference-samples"}};
+                                                               {"reference-samples", "--param reference-samples"},
+                                                               {"index", "--index"},
+                                                               {"shard", "--shard"}};
   for (const auto& [name, flag] : kFlags)
     if (field == name) return flag;
   return {};

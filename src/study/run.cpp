@@ -243,12 +243,12 @@ class Runner {
 std::vector<std::size_t> selected(const RunOptions& o, std::size_t count) {
   if (o.index) {
     if (*o.index >= count)
-      throw Error("--index", fmt::format("{} is past the plan's last job ({} jobs: 0-{})", *o.index, count, count - 1),
+      throw Error("index", fmt::format("{} is past the plan's last job ({} jobs: 0-{})", *o.index, count, count - 1),
                   ExitCode::Usage);
     return {*o.index};
   }
   if (o.shards < 1 || o.shard < 0 || o.shard >= o.shards)
-    throw Error("--shard", fmt::format("{}/{}: the shard must be in 0..N-1", o.shard, o.shards), ExitCode::Usage);
+    throw Error("shard", fmt::format("{}/{}: the shard must be in 0..N-1", o.shard, o.shards), ExitCode::Usage);
   std::vector<std::size_t> out;
   for (std::size_t i = std::size_t(o.shard); i < count; i += std::size_t(o.shards)) out.push_back(i);
   return out;
