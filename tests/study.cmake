@@ -1,5 +1,6 @@
-# Studies as data: the study file's checks, its plan of jobs and their ids (no GL).
-penumbra_add_test(test_study ${CMAKE_CURRENT_SOURCE_DIR}/study_test.cpp LIBS penumbra_study penumbra_core)
+# Studies as data: the study file's checks, its plan of jobs and their ids, a merge of hand-written
+# rows (no GL).
+penumbra_add_test(test_study ${CMAKE_CURRENT_SOURCE_DIR}/study_test.cpp LIBS penumbra_study penumbra_compare penumbra_core)
 # A study run end to end with the real binary (tests/study_run_test.sh MODE): locally with -j 2,
 # in shards, killed mid-job, through GNU parallel and through a real Slurm started on localhost.
 foreach(mode local shards failed kill parallel slurm)

@@ -7,9 +7,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 
+#include "compare/compare.h"
 #include "core/error.h"
+#include "study/merge.h"
 #include "study/plan.h"
 #include "study/study_file.h"
 
@@ -169,6 +172,71 @@ TEST(Study, ASceneThatDoesNotLoadIsRefusedAtPlanTime) {
     EXPECT_NE(what.find("s.json"), std::string::npos) << what;
     EXPECT_NE(what.find("broken.json"), std::string::npos) << what;
   }
+}
+
+}  // namespace
+}  // namespace penumbra::study
+
+namespace penumbra::study {
+namespace {
+
+// A merge of hand-written rows (no GL): one scene, pcss against the same-sample reference at two
+// seeds. The headline's numbers are the geometric means over the seeds with their range, a
+// missing row is named, and rows of another renderer get a report of their own.
+TEST(Study, MergeTakesGeometricMeansWithTheSeedsSpread) {
+  TempDir dir;
+  StudySpec spec = readStudy(dir.write(
+      "s.json", R"({"scenes": ["default"], "techniques": ["pcss"], "samples": 8, "sizes": 32, "seeds": [1, 2]})"));
+  const std::vector<Job> jobs = planJobs(spec);
+  ASSERT_EQ(jobs.size(), 4u);
+  const std::string out = (dir.path / "study").string();
+  writePlan(jobs, spec, out);
+  // Per seed: raytrace 5 / 20 ms, pcss 10 / 40 ms with visibility RMSE 0.01 / 0.04.
+  auto writeRow = [&](const Job& j, double ms, double rmse, const std::string& renderer) {
+    CompareResult r;
+    r.presets.resize(1);
+    CompareRun run;
+    run.technique = j.technique, run.reference = j.kind == "reference", run.total = {ms, ms, ms};
+    run.errors.visibility.rmse = rmse;
+    r.runs = {run};
+    nlohmann::json row = j.json();
+    row["status"] = "ok", row["result"] = r.json()["runs"][0], row["renderer"] = renderer;
+    row["info"] = {{"sceneName", "default"}, {"width", 32}, {"height", 32}};
+    row["files"] = nlohmann::json::array();
+    fs::create_directories(fs::path(out) / "jobs" / j.id);
+    std::ofstream(fs::path(out) / "jobs" / j.id / "row.json") << row.dump();
+  };
+  for (const Job& j : jobs) {
+    const bool second = j.seed == 2;
+    writeRow(j, j.kind == "reference" ? (second ? 20 : 5) : (second ? 40 : 10),
+             j.kind == "reference" ? 0 : (second ? 0.04 : 0.01), "R");
+  }
+  std::FILE* sink = std::fopen("/dev/null", "w");
+  MergeSummary m = mergeStudy(out, sink);
+  EXPECT_EQ(m.ok, 4u);
+  EXPECT_EQ(m.missing, 0u);
+  std::ifstream md(fs::path(out) / "report" / "headline.md");
+  const std::string headline((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_NE(headline.find("| pcss | 8 | 20.0 [10.0, 40.0] | 2.00 [2.00, 2.00] | 0.0200 [0.0100, 0.0400] |"),
+            std::string::npos)
+      << headline;
+  EXPECT_TRUE(fs::exists(fs::path(out) / "report" / "default" / "report.json"));
+  std::ifstream csv(fs::path(out) / "results.csv");
+  std::string line;
+  int lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  EXPECT_EQ(lines, 5);
+
+  // A row deleted is missing; a row from another renderer makes a second report.
+  fs::remove(fs::path(out) / "jobs" / jobs[3].id / "row.json");
+  writeRow(jobs[2], 10, 0.01, "S");
+  m = mergeStudy(out, sink);
+  EXPECT_EQ(m.missing, 1u);
+  EXPECT_EQ(m.reports.size(), 2u);
+  std::ifstream status(fs::path(m.reports[0]) / "status.txt");
+  const std::string text((std::istreambuf_iterator<char>(status)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("missing  " + jobs[3].id), std::string::npos) << text;
+  std::fclose(sink);
 }
 
 }  // namespace

@@ -225,8 +225,10 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
   auto headlinePreset = [&](const ComparePreset& p) {
     ComparePreset h;
     h.samples = p.samples, h.width = p.width, h.height = p.height;
-    h.values = {{"samples", std::to_string(p.samples)}};
-    if (axes.sizes) h.values.push_back({"size", fmt::format("{}x{}", p.width, p.height)});
+    // Every axis but the seed: the seeds are what the spread is over.
+    h.values = p.values;
+    h.values.erase(std::remove_if(h.values.begin(), h.values.end(), [](auto& v) { return v.first == "seed"; }),
+                   h.values.end());
     for (const auto& [k, v] : h.values) h.label += (h.label.empty() ? "" : " ") + k + "=" + v;
     auto it = std::find_if(presets.begin(), presets.end(), [&](auto& q) { return q.label == h.label; });
     if (it == presets.end()) presets.push_back(h);
@@ -259,7 +261,7 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
     }
   }
   std::sort(presets.begin(), presets.end(), [](auto& a, auto& b) {
-    return std::tie(a.width, a.height, a.samples) < std::tie(b.width, b.height, b.samples);
+    return std::tie(a.width, a.height, a.samples, a.label) < std::tie(b.width, b.height, b.samples, b.label);
   });
   const bool converged = std::any_of(scenes.begin(), scenes.end(), [](auto& s) { return s.result.hasConverged(); });
   const std::string against = converged ? "converged" : "same-sample reference";
@@ -269,15 +271,18 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
   h.md = fmt::format(
       "| technique | {} | ms (geo. mean) | x raytrace time | visibility RMSE vs {} (geo. mean) | on the Pareto front "
       "| scenes |\n|---|---|---|---|---|---|---|\n",
-      axes.sizes ? "preset" : "samples", against);
+      axes.sizes || axes.strategies ? "preset" : "samples", against);
+  // Columns wide enough for a [min, max] over the seeds.
+  const int wMs = axes.seeds ? 22 : 10, wX = axes.seeds ? 20 : 11, wErr = axes.seeds ? 26 : 24;
   h.text = fmt::format(
-      "Headline: geometric mean over {} scenes (or those named){}\n{:<24} {:>16} {:>10} {:>11} {:>24} {:>8}  {}\n",
-      scenes.size(), axes.seeds ? "; [min, max] over seeds" : "", "technique", axes.sizes ? "preset" : "samples", "ms",
-      "x raytrace", "RMSE vs " + against, "front", "scenes");
+      "Headline: geometric mean over {} scenes (or those named){}\n{:<24} {:>22} {:>{}} {:>{}} {:>{}} {:>8}  {}\n",
+      scenes.size(), axes.seeds ? "; [min, max] over seeds" : "", "technique",
+      axes.sizes || axes.strategies ? "preset" : "samples", "ms", wMs, "x raytrace", wX, "RMSE vs " + against, wErr,
+      "front", "scenes");
   for (const std::string& name : order)
     for (std::size_t pi = 0; pi < presets.size(); ++pi) {
       const ComparePreset& p = presets[pi];
-      const std::string shown = axes.sizes ? p.label : std::to_string(p.samples);
+      const std::string shown = axes.sizes || axes.strategies ? p.label : std::to_string(p.samples);
       const auto bySeed = acc.find({name, p.label});
       const auto failed = failedOn.find({name, p.label});
       if (bySeed == acc.end() && failed == failedOn.end()) continue;
@@ -302,7 +307,8 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
         h.plot.runs.push_back(f);
       }
       if (ms.empty()) {
-        h.text += fmt::format("{:<24} {:>16} {:>10} {:>11} {:>24} {:>8}  {}\n", name, shown, "-", "-", "-", "-", ran);
+        h.text += fmt::format("{:<24} {:>22} {:>{}} {:>{}} {:>{}} {:>8}  {}\n", name, shown, "-", wMs, "-", wX, "-",
+                              wErr, "-", ran);
         h.md += fmt::format("| {} | {} | - | - | - | - | {} |\n", name, shown, ran);
         continue;
       }
@@ -322,8 +328,8 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
       const std::string errText = fmt::format("{:.4f}", e) + range(err, "{:.4f}");
       const std::string xText = fmt::format("{:.2f}", x) + range(ratio, "{:.2f}");
       const int runs = n * int(ms.size());
-      h.text += fmt::format("{:<24} {:>16} {:>10} {:>11} {:>24} {:>5}/{}  {}\n", name, shown, msText, xText, errText,
-                            front, runs, ran);
+      h.text += fmt::format("{:<24} {:>22} {:>{}} {:>{}} {:>{}} {:>5}/{}  {}\n", name, shown, msText, wMs, xText, wX,
+                            errText, wErr, front, runs, ran);
       h.md += fmt::format("| {} | {} | {} | {} | {} | {}/{} | {} |\n", name, shown, msText, xText, errText, front, runs,
                           ran);
       CompareRun run;
