@@ -8,5 +8,8 @@ foreach(mode local shards failed kill parallel slurm)
            $<TARGET_FILE:exr_diff> ${PROJECT_SOURCE_DIR} ${mode})
   set_tests_properties(study_run_${mode} PROPERTIES SKIP_RETURN_CODE 77 LABELS gl)
 endforeach()
+# Under the sanitizers too (6 s there): the runner, the frame files and the merge, failed jobs
+# beside done ones.
+set_tests_properties(study_run_failed PROPERTIES LABELS "gl;sanitize")
 # (slurm: eight array tasks at once on the node, and daemons of its own: alone.)
 set_tests_properties(study_run_slurm PROPERTIES RUN_SERIAL TRUE)

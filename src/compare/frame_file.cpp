@@ -18,7 +18,9 @@ constexpr std::uint64_t kMostElements = std::uint64_t(1) << 36;
 
 class Writer {
  public:
-  void bytes(const void* p, std::size_t n) { out_.append(static_cast<const char*>(p), n); }
+  void bytes(const void* p, std::size_t n) {
+    if (n > 0) out_.append(static_cast<const char*>(p), n);  // an empty vector's data() may be null
+  }
   template <class T>
   void value(const T& v) {
     bytes(&v, sizeof v);
@@ -47,6 +49,7 @@ class Reader {
   Reader(std::string data, std::string path) : data_(std::move(data)), path_(std::move(path)) {}
   void bytes(void* p, std::size_t n) {
     if (n > data_.size() - at_) throw Error(path_, "a frame file cut short");
+    if (n == 0) return;  // an empty vector's data() may be null, which memcpy must not get
     std::memcpy(p, data_.data() + at_, n);
     at_ += n;
   }
