@@ -129,6 +129,9 @@ failed)
   grep -q "6 jobs: 3 done, 3 failed, 0 missing" "$T/merge.out" || { cat "$T/merge.out"; fail "merge: not 3 failed"; }
   [ "$(grep -c '^failed ' "$T/f/d/report/status.txt")" -eq 3 ] || fail "status.txt does not list the 3 failures"
   grep -q '"status": "failed"' "$T/f/d/report/stained-glass/report.json" || fail "the scene's report has no failed run"
+  # A failed run keeps its technique's family (pcss: a single map) in the report.
+  tr -d ' \n' < "$T/f/d/report/stained-glass/report.json" | grep -q '"error":"[^"]*","family":"singlemap","flipHeat":"","heat":"","height":[0-9]*,"image":"","insets":\[\],"name":"pcss"' ||
+    fail "the failed pcss run is not of the single-map family"
   grep -q ',failed,.*truncated or corrupt PNG' "$T/f/d/results.csv" || fail "results.csv lacks the failure"
   "$P" study run "$T/f/d" > "$T/run.out" 2>&1
   grep -q "0 rendered, 6 already done, 3 failed" "$T/run.out" || { cat "$T/run.out"; fail "a rerun redid jobs"; }

@@ -20,6 +20,7 @@
 #include "core/machine.h"
 #include "study/plan.h"
 #include "study/run.h"
+#include "techniques/registry.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -167,6 +168,10 @@ SceneReport sceneReport(const std::vector<const Row*>& rows, const Axes& axes, c
       run.technique = j.technique, run.preset = it->second, run.params = j.params, run.failed = true;
       run.failure = r->row.value("error", "?");
       run.reference = j.kind == "reference";
+      // Its family from the table (a technique named in a plan the table no longer has keeps
+      // the default).
+      for (const TechniqueInfo& t : techniqueTable())
+        if (t.name == j.technique) run.family = t.family;
     }
     const std::string rel = fs::relative(dir / "jobs" / j.id, reportDir).string() + "/";
     for (std::string* f : {&run.image, &run.heat, &run.flipHeat, &run.unshadowedMask})
