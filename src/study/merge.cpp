@@ -354,27 +354,20 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
   return h;
 }
 
-std::string escapeHtml(const std::string& s) {
-  std::string out;
-  for (char c : s)
-    out += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : c == '"' ? "&quot;" : std::string(1, c);
-  return out;
-}
-
 // report/index.html: the headline plot and table, which technique when, the scenes' reports and
 // the jobs missing or failed.
 std::string indexHtml(const std::string& study, const std::string& renderer, const Headline& h,
                       const std::vector<std::pair<std::string, std::string>>& scenes, const std::string& status) {
-  std::string page = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + escapeHtml(study) +
+  std::string page = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + escapeMarkup(study) +
                      "</title><style>body{font-family:sans-serif;max-width:1000px;margin:1em auto}"
                      "pre{background:#f4f4f4;padding:.5em;overflow-x:auto}</style></head><body>\n";
-  page += "<h1>Study " + escapeHtml(study) + "</h1>\n<p>" + escapeHtml(renderer) + "</p>\n";
+  page += "<h1>Study " + escapeMarkup(study) + "</h1>\n<p>" + escapeMarkup(renderer) + "</p>\n";
   page += "<h2>Speed against error, across the scenes</h2>\n<img src=\"headline.svg\" alt=\"headline plot\">\n";
-  page += "<pre>" + escapeHtml(h.text) + "</pre>\n<h2>Which technique when</h2>\n<pre>" + escapeHtml(h.summary) +
+  page += "<pre>" + escapeMarkup(h.text) + "</pre>\n<h2>Which technique when</h2>\n<pre>" + escapeMarkup(h.summary) +
           "</pre>\n<h2>Scenes</h2>\n<ul>\n";
   for (const auto& [name, dir] : scenes)
-    page += "<li><a href=\"" + escapeHtml(dir) + "/index.html\">" + escapeHtml(name) + "</a></li>\n";
-  page += "</ul>\n<h2>Jobs</h2>\n<pre>" + escapeHtml(status) + "</pre>\n</body></html>\n";
+    page += "<li><a href=\"" + escapeMarkup(dir) + "/index.html\">" + escapeMarkup(name) + "</a></li>\n";
+  page += "</ul>\n<h2>Jobs</h2>\n<pre>" + escapeMarkup(status) + "</pre>\n</body></html>\n";
   return page;
 }
 
