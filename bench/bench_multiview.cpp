@@ -27,6 +27,7 @@
 #include "pipeline/renderer.h"
 #include "sampling/light_samples.h"
 #include "scene/scene.h"
+#include "scene/variants.h"
 
 using namespace penumbra;
 using bench::frameStatistic;
@@ -34,19 +35,6 @@ using bench::frameStatistic;
 namespace {
 
 double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
-
-// The scene with every mesh but the first (the floor) repeated `copies` times on a grid.
-Scene instanced(const Scene& base, int copies, float spacing) {
-  Scene s = base;
-  const glm::vec2 offsets[] = {{0, 0}, {1, 0}, {-1, 0}, {0, -1}, {1, -1}, {-1, -1}, {0, 1}, {1, 1}, {-1, 1}};
-  for (int c = 1; c < copies && c < 9; ++c)
-    for (std::size_t m = 1; m < base.meshes.size(); ++m) {
-      SceneMesh copy = base.meshes[m];
-      for (auto& p : copy.mesh.positions) p += glm::vec3(offsets[c].x * spacing, 0.0f, offsets[c].y * spacing);
-      s.meshes.push_back(std::move(copy));
-    }
-  return s;
-}
 
 struct Run {
   bench::Timing timing;
@@ -125,7 +113,7 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
         std::vector<double> tris;
         std::map<std::string, std::vector<double>> depthTimes;
         for (int copies : o.copies) {
-          Scene scene = instanced(base, copies, spacing);
+          Scene scene = withOccludersInstanced(base, copies, spacing);
           RenderSettings s = b.settings(n);
           FrameResult ref = b.reference(scene, s);
           tris.push_back(double(scene.triangleCount()));
@@ -170,7 +158,7 @@ int multiviewStudies(const MultiviewOptions& o, std::FILE* out) {
           out, "(x maps, x total: mvr's time over the row's; range: max - min of the total over the timed frames)\n\n");
     }
 
-    Scene two = instanced(base, 2, spacing);
+    Scene two = withOccludersInstanced(base, 2, spacing);
     if (studies.count(2)) {
       std::fprintf(out,
                    "2. VWSS Figure 13 top: buffered (points, then compute splat k=8) against unbuffered (splat in the "

@@ -64,8 +64,10 @@ int shadingStudy(const ShadingStudyOptions& o, std::FILE* out) {
                  "ratio ms", "modulate ms", "per-sample ms");
     std::map<ShadingMode, double> errorSum, msSum, shadingSum;
     int scenes = 0, failures = 0;
-    const std::vector<std::string> paths =
-        o.scenes.empty() ? study::readStudy(SpeedErrorOptions{}.study).scenes : o.scenes;
+    std::vector<std::string> paths = o.scenes;
+    if (paths.empty())
+      for (const study::SceneEntry& e : study::readStudy("bench/studies/speed-error.json").allScenes())
+        paths.push_back(e.path);
     for (const std::string& path : paths) {
       try {
         Scene scene = loadStudyScene(path);

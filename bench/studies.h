@@ -15,26 +15,17 @@
 
 namespace penumbra::bench {
 
-// Speed against error on the shipped scenes but the bunny crowd (bench_speed_error.cpp): a study
-// file (docs/studies.md) planned, run and merged into outDir, its per-scene reports and the
-// cross-scene headline.
-struct SpeedErrorOptions {
-  std::string study = "bench/studies/speed-error.json";
+// A study file (docs/studies.md, bench/studies/<name>.json) planned, run and merged into
+// outDir (bench_study_file.cpp): speed-error, dcs, techniques, dcs-scale and light-size are
+// such files; their tables are the merge's (report/headline.md, stages.md, light-size.md and a
+// report per scene). A run into a folder that holds an earlier run of the same build renders
+// only what is missing; job folders of other plans there are removed.
+struct StudyFileOptions {
+  std::string study;   // required: the study file
   std::string outDir;  // required: the study's folder
   gl::Backend backend = gl::Backend::Egl;
 };
-int speedErrorStudy(const SpeedErrorOptions& o, std::FILE* out);
-
-// DCS paper studies (bench_dcs.cpp): covered-sample modes, sample counts, shading, interleaving,
-// semi-opaque occluders.
-struct DcsStudyOptions {
-  std::string scene = "scenes/stained-glass.json";  // modes, sample counts, shading, interleaving
-  std::string semi = "scenes/semi-opaque.json";     // semi-opaque occluders (its opaque twin made in memory)
-  int width = 512, height = 512, frames = 5, warmup = 1;
-  std::string json;  // results as JSON here, if given
-  gl::Backend backend = gl::Backend::Egl;
-};
-int dcsStudies(const DcsStudyOptions& o, std::FILE* out);
+int studyFile(const StudyFileOptions& o, std::FILE* out);
 
 // VWSS paper tables 1-2, figures 8 and 13, map-resolution convergence (bench_multiview.cpp).
 struct MultiviewOptions {
@@ -61,32 +52,11 @@ struct SingleMapOptions {
 };
 int singleMapStudies(const SingleMapOptions& o, std::FILE* out);
 
-// A technique with parameters, timed under its own label; `profile`: its statistics come from
-// one more, untimed frame with these parameters added (dcs `profile=true`: counters that slow it).
-struct TimedVariant {
-  std::string label, technique;
-  std::vector<std::string> params, profile;
-};
-
-// Per-stage timings of chosen techniques and sample counts (bench_techniques.cpp).
-struct TimingOptions {
-  std::string scene = "scenes/engine.json";
-  int width = 512, height = 512, frames = 5, warmup = 1;
-  std::vector<int> samples = {1};
-  std::vector<std::string> techniques = {"hard-sv"};
-  std::vector<TimedVariant> variants;  // timed after `techniques`, before raytrace
-  PixelPattern pattern = PixelPattern::Correlated;
-  ShadingMode shading = ShadingMode::Modulate;  // eq. 3, as the README's timing tables were measured
-  std::string json;                             // results as JSON here, if given
-  gl::Backend backend = gl::Backend::Egl;
-};
-int techniqueTimings(const TimingOptions& o, std::FILE* out);
-
 // Shading modes against the converged shaded reference on every shipped scene (bench_shading.cpp):
 // ratio, modulate and per-sample, their error and their cost per frame.
 struct ShadingStudyOptions {
   // Empty: the speed-error study's scenes (every shipped scene, the glossy one's
-  // metallic-roughness materials among them), read from its study file.
+  // metallic-roughness materials among them), read from bench/studies/speed-error.json.
   std::vector<std::string> scenes;
   std::string technique = "dcs";
   int samples = 16;
@@ -97,32 +67,11 @@ struct ShadingStudyOptions {
 };
 int shadingStudy(const ShadingStudyOptions& o, std::FILE* out);
 
-// Error against light size (bench_light_size.cpp): each scene's lights scaled from near a point to
-// larger than its occluders, every technique against the same-sample reference at each size; a
-// chart and a table per scene. The scenes: occluders that overlap from the light centre (hard case
-// 15's offset plates), contact (16: a box on the floor, a plate over a plate) and a thin occluder
-// far above its receiver (23).
-struct LightSizeOptions {
-  std::vector<std::string> scenes = {"scenes/hard/15-two-plates.json", "scenes/hard/16-contact.json",
-                                     "scenes/hard/23-analytic-square.json"};
-  std::vector<double> scales = {0.05, 0.1, 0.25, 0.5, 1.0, 1.5, 2.0};
-  std::vector<std::string> techniques = {
-      "hard-sv", "dcs",      "mvr",  "vwss", "pcss",           "pcss-ultra",   "pcss-contact",
-      "vssm",    "msm-soft", "evsm", "smrt", "smrt-unclamped", "smrt-contact", "raytrace-denoised"};
-  int samples = 16;
-  int width = 128;  // height: the scene's aspect
-  int frames = 1, warmup = 1;
-  bool images = false;  // each size's PNG images (false: reports and plots only)
-  std::string outDir;   // required
-  gl::Backend backend = gl::Backend::Egl;
-};
-int lightSizeStudy(const LightSizeOptions& o, std::FILE* out);
-
 // What `penumbra bench` gives every study.
 struct StudyRun {
   gl::Backend backend = gl::Backend::Egl;
   bool quick = false;
-  std::string outDir;  // the machine's results folder (the speed-error study writes under it)
+  std::string outDir;  // the machine's results folder (a study file's study writes its folder under it)
 };
 
 struct Study {

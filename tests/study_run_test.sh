@@ -16,6 +16,10 @@
 #             equals an uninterrupted run's (timings aside);
 #   parallel  bench/cluster/parallel.sh with GNU parallel, 2 job slots; a second call resumes
 #             (nothing rerun);
+#   axes      tests/studies/axes.json: light scales, a profiled technique, parts, an opaque twin
+#             made in memory and two shading modes: hard-sv's error grows with the light and
+#             dcs's is 0 at every scale (light-size.md), dcs's statistics come from its profiled
+#             frame (stages.md), the twin's references differ from the semi-opaque scene's;
 #   slurm     bench/cluster/slurm.sh on a real Slurm: munged, slurmctld and slurmd started on
 #             localhost with a one-node slurm.conf in a temporary folder (root only; 8 slots on
 #             the node, more than its cores: the jobs are short), the array and its merge job
@@ -260,6 +264,37 @@ CONF
   grep -q "$JOBS jobs: $JOBS done, 0 failed, 0 missing" "$T/s/slurm/"merge_*.out || { cat "$T/s/slurm/"merge_*.out; fail "the merge job did not find every row"; }
   merge "$T/s"
   echo "Slurm: $JOBS array tasks and the merge job"
+  ;;
+axes)
+  STUDY="$SRC/tests/studies/axes.json"; JOBS=14; SCENES="16-contact semi-opaque"
+  plan "$T/a"
+  run "$T/a" "14 rendered" -j 2
+  merge "$T/a"
+  R="$T/a/report"
+  cat "$R/light-size.md"
+  # A column of results.csv by its header's name; rows of kind $2 whose column $3 is $4.
+  csv() { awk -F, -v c="$1" -v k="$2" -v f="$3" -v v="$4" 'NR == 1 { for (i = 1; i <= NF; i++) n[$i] = i; next }
+          $n["kind"] == k && (f == "" || $n[f] == v) { print $n[c] }' "$T/a/results.csv"; }
+  row() { grep "^| $1 |" "$R/light-size.md" || fail "light-size.md has no row for $1"; }
+  row hard-sv | awk -F'|' '{ exit !($3 + 0 < $4 + 0 && $4 + 0 > 0.01) }' || fail "hard-sv's error does not grow with the light"
+  row dcs | awk -F'|' '{ exit !($3 + 0 == 0 && $4 + 0 == 0) }' || fail "dcs is not exact at every light scale"
+  [ -s "$R/light-size-16-contact.svg" ] || fail "no light-size chart"
+  grep -q "^| dcs |.*(a profiled frame (profile=true)).*profileFragments" "$R/stages.md" ||
+    { cat "$R/stages.md"; fail "dcs's statistics are not its profiled frame's"; }
+  grep "^| hard-sv |" "$R/stages.md" | grep -q "profiled" && fail "hard-sv's statistics say profiled"
+  [ "$(csv shading technique technique dcs | sort -u | tr '\n' ' ')" = "modulate ratio " ] || fail "not both shading modes"
+  twin=$(ls -d "$R"/semi-opaque?*opacity* 2>/dev/null | head -n 1)
+  [ -s "$twin/report.json" ] || { ls "$R"; fail "no report of the opaque twin"; }
+  # The references of the semi-opaque scene and of its twin, shading mode by shading mode.
+  ref() { awk -F, -v v="$1" -v s="$2" 'NR == 1 { for (i = 1; i <= NF; i++) n[$i] = i; next }
+          $n["kind"] == "reference" && $n["scene"] ~ /semi-opaque.json$/ && $n["variant"] == v && $n["shading"] == s {
+          print $n["id"] }' "$T/a/results.csv"; }
+  for shading in ratio modulate; do
+    semi=$(ref "" $shading); opaque=$(ref opacity=1 $shading)
+    [ -n "$semi" ] && [ -n "$opaque" ] || fail "no $shading references of the semi-opaque scene and its twin"
+    cmp -s "$T/a/jobs/$semi/frame.bin" "$T/a/jobs/$opaque/frame.bin" && fail "the opaque twin's $shading reference equals the semi-opaque one's"
+  done
+  echo "axes: light-size curves, profiled statistics, parts, an opaque twin, two shading modes"
   ;;
 *) fail "unknown mode '$MODE'" ;;
 esac

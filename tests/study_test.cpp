@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 
 #include "compare/compare.h"
@@ -148,6 +149,19 @@ TEST(Study, BadFilesAreOneLineErrors) {
       {R"({"scenes": ["default"], "techniques": ["dcs"], "samples": [8, 100000]})", "samples[1]"},
       {R"({"scenes": ["default"], "techniques": ["dcs"], "strategies": ["sobol"]})", "unknown strategy 'sobol'"},
       {huge(), "expands to 20000000 jobs"},
+      {study(R"(, "shadings": ["phong"])"), "shadings[0]: unknown shading mode 'phong'"},
+      {study(R"(, "patterns": "diagonal")"), "patterns: unknown pixel pattern 'diagonal'"},
+      {study(R"(, "light-scales": [1, 0])"), "light-scales[1]"},
+      {R"({"scenes": [{"file": "missing.json"}], "techniques": ["dcs"]})", "scenes[0].file: no such file"},
+      {R"({"scenes": [{"file": ")" + scenes() + R"(/semi-opaque.json", "opacity": 2}], "techniques": ["dcs"]})",
+       "scenes[0].opacity"},
+      {R"({"scenes": [{"file": ")" + scenes() + R"(/semi-opaque.json", "tint": 1}], "techniques": ["dcs"]})",
+       "scenes[0].tint: unknown key"},
+      {R"({"scenes": ["default"], "techniques": [{"name": "dcs", "profile": {}}]})", "techniques[0].profile"},
+      {R"({"scenes": ["default"], "techniques": [{"name": "dcs", "profile": {"frobnicate": 1}}]})", "techniques[0]"},
+      {R"({"techniques": ["dcs"], "parts": [{"scenes": "default"}, {"samples": 8}]})", "parts[1].scenes: missing"},
+      {R"({"scenes": "default", "techniques": ["dcs"], "parts": [{"sizes": 64, "colour": 1}]})",
+       "parts[0].colour: unknown key"},
       {"{\"scenes\": ", "not valid JSON"},
   };
   for (auto& [text, want] : cases) {
@@ -157,6 +171,85 @@ TEST(Study, BadFilesAreOneLineErrors) {
     EXPECT_NE(what.find("bad.json"), std::string::npos) << "names the file: " << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
   }
+}
+
+// A study of parts plans the union of their products, a job two parts share once; the axes a
+// study leaves at their defaults are not in the rows, the others reach the jobs and read back.
+TEST(Study, PartsAreAUnionThatPlansSharedJobsOnce) {
+  TempDir dir;
+  const std::string semi = scenes() + "/semi-opaque.json";
+  const StudySpec s = readStudy(dir.write("s.json", R"({"scenes": "default", "techniques": "dcs", "parts": [
+      {"techniques": ["dcs", "pcss"]},
+      {"shadings": ["modulate", "ratio"]},
+      {"patterns": ["correlated", "interleaved"]},
+      {"scenes": [{"file": ")" + semi + R"(", "opacity": 1}]}]})"));
+  ASSERT_EQ(s.parts.size(), 4u);
+  EXPECT_EQ(jobCount(s), 3u + 4 + 4 + 2) << "an upper bound: the parts' products";
+  const std::vector<Job> jobs = planJobs(s);
+  // default/ratio/correlated: reference, dcs, pcss; modulate: reference, dcs; interleaved:
+  // reference, dcs; the opaque twin: reference, dcs.
+  ASSERT_EQ(jobs.size(), 9u);
+  std::set<std::string> ids, shadings, patterns;
+  for (const Job& j : jobs) {
+    ids.insert(j.id);
+    shadings.insert(j.shading), patterns.insert(j.pattern);
+    const Job back = Job::fromJson(j.json(), "test");
+    EXPECT_EQ(back.json(), j.json()) << "a row reads back as itself";
+    if (j.scene == semi) {
+      EXPECT_EQ(j.variant, std::vector<std::string>{"opacity=1"});
+      EXPECT_EQ(j.json().at("variant"), nlohmann::json::array({"opacity=1"}));
+    } else {
+      EXPECT_FALSE(j.json().contains("variant")) << "a default axis is not in the row";
+    }
+  }
+  EXPECT_EQ(ids.size(), jobs.size());
+  EXPECT_EQ(shadings, (std::set<std::string>{"modulate", "ratio"}));
+  EXPECT_EQ(patterns, (std::set<std::string>{"correlated", "interleaved"}));
+  EXPECT_EQ(s.allScenes().size(), 2u);
+}
+
+// Light scales multiply the configurations (the converged reference is one per scale, its
+// scene differs); a technique's profile parameters reach its jobs.
+TEST(Study, LightScalesAndProfilesReachTheJobs) {
+  TempDir dir;
+  const StudySpec s = readStudy(dir.write("s.json", R"({"scenes": "default", "samples": [8, 16],
+      "techniques": [{"name": "dcs", "params": {"path": "raster"}, "profile": {"profile": true}}],
+      "light-scales": [0.5, 2], "reference": {"converged": true}})"));
+  const std::vector<Job> jobs = planJobs(s);
+  EXPECT_EQ(jobs.size(), jobCount(s));
+  ASSERT_EQ(jobs.size(), 2u * (1 + 2 * 2));
+  std::map<double, std::string> convergedOf;
+  for (const Job& j : jobs) {
+    EXPECT_TRUE(j.lightScale == 0.5 || j.lightScale == 2.0) << j.lightScale;
+    if (j.kind == "converged") convergedOf[j.lightScale] = j.id;
+  }
+  ASSERT_EQ(convergedOf.size(), 2u);
+  for (const Job& j : jobs) {
+    if (j.kind == "converged") continue;
+    EXPECT_EQ(j.converged, convergedOf[j.lightScale]) << "each scale's own converged reference";
+    if (j.kind == "technique") {
+      EXPECT_EQ(j.params, std::vector<std::string>{"path=raster"});
+      EXPECT_EQ(j.profile, std::vector<std::string>{"profile=true"});
+    }
+  }
+}
+
+// The ids hash the scenes' paths relative to the study file: the same study and scenes copied
+// to another folder plan the same ids.
+TEST(Study, IdsDoNotDependOnWhereTheStudyLies) {
+  TempDir a, b;
+  std::vector<std::string> ids[2];
+  int k = 0;
+  for (const TempDir* d : {&a, &b}) {
+    fs::copy_file(scenes() + "/hard/16-contact.json", d->path / "scenes" / "contact.json",
+                  (fs::create_directories(d->path / "scenes"), fs::copy_options::none));
+    const StudySpec s =
+        readStudy(d->write("studies/s.json", R"({"scenes": "../scenes/contact.json", "techniques": "pcss"})"));
+    for (const Job& j : planJobs(s)) ids[k].push_back(j.id);
+    ++k;
+  }
+  EXPECT_EQ(ids[0], ids[1]);
+  ASSERT_FALSE(ids[0].empty());
 }
 
 // A scene that does not load is refused when the study is planned, naming the study and the scene.
@@ -180,6 +273,30 @@ TEST(Study, ASceneThatDoesNotLoadIsRefusedAtPlanTime) {
 namespace penumbra::study {
 namespace {
 
+// A finished job's row written by hand: one run of `ms` a frame (one stage, "work") with this
+// visibility RMSE against the same-sample reference.
+void writeHandRow(const std::string& out, const Job& j, double ms, double rmse, const std::string& renderer) {
+  CompareResult r;
+  r.presets.resize(1);
+  CompareRun run;
+  run.technique = j.technique, run.reference = j.kind == "reference", run.total = {ms, ms, ms};
+  run.stages = {{"work", {ms, ms, ms}}};
+  run.statistics = {{"answer", 42}};
+  run.errors.visibility.rmse = rmse;
+  r.runs = {run};
+  nlohmann::json row = j.json();
+  row["status"] = "ok", row["result"] = r.json()["runs"][0], row["renderer"] = renderer;
+  row["info"] = {{"sceneName", "default"}, {"width", 32}, {"height", 32}};
+  row["files"] = nlohmann::json::array();
+  fs::create_directories(fs::path(out) / "jobs" / j.id);
+  std::ofstream(fs::path(out) / "jobs" / j.id / "row.json") << row.dump();
+}
+
+std::string readText(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 // A merge of hand-written rows (no GL): one scene, pcss against the same-sample reference at two
 // seeds. The headline's numbers are the geometric means over the seeds with their range, a
 // missing row is named, and rows of another renderer get a report of their own.
@@ -192,19 +309,8 @@ TEST(Study, MergeTakesGeometricMeansWithTheSeedsSpread) {
   const std::string out = (dir.path / "study").string();
   writePlan(jobs, spec, out);
   // Per seed: raytrace 5 / 20 ms, pcss 10 / 40 ms with visibility RMSE 0.01 / 0.04.
-  auto writeRow = [&](const Job& j, double ms, double rmse, const std::string& renderer) {
-    CompareResult r;
-    r.presets.resize(1);
-    CompareRun run;
-    run.technique = j.technique, run.reference = j.kind == "reference", run.total = {ms, ms, ms};
-    run.errors.visibility.rmse = rmse;
-    r.runs = {run};
-    nlohmann::json row = j.json();
-    row["status"] = "ok", row["result"] = r.json()["runs"][0], row["renderer"] = renderer;
-    row["info"] = {{"sceneName", "default"}, {"width", 32}, {"height", 32}};
-    row["files"] = nlohmann::json::array();
-    fs::create_directories(fs::path(out) / "jobs" / j.id);
-    std::ofstream(fs::path(out) / "jobs" / j.id / "row.json") << row.dump();
+  const auto writeRow = [&](const Job& j, double ms, double rmse, const std::string& renderer) {
+    writeHandRow(out, j, ms, rmse, renderer);
   };
   for (const Job& j : jobs) {
     const bool second = j.seed == 2;
@@ -237,6 +343,36 @@ TEST(Study, MergeTakesGeometricMeansWithTheSeedsSpread) {
   const std::string text((std::istreambuf_iterator<char>(status)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("missing  " + jobs[3].id), std::string::npos) << text;
   std::fclose(sink);
+}
+
+// A study with light scales: the merge tables and draws each technique's error against the
+// scale, per scene; stages.md gives every run's stages, ratio to raytrace and statistics.
+TEST(Study, MergeDrawsErrorAgainstLightSizeAndTheStageTables) {
+  TempDir dir;
+  StudySpec spec = readStudy(dir.write("s.json", R"({"scenes": ["default"], "techniques": ["pcss"], "samples": 8,
+      "sizes": 32, "light-scales": [0.5, 1, 2]})"));
+  const std::vector<Job> jobs = planJobs(spec);
+  ASSERT_EQ(jobs.size(), 6u);
+  const std::string out = (dir.path / "study").string();
+  writePlan(jobs, spec, out);
+  for (const Job& j : jobs)
+    writeHandRow(out, j, j.kind == "reference" ? 10 : 5, j.kind == "reference" ? 0 : 0.02 * j.lightScale, "R");
+  std::FILE* sink = std::fopen("/dev/null", "w");
+  const MergeSummary m = mergeStudy(out, sink);
+  std::fclose(sink);
+  EXPECT_EQ(m.ok, 6u);
+  const fs::path report = fs::path(out) / "report";
+  const std::string lightSize = readText(report / "light-size.md");
+  EXPECT_NE(lightSize.find("| technique | x0.5 | x1 | x2 |"), std::string::npos) << lightSize;
+  EXPECT_NE(lightSize.find("| pcss | 0.0100 | 0.0200 | 0.0400 |"), std::string::npos) << lightSize;
+  EXPECT_TRUE(fs::exists(report / "light-size-default.svg"));
+  const std::string stages = readText(report / "stages.md");
+  EXPECT_NE(stages.find("### samples=8 light=2"), std::string::npos) << stages;
+  EXPECT_NE(stages.find("| pcss | 5.00 [5.00, 5.00] | 0.50 | 0.0 | work 5.00 [5.00, 5.00] | answer 42 |"),
+            std::string::npos)
+      << stages;
+  const std::string headline = readText(report / "headline.md");
+  EXPECT_NE(headline.find("| pcss | samples=8 light=0.5 |"), std::string::npos) << headline;
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // main() of a standalone study binary (penumbra_bench_<study>): the study's flags parsed into its
-// typed options (bench/studies.h), then the same function `penumbra bench` calls. Compiled once
+// typed options (bench/studies.h), then the same function `penumbra bench` calls. The studies
+// that are study files have none: `penumbra study plan/run/merge` runs them. Compiled once
 // (CLI11 makes it a slow unit) for all of them: each binary's main() is one generated line that
 // names its study (src/cli/CMakeLists.txt).
 #include <CLI/CLI.hpp>
@@ -37,28 +38,6 @@ int runStudy(CLI::App& app, int argc, char** argv, Options& o, int (*study)(cons
   }
 }
 
-int speedError(int argc, char** argv) {
-  CLI::App app{"speed against error on the shipped scenes: a study file planned, run and merged",
-               "penumbra_bench_speed_error"};
-  SpeedErrorOptions o;
-  app.add_option("--study", o.study, "the study file (docs/studies.md)")->capture_default_str();
-  app.add_option("-o", o.outDir, "the study's folder")->required();
-  return runStudy(app, argc, argv, o, speedErrorStudy);
-}
-
-int dcs(int argc, char** argv) {
-  CLI::App app{"the DCS paper's studies in one run", "penumbra_bench_dcs"};
-  DcsStudyOptions o;
-  app.add_option("scene", o.scene, "scene for the mode, sample-count, shading and interleaving studies");
-  app.add_option("--semi", o.semi, "scene with semi-opaque occluders (its opaque twin is made in memory)");
-  app.add_option("-W", o.width);
-  app.add_option("-H", o.height);
-  app.add_option("--frames", o.frames);
-  app.add_option("--warmup", o.warmup);
-  app.add_option("--json", o.json);
-  return runStudy(app, argc, argv, o, dcsStudies);
-}
-
 int multiview(int argc, char** argv) {
   CLI::App app{"the multi-view shadow-map studies in one run", "penumbra_bench_multiview"};
   MultiviewOptions o;
@@ -89,26 +68,6 @@ int singleMap(int argc, char** argv) {
   return runStudy(app, argc, argv, o, singleMapStudies);
 }
 
-int timings(int argc, char** argv) {
-  CLI::App app{"per-stage timing of techniques against raytrace", "penumbra_bench"};
-  TimingOptions o;
-  std::string pattern = "correlated", shading = "modulate";
-  app.add_option("scene", o.scene);
-  app.add_option("-W", o.width);
-  app.add_option("-H", o.height);
-  app.add_option("--samples", o.samples)->delimiter(',');
-  app.add_option("--techniques", o.techniques)->delimiter(',');
-  app.add_option("--frames", o.frames);
-  app.add_option("--warmup", o.warmup);
-  app.add_option("--json", o.json);
-  app.add_option("--pattern", pattern, "correlated | decorrelated | interleaved");
-  app.add_option("--shading", shading, "modulate (eq. 3) | per-sample (eq. 6) | ratio");
-  return runStudy(app, argc, argv, o, techniqueTimings, [&] {
-    o.pattern = cli::parsePixelPattern(pattern);
-    o.shading = cli::parseShadingMode(shading);
-  });
-}
-
 int shading(int argc, char** argv) {
   CLI::App app{"shading modes against the converged shaded reference", "penumbra_bench_shading"};
   ShadingStudyOptions o;
@@ -123,27 +82,11 @@ int shading(int argc, char** argv) {
   return runStudy(app, argc, argv, o, shadingStudy);
 }
 
-int lightSize(int argc, char** argv) {
-  CLI::App app{"error against light size", "penumbra_bench_light_size"};
-  LightSizeOptions o;
-  app.add_option("--scenes", o.scenes, "scene files")->delimiter(',');
-  app.add_option("--scales", o.scales, "light scales (comma-separated)")->delimiter(',');
-  app.add_option("--techniques", o.techniques)->delimiter(',');
-  app.add_option("--samples", o.samples);
-  app.add_option("-W", o.width, "image width (height: the scene's aspect)");
-  app.add_option("--frames", o.frames, "timed frames per technique and size");
-  app.add_option("--warmup", o.warmup);
-  app.add_option("--images", o.images, "write each size's PNG images (0: reports and plots only)");
-  app.add_option("-o", o.outDir, "output folder")->required();
-  return runStudy(app, argc, argv, o, lightSizeStudy);
-}
-
 }  // namespace
 
 int penumbraBenchMain(const char* study, int argc, char** argv) {
   // Keyed like studyTable() (bench/studies.h).
   static const std::map<std::string, std::function<int(int, char**)>> mains = {
-      {"speed-error", speedError}, {"dcs", dcs},         {"multiview", multiview}, {"single-map", singleMap},
-      {"techniques", timings},     {"shading", shading}, {"light-size", lightSize}};
+      {"multiview", multiview}, {"single-map", singleMap}, {"shading", shading}};
   return mains.at(study)(argc, argv);
 }

@@ -34,9 +34,20 @@ struct Row {
   bool ok() const { return !row.is_null() && row.value("status", "") == "ok"; }
 };
 
+// A job's scene with its variant ("semi-opaque.json opacity=1"): the unit of a scene report.
+std::string sceneKey(const Job& j) {
+  std::string key = j.scene;
+  for (const auto& v : j.variant) key += " " + v;
+  return key;
+}
+
 std::string configLabel(const Job& j) {
-  return fmt::format("{} samples={} {}x{} seed={} {}", j.scene, j.samples, j.size.width, j.size.height, j.seed,
-                     j.strategy);
+  std::string label = fmt::format("{} samples={} {}x{} seed={} {}", sceneKey(j), j.samples, j.size.width, j.size.height,
+                                  j.seed, j.strategy);
+  if (j.lightScale != 1.0) label += fmt::format(" light={}", j.lightScale);
+  if (j.shading != "ratio") label += " " + j.shading;
+  if (j.pattern != "correlated") label += " " + j.pattern;
+  return label;
 }
 
 // ---- results.jsonl and results.csv
@@ -48,7 +59,8 @@ std::string number(const json& j, const char* key) {
 
 std::string resultsCsv(const std::vector<Row>& rows) {
   std::string csv =
-      "id,kind,status,scene,scene_name,technique,params,samples,width,height,seed,strategy,total_ms,total_ms_min,"
+      "id,kind,status,scene,variant,scene_name,technique,params,samples,width,height,seed,strategy,light_scale,"
+      "shading,pattern,total_ms,total_ms_min,"
       "total_ms_max,prepare_ms,memory_bytes,visibility_rmse,visibility_rmse_outside_band,shaded_rmse,"
       "converged_visibility_rmse,converged_shaded_rmse,flip,sample_agreement,misclassified_pixels,"
       "unshadowed_pixels,reference_noise_visibility,date,seconds,renderer,gl_version,host,error\n";
@@ -60,20 +72,23 @@ std::string resultsCsv(const std::vector<Row>& rows) {
     const json errors = result.value("errors", json::object()), conv = result.value("convergedErrors", json::object());
     const json total = result.value("totalSpreadMs", json::object());
     const json noise = result.value("convergedReferenceNoise", result.value("noise", json::object()));
-    std::string params;
-    for (const auto& p : j.params) params += (params.empty() ? "" : " ") + p;
+    const auto joined = [](const std::vector<std::string>& v) { return fmt::format("{}", fmt::join(v, " ")); };
     const std::vector<std::string> fields = {j.id,
                                              j.kind,
                                              row.value("status", "?"),
                                              j.scene,
+                                             joined(j.variant),
                                              row.value("info", json::object()).value("sceneName", ""),
                                              j.technique,
-                                             params,
+                                             joined(j.params),
                                              std::to_string(j.samples),
                                              number(row.value("info", json::object()), "width"),
                                              number(row.value("info", json::object()), "height"),
                                              std::to_string(j.seed),
                                              j.strategy,
+                                             fmt::format("{}", j.lightScale),
+                                             j.shading,
+                                             j.pattern,
                                              number(total, "median"),
                                              number(total, "min"),
                                              number(total, "max"),
@@ -106,20 +121,31 @@ std::string resultsCsv(const std::vector<Row>& rows) {
 
 // The axes that vary across the study's configurations, for preset labels.
 struct Axes {
-  bool sizes = false, seeds = false, strategies = false;
+  bool sizes = false, seeds = false, strategies = false, lightScales = false, shadings = false, patterns = false;
+  // Whether the headline names its presets by label (an axis but samples and seeds varies).
+  bool labelled() const { return sizes || strategies || lightScales || shadings || patterns; }
 };
 
 Axes axesOf(const std::vector<Row>& rows) {
   std::set<std::pair<int, int>> sizes;
   std::set<std::uint32_t> seeds;
-  std::set<std::string> strategies;
+  std::set<std::string> strategies, shadings, patterns;
+  std::set<double> lightScales;
   for (const Row& r : rows) {
+    if (r.job->kind == "converged") continue;
     sizes.insert({r.job->size.width, r.job->size.height});
     seeds.insert(r.job->seed);
     strategies.insert(r.job->strategy);
+    lightScales.insert(r.job->lightScale);
+    shadings.insert(r.job->shading);
+    patterns.insert(r.job->pattern);
   }
-  return {sizes.size() > 1, seeds.size() > 1, strategies.size() > 1};
+  return {sizes.size() > 1,       seeds.size() > 1,    strategies.size() > 1,
+          lightScales.size() > 1, shadings.size() > 1, patterns.size() > 1};
 }
+
+// The preset axes a study can have, in the order of a preset's label.
+constexpr const char* kPresetAxes[] = {"samples", "size", "light", "shading", "pattern", "seed", "strategy"};
 
 ComparePreset presetOf(const Job& j, const json& info, const Axes& axes) {
   ComparePreset p;
@@ -127,6 +153,9 @@ ComparePreset presetOf(const Job& j, const json& info, const Axes& axes) {
   p.width = info.value("width", j.size.width), p.height = info.value("height", j.size.height);
   p.values = {{"samples", std::to_string(j.samples)}};
   if (axes.sizes) p.values.push_back({"size", fmt::format("{}x{}", p.width, p.height)});
+  if (axes.lightScales) p.values.push_back({"light", fmt::format("{}", j.lightScale)});
+  if (axes.shadings) p.values.push_back({"shading", j.shading});
+  if (axes.patterns) p.values.push_back({"pattern", j.pattern});
   if (axes.seeds) p.values.push_back({"seed", std::to_string(j.seed)});
   if (axes.strategies) p.values.push_back({"strategy", j.strategy});
   for (const auto& [k, v] : p.values) p.label += (p.label.empty() ? "" : " ") + k + "=" + v;
@@ -136,9 +165,10 @@ ComparePreset presetOf(const Job& j, const json& info, const Axes& axes) {
 // The comparison of one scene, rebuilt from its reference and technique rows (plan order:
 // each configuration's reference before its techniques), the images those of the jobs' folders.
 struct SceneReport {
-  std::string name;
+  std::string name, folder;
   CompareResult result;
-  std::vector<std::uint32_t> presetSeeds;  // per preset
+  std::vector<std::string> statisticsFrom;  // per run: "a profiled frame (...)" or ""
+  std::vector<std::uint32_t> presetSeeds;   // per preset
   std::size_t missing = 0, rows = 0;
 };
 
@@ -154,7 +184,8 @@ SceneReport sceneReport(const std::vector<const Row*>& rows, const Axes& axes, c
     }
     const Job& j = *r->job;
     json info = r->row.value("info", json::object());
-    const std::string key = fmt::format("{}/{}x{}/{}/{}", j.samples, j.size.width, j.size.height, j.seed, j.strategy);
+    const std::string key = fmt::format("{}/{}x{}/{}/{}/{}/{}/{}", j.samples, j.size.width, j.size.height, j.seed,
+                                        j.strategy, j.lightScale, j.shading, j.pattern);
     auto [it, added] = presetOfConfig.emplace(key, s.result.presets.size());
     if (added) {
       s.result.presets.push_back(presetOf(j, info, axes));
@@ -183,13 +214,16 @@ SceneReport sceneReport(const std::vector<const Row*>& rows, const Axes& axes, c
         s.result.insets.push_back({i[0].get<int>(), i[1].get<int>(), i[2].get<int>(), i[3].get<int>()});
       s.result.insetSource = info.value("insetSource", "chosen");
       s.name = info.value("sceneName", j.scene);
+      for (const auto& v : j.variant) s.name += " " + v;
     }
     s.result.runs.push_back(std::move(run));
+    s.statisticsFrom.push_back(r->ok() ? r->row.at("result").value("statisticsFrom", "") : "");
   }
   if (s.result.info.is_null()) s.result.info = json::object();
+  if (!s.name.empty()) s.result.info["sceneName"] = s.name;
   for (const char* k : {"presets", "insets", "insetSource", "incomplete"}) s.result.info.erase(k);
   json sweeps = json::array();
-  for (const char* axis : {"samples", "size", "seed", "strategy"}) {
+  for (const char* axis : kPresetAxes) {
     std::vector<std::string> values;
     for (const auto& p : s.result.presets)
       for (const auto& [k, v] : p.values)
@@ -276,18 +310,22 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
   h.md = fmt::format(
       "| technique | {} | ms (geo. mean) | x raytrace time | visibility RMSE vs {} (geo. mean) | on the Pareto front "
       "| scenes |\n|---|---|---|---|---|---|---|\n",
-      axes.sizes || axes.strategies ? "preset" : "samples", against);
+      axes.labelled() ? "preset" : "samples", against);
   // Columns wide enough for a [min, max] over the seeds.
   const int wMs = axes.seeds ? 22 : 10, wX = axes.seeds ? 20 : 11, wErr = axes.seeds ? 26 : 24;
+  // And for the longest name and preset.
+  std::size_t wName = 24, wPreset = 22;
+  for (const std::string& name : order) wName = std::max(wName, name.size());
+  for (const ComparePreset& p : presets) wPreset = std::max(wPreset, axes.labelled() ? p.label.size() : 0);
   h.text = fmt::format(
-      "Headline: geometric mean over {} scenes (or those named){}\n{:<24} {:>22} {:>{}} {:>{}} {:>{}} {:>8}  {}\n",
-      scenes.size(), axes.seeds ? "; [min, max] over seeds" : "", "technique",
-      axes.sizes || axes.strategies ? "preset" : "samples", "ms", wMs, "x raytrace", wX, "RMSE vs " + against, wErr,
-      "front", "scenes");
+      "Headline: geometric mean over {} scenes (or those named){}\n{:<{}} {:>{}} {:>{}} {:>{}} {:>{}} {:>8}  {}\n",
+      scenes.size(), axes.seeds ? "; [min, max] over seeds" : "", "technique", wName,
+      axes.labelled() ? "preset" : "samples", wPreset, "ms", wMs, "x raytrace", wX, "RMSE vs " + against, wErr, "front",
+      "scenes");
   for (const std::string& name : order)
     for (std::size_t pi = 0; pi < presets.size(); ++pi) {
       const ComparePreset& p = presets[pi];
-      const std::string shown = axes.sizes || axes.strategies ? p.label : std::to_string(p.samples);
+      const std::string shown = axes.labelled() ? p.label : std::to_string(p.samples);
       const auto bySeed = acc.find({name, p.label});
       const auto failed = failedOn.find({name, p.label});
       if (bySeed == acc.end() && failed == failedOn.end()) continue;
@@ -312,8 +350,8 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
         h.plot.runs.push_back(f);
       }
       if (ms.empty()) {
-        h.text += fmt::format("{:<24} {:>22} {:>{}} {:>{}} {:>{}} {:>8}  {}\n", name, shown, "-", wMs, "-", wX, "-",
-                              wErr, "-", ran);
+        h.text += fmt::format("{:<{}} {:>{}} {:>{}} {:>{}} {:>{}} {:>8}  {}\n", name, wName, shown, wPreset, "-", wMs,
+                              "-", wX, "-", wErr, "-", ran);
         h.md += fmt::format("| {} | {} | - | - | - | - | {} |\n", name, shown, ran);
         continue;
       }
@@ -333,8 +371,8 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
       const std::string errText = fmt::format("{:.4f}", e) + range(err, "{:.4f}");
       const std::string xText = fmt::format("{:.2f}", x) + range(ratio, "{:.2f}");
       const int runs = n * int(ms.size());
-      h.text += fmt::format("{:<24} {:>22} {:>{}} {:>{}} {:>{}} {:>5}/{}  {}\n", name, shown, msText, wMs, xText, wX,
-                            errText, wErr, front, runs, ran);
+      h.text += fmt::format("{:<{}} {:>{}} {:>{}} {:>{}} {:>{}} {:>5}/{}  {}\n", name, wName, shown, wPreset, msText,
+                            wMs, xText, wX, errText, wErr, front, runs, ran);
       h.md += fmt::format("| {} | {} | {} | {} | {} | {}/{} | {} |\n", name, shown, msText, xText, errText, front, runs,
                           ran);
       CompareRun run;
@@ -354,17 +392,126 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
   return h;
 }
 
+// ---- per-stage timings
+
+std::string spreadText(const Spread& s) { return fmt::format("{:.2f} [{:.2f}, {:.2f}]", s.median, s.min, s.max); }
+
+// stages.md: per scene and configuration, each run's frame time with its spread over the timed
+// frames, its ratio to raytrace's, its memory, every stage's time and its statistics (from a
+// profiled frame where the study asked for one): the tables of the timing studies.
+std::string stagesMd(const std::vector<SceneReport>& scenes) {
+  std::string md =
+      "# Per-stage timings\n\nms per frame: median [min, max] over the timed frames (glFinish and a steady clock "
+      "around each stage); x raytrace: the frame time over raytrace's at the same configuration; memory: render "
+      "targets and buffers.\n";
+  for (const SceneReport& s : scenes) {
+    md += fmt::format("\n## {}\n", s.name);
+    const CompareResult& r = s.result;
+    for (std::size_t pi = 0; pi < r.presets.size(); ++pi) {
+      const auto raytrace = std::find_if(r.runs.begin(), r.runs.end(), [&](const CompareRun& x) {
+        return x.reference && x.preset == pi && !x.failed;
+      });
+      md += fmt::format(
+          "\n### {}\n\n| technique | ms | x raytrace | memory MiB | stages (ms) | statistics |\n"
+          "|---|---|---|---|---|---|\n",
+          r.presets[pi].label);
+      for (std::size_t i = 0; i < r.runs.size(); ++i) {
+        const CompareRun& run = r.runs[i];
+        if (run.preset != pi) continue;
+        if (run.failed) {
+          md += fmt::format("| {} | failed: {} | | | | |\n", runName(run), run.failure);
+          continue;
+        }
+        std::vector<std::string> stages, stats;
+        for (const auto& [stage, sp] : run.stages) stages.push_back(stage + " " + spreadText(sp));
+        for (const auto& [k, v] : run.statistics) stats.push_back(fmt::format("{} {:g}", k, v));
+        if (!s.statisticsFrom[i].empty() && s.statisticsFrom[i] != "the last timed frame")
+          stats.insert(stats.begin(), "(" + s.statisticsFrom[i] + ")");
+        md += fmt::format(
+            "| {} | {} | {} | {:.1f} | {} | {} |\n", runName(run), spreadText(run.total),
+            raytrace == r.runs.end() ? "-" : fmt::format("{:.2f}", run.total.median / raytrace->total.median),
+            double(run.memoryBytes) / (1024.0 * 1024.0), fmt::join(stages, "; "), fmt::join(stats, "; "));
+      }
+    }
+  }
+  return md;
+}
+
+// ---- light-size curves
+
+// Where the study has several light scales: per scene a chart of each technique's error (the
+// headline's: against the converged reference where there is one) against the light's scale,
+// one chart per configuration of the other axes, and the tables (light-size.md).
+std::string lightSizeCurves(const std::vector<SceneReport>& scenes, const fs::path& root) {
+  std::string md = "# Error against light size\n\nEach scene's lights scaled (1: the scene's own); ";
+  bool any = false;
+  for (const SceneReport& s : scenes) {
+    const CompareResult& r = s.result;
+    // (the preset's label without its light) -> technique -> (scale, error)
+    std::map<std::string, std::map<std::string, std::vector<std::pair<double, double>>>> curves;
+    std::map<std::string, TechniqueFamily> family;
+    std::vector<std::string> order;
+    std::set<double> scales;
+    for (const CompareRun& run : r.runs) {
+      if (run.failed || run.reference) continue;
+      const ComparePreset& p = r.presets[run.preset];
+      std::string others;
+      double scale = 1.0;
+      for (const auto& [k, v] : p.values)
+        if (k == "light")
+          scale = std::stod(v);
+        else
+          others += (others.empty() ? "" : " ") + k + "=" + v;
+      const std::string name = runName(run);
+      if (std::find(order.begin(), order.end(), name) == order.end()) order.push_back(name);
+      family[name] = run.family;
+      curves[others][name].emplace_back(scale, run.plotError());
+      scales.insert(scale);
+    }
+    if (scales.size() < 2) continue;
+    if (!any) md += errorAxisName(r, ErrorAxis::Visibility) + ".\n";
+    any = true;
+    int chart = 0;
+    for (auto& [others, byName] : curves) {
+      const std::string svg = fmt::format("light-size-{}{}.svg", s.folder, chart++ ? fmt::format("-{}", chart) : "");
+      md += fmt::format("\n## {} ({})\n\nChart: [{}]({})\n\n| technique |", s.name, others, svg, svg);
+      std::string rule = "|---|";
+      for (double x : scales) md += fmt::format(" x{:g} |", x), rule += "---|";
+      md += "\n" + rule + "\n";
+      std::vector<ChartSeries> series;
+      for (const std::string& name : order) {
+        auto it = byName.find(name);
+        if (it == byName.end()) continue;
+        std::sort(it->second.begin(), it->second.end());
+        md += "| " + name + " |";
+        for (double x : scales) {
+          const auto at = std::find_if(it->second.begin(), it->second.end(), [&](auto& p) { return p.first == x; });
+          md += at == it->second.end() ? " - |" : fmt::format(" {:.4f} |", at->second);
+        }
+        md += "\n";
+        series.push_back({name, family[name], it->second});
+      }
+      writeTextFile((root / svg).string(),
+                    lineChartSvg("Error against light size: " + s.name + (others.empty() ? "" : ", " + others),
+                                 "light scale (x the scene's light)", errorAxisName(r, ErrorAxis::Visibility), series));
+    }
+  }
+  return any ? md : "";
+}
+
 // report/index.html: the headline plot and table, which technique when, the scenes' reports and
 // the jobs missing or failed.
 std::string indexHtml(const std::string& study, const std::string& renderer, const Headline& h,
-                      const std::vector<std::pair<std::string, std::string>>& scenes, const std::string& status) {
+                      const std::vector<std::pair<std::string, std::string>>& scenes, const std::string& status,
+                      bool lightSize) {
   std::string page = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + escapeMarkup(study) +
                      "</title><style>body{font-family:sans-serif;max-width:1000px;margin:1em auto}"
                      "pre{background:#f4f4f4;padding:.5em;overflow-x:auto}</style></head><body>\n";
   page += "<h1>Study " + escapeMarkup(study) + "</h1>\n<p>" + escapeMarkup(renderer) + "</p>\n";
   page += "<h2>Speed against error, across the scenes</h2>\n<img src=\"headline.svg\" alt=\"headline plot\">\n";
-  page += "<pre>" + escapeMarkup(h.text) + "</pre>\n<h2>Which technique when</h2>\n<pre>" + escapeMarkup(h.summary) +
-          "</pre>\n<h2>Scenes</h2>\n<ul>\n";
+  page += "<pre>" + escapeMarkup(h.text) + "</pre>\n<p><a href=\"stages.md\">Per-stage timings</a>";
+  if (lightSize) page += " · <a href=\"light-size.md\">Error against light size</a>";
+  page += "</p>\n<h2>Which technique when</h2>\n<pre>" + escapeMarkup(h.summary) + "</pre>\n<h2>Scenes</h2>\n<ul>\n";
   for (const auto& [name, dir] : scenes)
     page += "<li><a href=\"" + escapeMarkup(dir) + "/index.html\">" + escapeMarkup(name) + "</a></li>\n";
   page += "</ul>\n<h2>Jobs</h2>\n<pre>" + escapeMarkup(status) + "</pre>\n</body></html>\n";
@@ -418,18 +565,21 @@ MergeSummary mergeStudy(const std::string& dir, std::FILE* out) {
     const fs::path root =
         renderers.size() == 1 ? fs::path(dir) / "report" : fs::path(dir) / "report" / machineName(renderer);
     std::vector<std::string> sceneOrder;
-    std::map<std::string, std::vector<const Row*>> byScene;
+    std::map<std::string, std::vector<const Row*>> byScene;  // by sceneKey
     for (const Row& r : rows) {
       if (r.job->kind == "converged") continue;
       if (!rendererOf(r).empty() && rendererOf(r) != renderer) continue;
-      if (!byScene.count(r.job->scene)) sceneOrder.push_back(r.job->scene);
-      byScene[r.job->scene].push_back(&r);
+      if (!byScene.count(sceneKey(*r.job))) sceneOrder.push_back(sceneKey(*r.job));
+      byScene[sceneKey(*r.job)].push_back(&r);
     }
     std::vector<SceneReport> scenes;
     std::vector<std::pair<std::string, std::string>> links;
     std::set<std::string> folders;
     for (const std::string& scene : sceneOrder) {
-      std::string folder = fileNameComponent(fs::path(scene).stem().string(), "scene");
+      const Job& first = *byScene[scene].front()->job;
+      std::string folder = fs::path(first.scene).stem().string();
+      for (const auto& v : first.variant) folder += "-" + v;
+      folder = fileNameComponent(folder, "scene");
       while (!folders.insert(folder).second) folder += "_";
       const fs::path reportDir = root / folder;
       fs::create_directories(reportDir);
@@ -437,6 +587,7 @@ MergeSummary mergeStudy(const std::string& dir, std::FILE* out) {
       if (s.result.runs.empty()) continue;
       writeReport(s.result, reportDir.string());
       links.emplace_back(s.name, folder);
+      s.folder = folder;
       scenes.push_back(std::move(s));
     }
     const Headline h = headlineOf(scenes, axes);
@@ -444,8 +595,11 @@ MergeSummary mergeStudy(const std::string& dir, std::FILE* out) {
     writeTextFile((root / "headline.txt").string(), h.text);
     writeTextFile((root / "summary.md").string(), h.summary);
     writeTextFile((root / "headline.svg").string(), speedErrorSvg(h.plot));
+    writeTextFile((root / "stages.md").string(), stagesMd(scenes));
+    const std::string lightSize = lightSizeCurves(scenes, root);
+    if (!lightSize.empty()) writeTextFile((root / "light-size.md").string(), lightSize);
     writeTextFile((root / "status.txt").string(), status);
-    writeTextFile((root / "index.html").string(), indexHtml(study, renderer, h, links, status));
+    writeTextFile((root / "index.html").string(), indexHtml(study, renderer, h, links, status, !lightSize.empty()));
     std::fprintf(out, "== %s (%zu scenes)\n%s\nWhich technique when (geometric means over the scenes):\n%s\n",
                  renderer.c_str(), scenes.size(), h.text.c_str(), h.summary.c_str());
     sum.reports.push_back(root.string());

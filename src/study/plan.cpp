@@ -5,6 +5,7 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -54,13 +55,20 @@ std::vector<std::string> namedFiles(const std::string& path, const std::string& 
   return names;
 }
 
-std::string hashOf(const json& row, const std::vector<std::string>& inputs) {
+// `path` relative to `base` (the study file's folder), as the id hashes it.
+std::string relativeTo(const std::string& path, const fs::path& base) {
+  if (path == "default") return path;
+  return fs::path(path).lexically_relative(fs::weakly_canonical(base)).generic_string();
+}
+
+std::string hashOf(json row, const std::vector<std::string>& inputs, const fs::path& base) {
   Fnv1a h;
+  row["scene"] = relativeTo(row["scene"].get<std::string>(), base);
   const std::string r = row.dump();
   h.bytes(r.data(), r.size());
   for (const std::string& f : inputs) {
-    const std::string content = readWhole(f);
-    h.bytes(f.data(), f.size());
+    const std::string content = readWhole(f), name = relativeTo(f, base);
+    h.bytes(name.data(), name.size());
     h.bytes(content.data(), content.size());
   }
   const std::string build = buildIdentity();
@@ -77,6 +85,11 @@ json Job::json() const {
                       {"params", params}, {"samples", samples},   {"width", size.width}, {"height", size.height},
                       {"seed", seed},     {"strategy", strategy}, {"frames", frames},    {"warmup", warmup},
                       {"images", images}};
+  if (!variant.empty()) j["variant"] = variant;
+  if (lightScale != 1.0) j["lightScale"] = lightScale;
+  if (shading != "ratio") j["shading"] = shading;
+  if (pattern != "correlated") j["pattern"] = pattern;
+  if (!profile.empty()) j["profile"] = profile;
   if (!reference.empty()) j["reference"] = reference;
   if (!converged.empty()) j["converged"] = converged;
   return j;
@@ -93,6 +106,10 @@ Job Job::fromJson(const nlohmann::json& row, const std::string& where) {
     j.seed = row.at("seed").get<std::uint32_t>(), j.strategy = row.at("strategy").get<std::string>();
     j.frames = row.at("frames").get<int>(), j.warmup = row.at("warmup").get<int>();
     j.images = row.at("images").get<std::string>();
+    j.variant = row.value("variant", std::vector<std::string>{});
+    j.lightScale = row.value("lightScale", 1.0);
+    j.shading = row.value("shading", "ratio"), j.pattern = row.value("pattern", "correlated");
+    j.profile = row.value("profile", std::vector<std::string>{});
     j.reference = row.value("reference", ""), j.converged = row.value("converged", "");
     if (j.kind != "technique" && j.kind != "reference" && j.kind != "converged")
       throw Error(where, "a job of unknown kind '" + j.kind + "'", ExitCode::Usage);
@@ -141,51 +158,67 @@ std::vector<std::string> sceneInputs(const std::string& scene) {
 }
 
 std::vector<Job> planJobs(const StudySpec& s) {
+  const fs::path base = fs::path(s.path).parent_path();
   std::vector<Job> refs, jobs;
-  for (const std::string& scene : s.scenes) {
-    std::vector<std::string> inputs;
-    try {
-      if (scene != "default") {
-        LoadOptions headers;
-        headers.decodeTextures = false;
-        loadScene(scene, {}, headers);
-      }
-      inputs = sceneInputs(scene);
-    } catch (const Error& e) {
-      throw Error(s.path, fmt::format("scenes: {}: {}", scene, e.what()), ExitCode::Usage);
-    }
-    const auto finish = [&](Job& j) {
-      json row = j.json();
-      row.erase("id");
-      j.id = hashOf(row, inputs);
-    };
-    std::map<int, std::string> convergedOf;  // size index -> the converged reference's id
-    for (std::size_t z = 0; z < s.sizes.size() && s.converged; ++z) {
-      Job c{"", "converged", scene,   "raytrace-converged", {}, s.convergedSamples, s.sizes[z], 1, "stratified",
-            1,  0,           s.images};
-      finish(c);
-      convergedOf[int(z)] = c.id;
-      refs.push_back(c);
-    }
-    for (std::size_t z = 0; z < s.sizes.size(); ++z)
-      for (int n : s.samples)
-        for (std::uint32_t seed : s.seeds)
-          for (const std::string& strategy : s.strategies) {
-            Job r{"", "reference", scene, "raytrace", {}, n, s.sizes[z], seed, strategy, s.frames, s.warmup, s.images};
-            if (s.converged) r.converged = convergedOf[int(z)];
-            finish(r);
-            refs.push_back(r);
-            for (const TechniqueAxis& t : s.techniques)
-              for (const auto& params : t.paramSets) {
-                Job j{"",         "technique", scene,    t.name,   params,   n,
-                      s.sizes[z], seed,        strategy, s.frames, s.warmup, s.images};
-                j.reference = r.id;
-                j.converged = r.converged;
-                finish(j);
-                jobs.push_back(j);
-              }
+  std::set<std::string> planned;  // ids, so that parts share their common jobs
+  const auto add = [&](std::vector<Job>& to, const Job& j) {
+    if (planned.insert(j.id).second) to.push_back(j);
+  };
+  std::map<std::string, std::vector<std::string>> inputsOf;  // scene path -> the files it reads
+  for (const StudyAxes& a : s.products())
+    for (const SceneEntry& scene : a.scenes) {
+      if (!inputsOf.count(scene.path)) try {
+          if (scene.path != "default") {
+            LoadOptions headers;
+            headers.decodeTextures = false;
+            loadScene(scene.path, {}, headers);
           }
-  }
+          inputsOf[scene.path] = sceneInputs(scene.path);
+        } catch (const Error& e) {
+          throw Error(s.path, fmt::format("scenes: {}: {}", scene.path, e.what()), ExitCode::Usage);
+        }
+      const auto finish = [&](Job& j) {
+        json row = j.json();
+        row.erase("id");
+        j.id = hashOf(row, inputsOf[scene.path], base);
+      };
+      const auto job = [&](const std::string& kind, const std::string& technique, int samples, const Size& size) {
+        Job j;
+        j.kind = kind, j.scene = scene.path, j.variant = scene.variant, j.technique = technique;
+        j.samples = samples, j.size = size, j.frames = a.frames, j.warmup = a.warmup, j.images = s.images;
+        return j;
+      };
+      for (const Size& size : a.sizes)
+        for (double lightScale : a.lightScales) {
+          std::string convergedId;
+          if (s.converged) {
+            Job c = job("converged", "raytrace-converged", s.convergedSamples, size);
+            c.seed = 1, c.strategy = "stratified", c.lightScale = lightScale, c.frames = 1, c.warmup = 0;
+            finish(c);
+            convergedId = c.id;
+            add(refs, c);
+          }
+          for (int n : a.samples)
+            for (std::uint32_t seed : a.seeds)
+              for (const std::string& strategy : a.strategies)
+                for (const std::string& shading : a.shadings)
+                  for (const std::string& pattern : a.patterns) {
+                    Job r = job("reference", "raytrace", n, size);
+                    r.seed = seed, r.strategy = strategy, r.lightScale = lightScale;
+                    r.shading = shading, r.pattern = pattern, r.converged = convergedId;
+                    finish(r);
+                    add(refs, r);
+                    for (const TechniqueAxis& t : a.techniques)
+                      for (const auto& params : t.paramSets) {
+                        Job j = r;
+                        j.kind = "technique", j.technique = t.name, j.params = params, j.profile = t.profile;
+                        j.reference = r.id;
+                        finish(j);
+                        add(jobs, j);
+                      }
+                  }
+        }
+    }
   refs.insert(refs.end(), jobs.begin(), jobs.end());
   return refs;
 }

@@ -18,20 +18,27 @@
 namespace penumbra::study {
 
 struct Job {
-  std::string id;         // 16 hex digits
-  std::string kind;       // "technique", "reference" (same samples) or "converged"
-  std::string scene;      // a path, or "default"
-  std::string technique;  // kind technique: its name; references: "raytrace" / "raytrace-converged"
+  std::string id;                    // 16 hex digits
+  std::string kind;                  // "technique", "reference" (same samples) or "converged"
+  std::string scene;                 // a path, or "default"
+  std::vector<std::string> variant;  // SceneEntry::variant: the scene changed in memory
+  std::string technique;             // kind technique: its name; references: "raytrace" / "raytrace-converged"
   std::vector<std::string> params;
   int samples = 0;  // light samples a pixel (converged: the reference's own)
   Size size;
   std::uint32_t seed = 0;
   std::string strategy;
+  double lightScale = 1.0;             // every light's extent times this
+  std::string shading = "ratio";       // kShadingModeNames
+  std::string pattern = "correlated";  // kPixelPatternNames
+  std::vector<std::string> profile;    // TechniqueAxis::profile
   int frames = 1, warmup = 0;
   std::string images = "all";  // StudySpec::images
   std::string reference;       // technique jobs: the id of their same-sample reference
   std::string converged;       // technique and reference jobs with a converged reference: its id
 
+  // The row (keys of the axes a study leaves at their defaults are left out: variant,
+  // lightScale, shading, pattern, profile).
   nlohmann::json json() const;
   // A row of jobs.jsonl read back; `where` ("DIR/jobs.jsonl:12") names it in errors.
   static Job fromJson(const nlohmann::json& row, const std::string& where);
@@ -42,8 +49,11 @@ struct Job {
 // material library. "default" reads none.
 std::vector<std::string> sceneInputs(const std::string& scene);
 
-// The jobs of a study, references first. Every scene is loaded once (textures' headers only) so
-// that a scene that does not load is refused here, naming the study file and the scene.
+// The jobs of a study, references first (a study of parts: each part's, in order, a job two
+// parts share once). Every scene is loaded once (textures' headers only) so that a scene that
+// does not load is refused here, naming the study file and the scene. The ids hash the paths of
+// the files a job reads relative to the study file's folder: a copy of the study and its scenes
+// at another path plans the same ids.
 std::vector<Job> planJobs(const StudySpec& spec);
 
 // Writes DIR/jobs.jsonl (one job a line) and DIR/study.json (the study as read), each atomically.

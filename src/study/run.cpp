@@ -17,11 +17,14 @@
 #include "compare/frame_file.h"
 #include "core/error.h"
 #include "core/files.h"
+#include "core/key_values.h"
 #include "core/log.h"
 #include "core/machine.h"
 #include "core/names.h"
 #include "sampling/light_samples.h"
+#include "pipeline/renderer.h"
 #include "scene/scene.h"
+#include "scene/variants.h"
 #include "study/plan.h"
 #include "techniques/registry.h"
 
@@ -102,12 +105,17 @@ class Runner {
     return *context_;
   }
 
-  // The last scene a job used, kept for the next job (a study's jobs come scene by scene).
-  const Scene& scene(const std::string& path) {
-    if (scenePath_ != path || !scene_) {
+  // The last scene a job used (its file, its variant and its lights' scale), kept for the next
+  // job (a study's jobs come scene by scene).
+  const Scene& scene(const Job& j) {
+    const json key = {j.scene, j.variant, j.lightScale};
+    if (sceneKey_ != key || !scene_) {
       scene_.reset();
-      scene_ = std::make_unique<Scene>(path == "default" ? defaultScene() : loadScene(path));
-      scenePath_ = path;
+      Scene s = j.scene == "default" ? defaultScene() : loadScene(j.scene);
+      if (!j.variant.empty()) s = applySceneVariant(std::move(s), j.variant);
+      if (j.lightScale != 1.0) s = withLightsScaled(std::move(s), j.lightScale);
+      scene_ = std::make_unique<Scene>(std::move(s));
+      sceneKey_ = key;
     }
     return *scene_;
   }
@@ -124,6 +132,12 @@ class Runner {
     const auto strategy = valueNamed(kSampleStrategyNames, j.strategy);
     if (!strategy) throw Error(j.id, "unknown sample strategy '" + j.strategy + "'", ExitCode::Usage);
     r.sampling.strategy = *strategy;
+    const auto shading = valueNamed(kShadingModeNames, j.shading);
+    const auto pattern = valueNamed(kPixelPatternNames, j.pattern);
+    if (!shading) throw Error(j.id, "unknown shading mode '" + j.shading + "'", ExitCode::Usage);
+    if (!pattern) throw Error(j.id, "unknown pixel pattern '" + j.pattern + "'", ExitCode::Usage);
+    r.shading = *shading;
+    r.sampling.pattern = *pattern;
     return r;
   }
 
@@ -178,7 +192,7 @@ class Runner {
 
   // What a job measures, as fields of its row.
   json execute(const Job& j, const fs::path& tmp) {
-    const Scene& s = scene(j.scene);
+    const Scene& s = scene(j);
     const RenderSettings settings = settingsOf(j, s);
     if (j.kind == "converged") return renderConverged(j, s, settings, tmp);
     std::optional<FrameResult> reference, converged;
@@ -203,10 +217,29 @@ class Runner {
     const CompareResult r = compareTechniques(context(), s, settings, c);
     json out = r.json();
     if (out["runs"].size() != 1) throw Error(j.id, fmt::format("{} rows where one was due", out["runs"].size()));
-    const json run = out["runs"][0];
+    json run = out["runs"][0];
     out.erase("runs");
     if (run.value("status", "") == "failed") throw Error(j.technique, run.value("error", "?"));
+    if (!j.profile.empty()) run["statistics"] = profiledStatistics(j, s, settings);
+    run["statisticsFrom"] =
+        j.profile.empty() ? "the last timed frame" : "a profiled frame (" + joinKeys(j.profile) + ")";
     return {{"result", run}, {"info", out}};
+  }
+
+  // The statistics of one more, untimed frame with the job's profile parameters added (counters
+  // that would slow the timed frames); a later frame, as the timed ones (dcs plans a light's
+  // later frames from its first).
+  json profiledStatistics(const Job& j, const Scene& s, const RenderSettings& settings) {
+    std::vector<std::string> params = j.params;
+    params.insert(params.end(), j.profile.begin(), j.profile.end());
+    TechniqueParams read(params);
+    auto tech = findTechnique(j.technique).make(read);
+    read.checkConsumed();
+    Renderer renderer(context(), s, settings);
+    for (int i = 0; i < std::max(j.warmup, 1); ++i) renderer.render(*tech, j.technique);
+    json stats = json::object();
+    for (const auto& [k, v] : renderer.render(*tech, j.technique).statistics) stats[k] = v;
+    return stats;
   }
 
   // raytrace-converged of a scene and size: its frame for the jobs that read it, its image, its
@@ -236,7 +269,7 @@ class Runner {
   std::map<std::string, const Job*> byId_;
   std::unique_ptr<gl::Context> context_;
   std::unique_ptr<Scene> scene_;
-  std::string scenePath_;
+  json sceneKey_;
 };
 
 // The jobs a run selects, by index.

@@ -13,7 +13,9 @@
 #include "core/error.h"
 #include "core/key_values.h"
 #include "core/names.h"
+#include "pipeline/renderer.h"
 #include "sampling/light_samples.h"
+#include "scene/variants.h"
 #include "techniques/registry.h"
 
 namespace fs = std::filesystem;
@@ -123,6 +125,15 @@ std::vector<std::vector<std::string>> expandSweeps(const json& sweeps, const std
 
 TechniqueAxis readTechnique(const json& j, const KeyPlace& place) {
   TechniqueAxis t;
+  // A "key": value object as "key=value" strings, in key order.
+  const auto pairs = [](Object& o, const std::string& key) {
+    std::vector<std::string> out;
+    const json& p = o.raw(key);
+    if (!p.is_object()) o.place(key).fail("must be an object of key: value");
+    for (auto it = p.begin(); it != p.end(); ++it)
+      out.push_back(it.key() + "=" + (it.value().is_string() ? it.value().get<std::string>() : it.value().dump()));
+    return out;
+  };
   if (j.is_string()) {
     t.name = j.get<std::string>();
     t.paramSets = {{}};
@@ -130,34 +141,121 @@ TechniqueAxis readTechnique(const json& j, const KeyPlace& place) {
     Object o(j, place.where, place.at);
     if (!o.has("name")) place.fail("name: missing");
     t.name = readString(valueOf(o.raw("name")), o.place("name"));
-    std::vector<std::string> fixed;
-    if (o.has("params")) {
-      const json& p = o.raw("params");
-      if (!p.is_object()) o.place("params").fail("must be an object of key: value");
-      for (auto it = p.begin(); it != p.end(); ++it)
-        fixed.push_back(it.key() + "=" + (it.value().is_string() ? it.value().get<std::string>() : it.value().dump()));
-    }
+    const std::vector<std::string> fixed = o.has("params") ? pairs(o, "params") : std::vector<std::string>{};
     t.paramSets = o.has("sweep") ? expandSweeps(o.raw("sweep"), place.where, o.place("sweep").at)
                                  : std::vector<std::vector<std::string>>{{}};
     for (auto& set : t.paramSets) set.insert(set.begin(), fixed.begin(), fixed.end());
+    if (o.has("profile")) {
+      t.profile = pairs(o, "profile");
+      if (t.profile.empty()) o.place("profile").fail("must not be empty");
+    }
     o.refuseUnknown();
   }
-  // Every parameter set is checked by making the technique (no GL: a technique's constructor
-  // reads its parameters only); its errors are the study's.
+  // Every parameter set (and with the profiled frame's parameters) is checked by making the
+  // technique (no GL: a technique's constructor reads its parameters only); its errors are the
+  // study's.
   try {
     const TechniqueInfo& info = findTechnique(t.name);
-    for (const auto& set : t.paramSets) {
-      const TechniqueParams params(set);
-      info.make(params);
-      params.checkConsumed();
-    }
+    for (const auto& set : t.paramSets)
+      for (bool profiled : {false, true}) {
+        if (profiled && t.profile.empty()) continue;
+        std::vector<std::string> all = set;
+        if (profiled) all.insert(all.end(), t.profile.begin(), t.profile.end());
+        const TechniqueParams params(all);
+        info.make(params);
+        params.checkConsumed();
+      }
   } catch (const Error& e) {
     place.fail(e.what());
   }
   return t;
 }
 
+// A scene entry: a file or glob (or "default"), or {"file": ..., variant keys...}.
+std::vector<SceneEntry> readScenes(const json& j, const fs::path& base, const KeyPlace& place) {
+  if (j.is_string()) {
+    std::vector<SceneEntry> out;
+    for (auto& path : expandScene(j.get<std::string>(), base, place)) out.push_back({path, {}});
+    return out;
+  }
+  Object o(j, place.where, place.at);
+  if (!o.has("file")) place.fail("file: missing");
+  const std::string file = readString(valueOf(o.raw("file")), o.place("file"));
+  std::vector<std::string> variant;
+  for (const std::string& key : sceneVariantKeys())
+    if (o.has(key)) {
+      const json& v = o.raw(key);
+      if (!v.is_number()) o.place(key).fail("must be a number, got " + abbreviate(v.dump()));
+      variant.push_back(key + "=" + v.dump());
+    }
+  o.refuseUnknown();
+  checkSceneVariant(variant, place);
+  std::vector<SceneEntry> out;
+  for (auto& path : expandScene(file, base, o.place("file"))) out.push_back({path, variant});
+  return out;
+}
+
+// The axes of the study's top level, or of one of its parts (`defaults`: the top level's).
+StudyAxes readAxes(Object& o, const StudyAxes& defaults, const fs::path& base) {
+  StudyAxes a = defaults;
+  if (o.has("scenes")) {
+    a.scenes.clear();
+    for (auto& group : o.list("scenes", [&](const json&v, const KeyPlace&p) { return readScenes(v, base, p); }))
+      for (auto& scene : group)
+        if (std::find(a.scenes.begin(), a.scenes.end(), scene) == a.scenes.end()) a.scenes.push_back(scene);
+  }
+  if (o.has("techniques")) a.techniques = o.list("techniques", readTechnique);
+  if (o.has("samples"))
+    a.samples = o.list("samples", [](const json& v, const KeyPlace& p) {
+      return readInteger(valueOf(v), p, 1, PENUMBRA_MAX_SAMPLES);
+    });
+  if (o.has("sizes"))
+    a.sizes = o.list("sizes", [](const json& v, const KeyPlace& p) {
+      if (v.is_array()) {
+        if (v.size() != 2) p.fail("a size is a width or [width, height]");
+        return Size{readInteger(valueOf(v[0]), p, 1, 16384), readInteger(valueOf(v[1]), p, 1, 16384)};
+      }
+      return Size{readInteger(valueOf(v), p, 1, 16384), 0};
+    });
+  if (o.has("seeds"))
+    a.seeds = o.list("seeds", [](const json& v, const KeyPlace& p) {
+      return std::uint32_t(readInteger(valueOf(v), p, 0, 2147483647));
+    });
+  // A name among `names` (a kSampleStrategyNames-like table).
+  const auto named = [](const auto& names, const char* what) {
+    return [&names, what](const json& v, const KeyPlace& p) {
+      const std::string name = readString(valueOf(v), p);
+      if (!valueNamed(names, name)) p.fail(fmt::format("unknown {} '{}' ({})", what, name, namesOf(names)));
+      return name;
+    };
+  };
+  if (o.has("strategies")) a.strategies = o.list("strategies", named(kSampleStrategyNames, "strategy"));
+  if (o.has("shadings")) a.shadings = o.list("shadings", named(kShadingModeNames, "shading mode"));
+  if (o.has("patterns")) a.patterns = o.list("patterns", named(kPixelPatternNames, "pixel pattern"));
+  if (o.has("light-scales"))
+    a.lightScales = o.list("light-scales", [](const json& v, const KeyPlace& p) {
+      const double x = readNumber(valueOf(v), p, 0.0, 1e6);
+      if (!(x > 0.0)) p.fail("must be greater than 0");
+      return x;
+    });
+  a.frames = o.integer("frames", a.frames, 1, 100);
+  a.warmup = o.integer("warmup", a.warmup, 0, 100);
+  return a;
+}
+
 }  // namespace
+
+std::vector<StudyAxes> StudySpec::products() const {
+  return parts.empty() ? std::vector<StudyAxes>{static_cast<const StudyAxes&>(*this)} : parts;
+}
+
+std::vector<SceneEntry> StudySpec::allScenes() const {
+  std::vector<SceneEntry> out;
+  for (const StudyAxes& p : products())
+    for (const SceneEntry& e : p.scenes)
+      if (std::find(out.begin(), out.end(), e) == out.end()) out.push_back(e);
+  return out;
+}
 
 StudySpec readStudy(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -173,51 +271,27 @@ StudySpec readStudy(const std::string& path) {
   Object o(j, path, "");
   const fs::path base = fs::path(path).parent_path();
   s.name = o.has("name") ? readString(valueOf(o.raw("name")), o.place("name")) : fs::path(path).stem().string();
-  for (const char* required : {"scenes", "techniques"})
-    if (!o.has(required)) o.place(required).fail("missing");
-  for (auto& group : o.list(
-           "scenes", [&](const json&v, const KeyPlace&p) { return expandScene(readString(valueOf(v), p), base, p); }))
-    for (auto& scene : group)
-      if (std::find(s.scenes.begin(), s.scenes.end(), scene) == s.scenes.end()) s.scenes.push_back(scene);
-  s.techniques = o.list("techniques", readTechnique);
-  s.samples =
-      o.has("samples")
-          ? o.list("samples",
-                   [](const json& v, const KeyPlace& p) { return readInteger(valueOf(v), p, 1, PENUMBRA_MAX_SAMPLES); })
-          : std::vector<int>{16};
-  s.sizes =
-      o.has("sizes")
-          ? o.list("sizes",
-                   [](const json& v, const KeyPlace& p) {
-                     if (v.is_array()) {
-                       if (v.size() != 2) p.fail("a size is a width or [width, height]");
-                       return Size{readInteger(valueOf(v[0]), p, 1, 16384), readInteger(valueOf(v[1]), p, 1, 16384)};
-                     }
-                     return Size{readInteger(valueOf(v), p, 1, 16384), 0};
-                   })
-          : std::vector<Size>{{128, 0}};
-  s.seeds = o.has("seeds") ? o.list("seeds",
-                                    [](const json& v, const KeyPlace& p) {
-                                      return std::uint32_t(readInteger(valueOf(v), p, 0, 2147483647));
-                                    })
-                           : std::vector<std::uint32_t>{1};
-  s.strategies = o.has("strategies")
-                     ? o.list("strategies",
-                              [](const json& v, const KeyPlace& p) {
-                                const std::string name = readString(valueOf(v), p);
-                                if (!valueNamed(kSampleStrategyNames, name))
-                                  p.fail("unknown strategy '" + name + "' (" + namesOf(kSampleStrategyNames) + ")");
-                                return name;
-                              })
-                     : std::vector<std::string>{"stratified"};
+  static_cast<StudyAxes&>(s) = readAxes(o, StudyAxes{}, base);
+  if (o.has("parts")) {
+    std::size_t i = 0;
+    for (const json& part : o.list("parts", [](const json&v, const KeyPlace&) { return v; })) {
+      Object p(part, path, fmt::format("parts[{}]", i++));
+      s.parts.push_back(readAxes(p, s, base));
+      p.refuseUnknown();
+    }
+  }
+  // Every product needs scenes and techniques, from its part or the top level.
+  const std::vector<StudyAxes> products = s.products();
+  for (std::size_t i = 0; i < products.size(); ++i)
+    for (const auto& [key, empty] :
+         {std::pair{"scenes", products[i].scenes.empty()}, std::pair{"techniques", products[i].techniques.empty()}})
+      if (empty) (s.parts.empty() ? o.place(key) : o.place(fmt::format("parts[{}].{}", i, key))).fail("missing");
   if (o.has("reference")) {
     Object r(o.raw("reference"), path, "reference");
     if (r.has("converged")) s.converged = readBoolean(valueOf(r.raw("converged")), r.place("converged"));
     s.convergedSamples = r.integer("converged-samples", s.convergedSamples, 16, 1 << 20);
     r.refuseUnknown();
   }
-  s.frames = o.integer("frames", s.frames, 1, 100);
-  s.warmup = o.integer("warmup", s.warmup, 0, 100);
   if (o.has("images")) {
     s.images = readString(valueOf(o.raw("images")), o.place("images"));
     if (s.images != "all" && s.images != "png" && s.images != "none")
@@ -232,12 +306,18 @@ StudySpec readStudy(const std::string& path) {
 }
 
 std::uint64_t jobCount(const StudySpec& s) {
-  std::uint64_t sets = 0;
-  for (const TechniqueAxis& t : s.techniques) sets += t.paramSets.size();
-  const std::uint64_t configurations =
-      std::uint64_t(s.scenes.size()) * s.samples.size() * s.sizes.size() * s.seeds.size() * s.strategies.size();
-  const std::uint64_t converged = s.converged ? std::uint64_t(s.scenes.size()) * s.sizes.size() : 0;
-  return configurations * (sets + 1) + converged;
+  std::uint64_t total = 0;
+  for (const StudyAxes& a : s.products()) {
+    std::uint64_t sets = 0;
+    for (const TechniqueAxis& t : a.techniques) sets += t.paramSets.size();
+    const std::uint64_t configurations = std::uint64_t(a.scenes.size()) * a.samples.size() * a.sizes.size() *
+                                         a.seeds.size() * a.strategies.size() * a.lightScales.size() *
+                                         a.shadings.size() * a.patterns.size();
+    const std::uint64_t converged =
+        s.converged ? std::uint64_t(a.scenes.size()) * a.sizes.size() * a.lightScales.size() : 0;
+    total += configurations * (sets + 1) + converged;
+  }
+  return total;
 }
 
 }  // namespace penumbra::study

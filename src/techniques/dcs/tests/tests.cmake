@@ -7,4 +7,4 @@ penumbra_add_test(test_dcs_edge_lut ${CMAKE_CURRENT_LIST_DIR}/dcs_edge_lut_test.
 list(APPEND PENUMBRA_RENDER_TESTS ${CMAKE_CURRENT_LIST_DIR}/render_dcs_test.cpp ${CMAKE_CURRENT_LIST_DIR}/render_dcs_paths_test.cpp)
 list(APPEND PENUMBRA_RENDER_SANITIZE Scenes/DcsVsRaytrace.*/15_two_plates_N16 Scenes/DcsSemiOpaque.*/glass_layers_N16
      Bases/DcsOverflow.*/base16_plates17 DcsOverflowRefusal.*)
-list(APPEND PENUMBRA_RENDER_SLOW DcsRasterPath.EndPlanesCutTheFillNotTheResult HardCase34.ViewRaysThroughVertexLinesCountEveryVolume)
+list(APPEND PENUMBRA_RENDER_SLOW DcsRasterPath.EndPlanesCutTheFillNotTheResult Samples/HardCase34.ViewRaysThroughVertexLinesCountEveryVolume/*)
