@@ -6,9 +6,6 @@ namespace penumbra::bench {
 
 namespace {
 
-// Full runs use each study's defaults (the sizes of its README section); quick ones shrink
-// images, maps and frame counts so that the whole suite is a smoke run of a few minutes.
-
 // A study file's study: bench/studies/<name>.json (quick: <name>-quick.json) into the results
 // folder's <name>/.
 int fromFile(const std::string& name, const StudyRun& r, std::FILE* out) {
@@ -31,22 +28,16 @@ int timings(const StudyRun& r, std::FILE* out) { return fromFile("techniques", r
 int dcsScale(const StudyRun& r, std::FILE* out) { return fromFile("dcs-scale", r, out); }
 int lightSize(const StudyRun& r, std::FILE* out) { return fromFile("light-size", r, out); }
 
-int multiview(const StudyRun& r, std::FILE* out) {
-  MultiviewOptions o;
-  o.backend = r.backend;
-  if (r.quick) {
-    o.width = 128, o.height = 128, o.map = 512, o.frames = 1;
-    o.copies = {1, 2}, o.maps = {8, 24}, o.studies = {1, 2, 5};
-  }
-  return multiviewStudies(o, out);
-}
-
-int singleMap(const StudyRun& r, std::FILE* out) {
-  SingleMapOptions o;
-  o.backend = r.backend;
-  if (r.quick) o.width = 256, o.height = 256, o.map = 1024, o.frames = 2, o.errorSize = 128;
-  return singleMapStudies(o, out);
-}
+// The VWSS paper's studies (parts): tables 1-2 (the engine instanced 1-6 times, mvr, its layered
+// draw, vwss, reproject and pcss-ultra at 24 and 128 maps), figure 13 (buffered against
+// unbuffered, compute k = 1, 8, all against the graphics pipeline), figure 8 (the light grown to
+// 16x its area at 8 samples per first area; agreement by ring in results.csv), and the maps'
+// resolution.
+int multiview(const StudyRun& r, std::FILE* out) { return fromFile("multiview", r, out); }
+// Sterna's table 1 (the shadow-mask passes, checkerboarding), the single-map methods as the
+// light grows (the light-size curves), VSSM's stages by map size, and their errors on the shipped
+// scenes and hard cases against both references.
+int singleMap(const StudyRun& r, std::FILE* out) { return fromFile("single-map", r, out); }
 
 int shading(const StudyRun& r, std::FILE* out) {
   ShadingStudyOptions o;

@@ -1,9 +1,9 @@
-// The benchmark studies, each a function taking its typed options and writing its tables to
-// `out`. One table (studyTable) lists them with the settings of `penumbra bench` (full: each
-// study's defaults, the sizes of its README section; quick: smaller sizes, fewer frames); the
-// standalone binaries (penumbra_bench_<study>, src/cli/bench_main.cpp) parse their flags into
-// the same options and call the same functions. `penumbra bench` (src/cli/commands.cpp) writes
-// bench/results/<machine>/.
+// The benchmark studies. One table (studyTable) lists them with the settings of `penumbra bench`
+// (full: bench/studies/<name>.json; quick: <name>-quick.json, smaller sizes, fewer frames). All
+// but one are study files run through study/ (plan, run, merge); the shading study is a function
+// taking its typed options and writing its table to `out`, also a standalone binary
+// (penumbra_bench_shading, src/cli/bench_main.cpp). `penumbra bench` (src/cli/commands.cpp)
+// writes bench/results/<machine>/.
 #pragma once
 
 #include <cstdio>
@@ -16,9 +16,8 @@
 namespace penumbra::bench {
 
 // A study file (docs/studies.md, bench/studies/<name>.json) planned, run and merged into
-// outDir (bench_study_file.cpp): speed-error, dcs, techniques, dcs-scale and light-size are
-// such files; their tables are the merge's (report/headline.md, stages.md, light-size.md and a
-// report per scene). A run into a folder that holds an earlier run of the same build renders
+// outDir (bench_study_file.cpp); its tables are the merge's (report/headline.md, stages.md,
+// light-size.md and a report per scene). A run into a folder that holds an earlier run of the same build renders
 // only what is missing; job folders of other plans there are removed.
 struct StudyFileOptions {
   std::string study;   // required: the study file
@@ -26,31 +25,6 @@ struct StudyFileOptions {
   gl::Backend backend = gl::Backend::Egl;
 };
 int studyFile(const StudyFileOptions& o, std::FILE* out);
-
-// VWSS paper tables 1-2, figures 8 and 13, map-resolution convergence (bench_multiview.cpp).
-struct MultiviewOptions {
-  std::string scene = "scenes/engine.json";  // base scene: the floor then the occluders to instance
-  int width = 256, height = 256;
-  int map = 1024;  // depth-map resolution of studies 1-4
-  int frames = 3, warmup = 1;
-  std::vector<int> copies = {1, 2, 5, 6};  // instances of the occluders per scene of study 1
-  float spacing = 1.6f;                    // distance between instances
-  std::vector<int> maps = {24, 128};       // light samples (maps) of study 1
-  std::vector<int> studies = {1, 2, 3, 4, 5};
-  gl::Backend backend = gl::Backend::Egl;
-};
-int multiviewStudies(const MultiviewOptions& o, std::FILE* out);
-
-// Sterna's table 1, VSSM against PCSS, VSSM stages, single-map errors (bench_pcss.cpp).
-struct SingleMapOptions {
-  std::string scene = "scenes/stained-glass.json";
-  int width = 512, height = 512, map = 2048;
-  int samples = 16;  // light samples of the reference (pcss's horizon weights)
-  int frames = 5, warmup = 1;
-  int errorSize = 256;  // image size of study 4
-  gl::Backend backend = gl::Backend::Egl;
-};
-int singleMapStudies(const SingleMapOptions& o, std::FILE* out);
 
 // Shading modes against the converged shaded reference on every shipped scene (bench_shading.cpp):
 // ratio, modulate and per-sample, their error and their cost per frame.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -336,6 +337,31 @@ TEST(Report, RunsReadBackFromTheirJson) {
   bad = written["runs"][1];
   bad["family"] = "psychic";
   EXPECT_THROW(runFromJson(bad, 0, "row.json"), Error);
+}
+
+// Per-sample agreement by the sample's ring on a rect light (LightResult::sampleRadius): two
+// pixels, four samples at radii 0.1, 0.3, 0.6 and 0.9 of the half-sides; the technique differs
+// from the reference at the third sample in both pixels and at the fourth in one.
+TEST(Report, SampleAgreementByRingOfTheLight) {
+  FrameResult ref, f;
+  ref.gbuffer.width = 2, ref.gbuffer.height = 1, ref.gbuffer.valid = {1, 1};
+  ref.color = Image(2, 1, 3, 1.0f);
+  LightResult l;
+  l.visibility = Image(2, 1, 3, 1.0f);
+  l.samples = 4;
+  l.perSample.assign(8, 1.0f);
+  ref.lights = {l};
+  f = ref;
+  f.lights[0].sampleRadius = {0.1f, 0.3f, 0.6f, 0.9f};
+  f.lights[0].perSample = {1, 1, 0, 0, 1, 1, 0, 1};  // [pixel * 4 + k]
+  const TechniqueErrors e = measureErrors(f, ref);
+  EXPECT_DOUBLE_EQ(e.sampleAgreement, 5.0 / 8.0);
+  EXPECT_EQ(e.sampleAgreementByRing, (std::array<double, 4>{1.0, 1.0, 0.0, 0.5}));
+  const nlohmann::json j = errorsJson(e);
+  EXPECT_EQ(j.at("sampleAgreementByRing").dump(), "[1.0,1.0,0.0,0.5]");
+  // Without radii (another light shape, interleaved sets) there are no rings.
+  f.lights[0].sampleRadius.clear();
+  EXPECT_FALSE(errorsJson(measureErrors(f, ref)).contains("sampleAgreementByRing"));
 }
 
 // A reference's frame kept for other processes (compare/frame_file.h) reads back bit for bit;

@@ -19,7 +19,8 @@
 #   axes      tests/studies/axes.json: light scales, a profiled technique, parts, an opaque twin
 #             made in memory and two shading modes: hard-sv's error grows with the light and
 #             dcs's is 0 at every scale (light-size.md), dcs's statistics come from its profiled
-#             frame (stages.md), the twin's references differ from the semi-opaque scene's;
+#             frame (stages.md) and it agrees with the reference on every ring of the lights,
+#             the twin's references differ from the semi-opaque scene's;
 #   slurm     bench/cluster/slurm.sh on a real Slurm: munged, slurmctld and slurmd started on
 #             localhost with a one-node slurm.conf in a temporary folder (root only; 8 slots on
 #             the node, more than its cores: the jobs are short), the array and its merge job
@@ -283,6 +284,12 @@ axes)
     { cat "$R/stages.md"; fail "dcs's statistics are not its profiled frame's"; }
   grep "^| hard-sv |" "$R/stages.md" | grep -q "profiled" && fail "hard-sv's statistics say profiled"
   [ "$(csv shading technique technique dcs | sort -u | tr '\n' ' ')" = "modulate ratio " ] || fail "not both shading modes"
+  # dcs agrees with the reference on every sample, on every ring of the rect lights (a ring
+  # without samples, at 8 stratified samples the inner one, is empty).
+  rings=$(for r in 0 1 2 3; do csv sample_agreement_ring$r technique technique dcs; done | grep . | sort | uniq -c)
+  echo "dcs's agreement by ring: $rings"
+  [ "$(echo "$rings" | awk '{ print $2 }')" = 1 ] && [ "$(echo "$rings" | awk '{ print $1 }')" -ge 12 ] ||
+    fail "dcs's agreement by ring is not 1 on every ring with samples"
   twin=$(ls -d "$R"/semi-opaque?*opacity* 2>/dev/null | head -n 1)
   [ -s "$twin/report.json" ] || { ls "$R"; fail "no report of the opaque twin"; }
   # The references of the semi-opaque scene and of its twin, shading mode by shading mode.

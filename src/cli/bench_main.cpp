@@ -38,36 +38,6 @@ int runStudy(CLI::App& app, int argc, char** argv, Options& o, int (*study)(cons
   }
 }
 
-int multiview(int argc, char** argv) {
-  CLI::App app{"the multi-view shadow-map studies in one run", "penumbra_bench_multiview"};
-  MultiviewOptions o;
-  app.add_option("scene", o.scene, "base scene: the floor then the occluders to instance");
-  app.add_option("-W", o.width);
-  app.add_option("-H", o.height);
-  app.add_option("--map", o.map, "depth-map resolution of studies 1-4");
-  app.add_option("--frames", o.frames);
-  app.add_option("--warmup", o.warmup);
-  app.add_option("--copies", o.copies, "instances of the occluders per scene of study 1")->delimiter(',');
-  app.add_option("--spacing", o.spacing, "distance between instances");
-  app.add_option("--maps", o.maps, "light samples (maps) of study 1")->delimiter(',');
-  app.add_option("--study", o.studies, "studies to run")->delimiter(',');
-  return runStudy(app, argc, argv, o, multiviewStudies);
-}
-
-int singleMap(int argc, char** argv) {
-  CLI::App app{"the single-map (pcss, vssm) studies in one run", "penumbra_bench_pcss"};
-  SingleMapOptions o;
-  app.add_option("scene", o.scene);
-  app.add_option("-W", o.width);
-  app.add_option("-H", o.height);
-  app.add_option("--map", o.map);
-  app.add_option("--samples", o.samples, "light samples of the reference (pcss's horizon weights)");
-  app.add_option("--frames", o.frames);
-  app.add_option("--warmup", o.warmup);
-  app.add_option("--error-size", o.errorSize, "image size of study 4");
-  return runStudy(app, argc, argv, o, singleMapStudies);
-}
-
 int shading(int argc, char** argv) {
   CLI::App app{"shading modes against the converged shaded reference", "penumbra_bench_shading"};
   ShadingStudyOptions o;
@@ -86,7 +56,6 @@ int shading(int argc, char** argv) {
 
 int penumbraBenchMain(const char* study, int argc, char** argv) {
   // Keyed like studyTable() (bench/studies.h).
-  static const std::map<std::string, std::function<int(int, char**)>> mains = {
-      {"multiview", multiview}, {"single-map", singleMap}, {"shading", shading}};
+  static const std::map<std::string, std::function<int(int, char**)>> mains = {{"shading", shading}};
   return mains.at(study)(argc, argv);
 }

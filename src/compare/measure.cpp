@@ -97,9 +97,11 @@ TechniqueErrors measureErrors(const FrameResult& frame, const FrameResult& ref) 
   e.shadedOutsideBand = compareImages(frame.color, ref.color, anyBand, valid);
 
   std::int64_t agree = 0, pairs = 0;
+  std::array<std::int64_t, TechniqueErrors::kRings> ringAgree{}, ringPairs{};
   for (std::size_t l = 0; l < L; ++l) {
     const auto& fa = frame.lights[l];
     const auto& fb = ref.lights[l];
+    const bool rings = fa.sampleRadius.size() == std::size_t(std::max(0, fb.samples));
     float decision = 0.5f / float(std::max(1, fb.samples));
     for (std::size_t i = 0; i < n; ++i) {
       if (!valid[i] || band[l * n + i]) continue;
@@ -110,12 +112,20 @@ TechniqueErrors measureErrors(const FrameResult& frame, const FrameResult& ref) 
       if (fa.perSample.empty() || fb.perSample.empty() || fa.samples != fb.samples) continue;
       for (int k = 0; k < fb.samples; ++k) {
         std::size_t idx = i * std::size_t(fb.samples) + std::size_t(k);
-        agree += std::abs(fa.perSample[idx] - fb.perSample[idx]) < 1e-3f;
+        const bool same = std::abs(fa.perSample[idx] - fb.perSample[idx]) < 1e-3f;
+        agree += same;
         ++pairs;
+        if (rings) {
+          const int ring = std::clamp(int(fa.sampleRadius[std::size_t(k)] * float(TechniqueErrors::kRings)), 0,
+                                      TechniqueErrors::kRings - 1);
+          ringAgree[std::size_t(ring)] += same, ++ringPairs[std::size_t(ring)];
+        }
       }
     }
   }
   if (pairs > 0) e.sampleAgreement = double(agree) / double(pairs);
+  for (std::size_t r = 0; r < ringPairs.size(); ++r)
+    if (ringPairs[r] > 0) e.sampleAgreementByRing[r] = double(ringAgree[r]) / double(ringPairs[r]);
   e.samplePairs = pairs;
   e.sampleMismatches = pairs - agree;
   return e;

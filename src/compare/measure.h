@@ -4,6 +4,7 @@
 // per image), per-sample agreement, and under --frames the flicker the reference does not have.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -22,6 +23,12 @@ struct TechniqueErrors {
   double sampleAgreement = -1.0;
   std::int64_t samplePairs = 0;
   std::int64_t sampleMismatches = 0;  // pairs that differ (outside the band)
+  // The same agreement by the sample's distance from a rect light's centre
+  // (LightResult::sampleRadius): rings [0, 1/4), [1/4, 1/2), [1/2, 3/4), [3/4, 1] of its
+  // half-sides; -1 where a ring has no pairs or the light none (VWSS Fig. 8: views synthesised
+  // from the centre's degrade away from it).
+  static constexpr int kRings = 4;
+  std::array<double, kRings> sampleAgreementByRing{-1.0, -1.0, -1.0, -1.0};
   // Pixels whose visibility decision differs (|dV| > 0.5 / N) outside the band.
   std::int64_t misclassifiedPixels = 0;
   // Pixels the technique left unshadowed by design (LightResult::unshadowed: shadow-map

@@ -79,6 +79,11 @@ nlohmann::json errorsJson(const TechniqueErrors& e) {
     j["sampleAgreementOutsideBand"] = e.sampleAgreement;
     j["sampleMismatchesOutsideBand"] = e.sampleMismatches;
   }
+  if (std::any_of(e.sampleAgreementByRing.begin(), e.sampleAgreementByRing.end(), [](double a) { return a >= 0.0; })) {
+    nlohmann::json rings = nlohmann::json::array();
+    for (double a : e.sampleAgreementByRing) rings.push_back(a >= 0.0 ? nlohmann::json(a) : nlohmann::json());
+    j["sampleAgreementByRing"] = rings;
+  }
   return j;
 }
 
@@ -106,6 +111,11 @@ TechniqueErrors errorsFrom(const nlohmann::json& j) {
   if (j.contains("sampleAgreementOutsideBand")) {
     e.sampleAgreement = j.at("sampleAgreementOutsideBand").get<double>();
     e.sampleMismatches = j.at("sampleMismatchesOutsideBand").get<std::int64_t>();
+  }
+  if (j.contains("sampleAgreementByRing")) {
+    const auto& rings = j.at("sampleAgreementByRing");
+    for (std::size_t r = 0; r < e.sampleAgreementByRing.size() && r < rings.size(); ++r)
+      e.sampleAgreementByRing[r] = rings[r].is_null() ? -1.0 : rings[r].get<double>();
   }
   return e;
 }

@@ -508,6 +508,11 @@ void Renderer::renderVisibility(FrameState& frame, LightState& l) {
   // memory: an earlier texture's uint bits read as NaN, MultiView.SemiOpaque... flaked).
   if (l.wantSamples) perSample_.clear(glm::vec4(0.0f));
   l.lr.samples = samples.count;
+  l.lr.sampleRadius.clear();
+  if (l.light.shape == LightShape::Rect && samples.setCount == 1 && samples.uv.size() >= std::size_t(samples.count))
+    for (int k = 0; k < samples.count; ++k)
+      l.lr.sampleRadius.push_back(std::max(std::abs(2.0f * samples.uv[std::size_t(k)].x - 1.0f),
+                                           std::abs(2.0f * samples.uv[std::size_t(k)].y - 1.0f)));
   LightPass pass{scene_,
                  l.light,
                  int(l.index),

@@ -87,6 +87,10 @@ struct LightResult {
   Image visibility;              // RGB, eq. 2
   std::vector<float> perSample;  // [pixel * N + k] transmittance, empty if not provided
   int samples = 0;
+  // Per sample k of a rect light with one sample set (correlated pattern): its distance from the
+  // light's centre in half-sides, max(|2u - 1|, |2v - 1|) in [0, 1]; empty otherwise. What the
+  // per-sample agreement by ring (compare/measure.h) bins by.
+  std::vector<float> sampleRadius;
   std::vector<std::uint8_t> unshadowed;  // Technique::unshadowedPixels() for this light
   Image visibilityVariance;              // a technique's own noise (CpuShading::visibilityVariance); empty: none
 };

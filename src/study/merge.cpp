@@ -62,7 +62,8 @@ std::string resultsCsv(const std::vector<Row>& rows) {
       "id,kind,status,scene,variant,scene_name,technique,params,samples,width,height,seed,strategy,light_scale,"
       "shading,pattern,total_ms,total_ms_min,"
       "total_ms_max,prepare_ms,memory_bytes,visibility_rmse,visibility_rmse_outside_band,shaded_rmse,"
-      "converged_visibility_rmse,converged_shaded_rmse,flip,sample_agreement,misclassified_pixels,"
+      "converged_visibility_rmse,converged_shaded_rmse,flip,sample_agreement,sample_agreement_ring0,"
+      "sample_agreement_ring1,sample_agreement_ring2,sample_agreement_ring3,triangles,misclassified_pixels,"
       "unshadowed_pixels,reference_noise_visibility,date,seconds,renderer,gl_version,host,error\n";
   for (const Row& r : rows) {
     if (r.row.is_null()) continue;
@@ -73,6 +74,10 @@ std::string resultsCsv(const std::vector<Row>& rows) {
     const json total = result.value("totalSpreadMs", json::object());
     const json noise = result.value("convergedReferenceNoise", result.value("noise", json::object()));
     const auto joined = [](const std::vector<std::string>& v) { return fmt::format("{}", fmt::join(v, " ")); };
+    const json rings = errors.value("sampleAgreementByRing", json::array());
+    const auto ring = [&](std::size_t r) {
+      return r < rings.size() && rings[r].is_number() ? fmt::format("{}", rings[r].get<double>()) : std::string();
+    };
     const std::vector<std::string> fields = {j.id,
                                              j.kind,
                                              row.value("status", "?"),
@@ -101,6 +106,11 @@ std::string resultsCsv(const std::vector<Row>& rows) {
                                              number(conv.value("shaded", json::object()), "rmse"),
                                              number(result.value("flip", json::object()), "mean"),
                                              number(errors, "sampleAgreementOutsideBand"),
+                                             ring(0),
+                                             ring(1),
+                                             ring(2),
+                                             ring(3),
+                                             number(row.value("info", json::object()), "triangles"),
                                              number(errors, "misclassifiedPixelsOutsideBand"),
                                              number(errors, "unshadowedPixels"),
                                              number(noise, "visibilityRmse"),
@@ -481,7 +491,8 @@ std::string lightSizeCurves(const std::vector<SceneReport>& scenes, const fs::pa
       std::vector<ChartSeries> series;
       for (const std::string& name : order) {
         auto it = byName.find(name);
-        if (it == byName.end()) continue;
+        // (A technique of another part of the study, at one scale only, has no curve.)
+        if (it == byName.end() || it->second.size() < 2) continue;
         std::sort(it->second.begin(), it->second.end());
         md += "| " + name + " |";
         for (double x : scales) {

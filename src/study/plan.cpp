@@ -191,8 +191,8 @@ std::vector<Job> planJobs(const StudySpec& s) {
       for (const Size& size : a.sizes)
         for (double lightScale : a.lightScales) {
           std::string convergedId;
-          if (s.converged) {
-            Job c = job("converged", "raytrace-converged", s.convergedSamples, size);
+          if (a.converged) {
+            Job c = job("converged", "raytrace-converged", a.convergedSamples, size);
             c.seed = 1, c.strategy = "stratified", c.lightScale = lightScale, c.frames = 1, c.warmup = 0;
             finish(c);
             convergedId = c.id;

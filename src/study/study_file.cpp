@@ -240,6 +240,12 @@ StudyAxes readAxes(Object& o, const StudyAxes& defaults, const fs::path& base) {
     });
   a.frames = o.integer("frames", a.frames, 1, 100);
   a.warmup = o.integer("warmup", a.warmup, 0, 100);
+  if (o.has("reference")) {
+    Object r(o.raw("reference"), o.place("reference").where, o.place("reference").at);
+    if (r.has("converged")) a.converged = readBoolean(valueOf(r.raw("converged")), r.place("converged"));
+    a.convergedSamples = r.integer("converged-samples", a.convergedSamples, 16, 1 << 20);
+    r.refuseUnknown();
+  }
   return a;
 }
 
@@ -286,12 +292,6 @@ StudySpec readStudy(const std::string& path) {
     for (const auto& [key, empty] :
          {std::pair{"scenes", products[i].scenes.empty()}, std::pair{"techniques", products[i].techniques.empty()}})
       if (empty) (s.parts.empty() ? o.place(key) : o.place(fmt::format("parts[{}].{}", i, key))).fail("missing");
-  if (o.has("reference")) {
-    Object r(o.raw("reference"), path, "reference");
-    if (r.has("converged")) s.converged = readBoolean(valueOf(r.raw("converged")), r.place("converged"));
-    s.convergedSamples = r.integer("converged-samples", s.convergedSamples, 16, 1 << 20);
-    r.refuseUnknown();
-  }
   if (o.has("images")) {
     s.images = readString(valueOf(o.raw("images")), o.place("images"));
     if (s.images != "all" && s.images != "png" && s.images != "none")
@@ -314,7 +314,7 @@ std::uint64_t jobCount(const StudySpec& s) {
                                          a.seeds.size() * a.strategies.size() * a.lightScales.size() *
                                          a.shadings.size() * a.patterns.size();
     const std::uint64_t converged =
-        s.converged ? std::uint64_t(a.scenes.size()) * a.sizes.size() * a.lightScales.size() : 0;
+        a.converged ? std::uint64_t(a.scenes.size()) * a.sizes.size() * a.lightScales.size() : 0;
     total += configurations * (sets + 1) + converged;
   }
   return total;

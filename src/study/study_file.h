@@ -46,14 +46,14 @@ struct StudyAxes {
   std::vector<std::string> shadings = {"ratio"};         // pipeline/renderer.h kShadingModeNames
   std::vector<std::string> patterns = {"correlated"};    // sampling/light_samples.h kPixelPatternNames
   int frames = 3, warmup = 1;                            // timed frames and warm-up frames per job
+  bool converged = false;                                // also measure against raytrace-converged
+  int convergedSamples = 1024;                           // its light samples a pixel
 };
 
 struct StudySpec : StudyAxes {
   std::string name;
-  std::string path;             // the study file, for messages
-  bool converged = false;       // also measure against raytrace-converged
-  int convergedSamples = 1024;  // its light samples a pixel
-  std::string images = "all";   // what a job keeps: "all" (EXR and PNG), "png", "none"
+  std::string path;            // the study file, for messages
+  std::string images = "all";  // what a job keeps: "all" (EXR and PNG), "png", "none"
   // `parts`: several products in one study (each part's axes default to the study's); the plan
   // is their union, a job two parts share planned once. Empty: the study's own axes.
   std::vector<StudyAxes> parts;
