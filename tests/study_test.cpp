@@ -234,22 +234,22 @@ TEST(Study, LightScalesAndProfilesReachTheJobs) {
   }
 }
 
-// The ids hash the scenes' paths relative to the study file: the same study and scenes copied
-// to another folder plan the same ids.
+// The ids hash a scene's file name and the content of what it reads, not where it lies: the same
+// study and scenes copied to another folder, one deeper, plan the same ids.
 TEST(Study, IdsDoNotDependOnWhereTheStudyLies) {
-  TempDir a, b;
+  TempDir tmp;
   std::vector<std::string> ids[2];
   int k = 0;
-  for (const TempDir* d : {&a, &b}) {
-    fs::copy_file(scenes() + "/hard/16-contact.json", d->path / "scenes" / "contact.json",
-                  (fs::create_directories(d->path / "scenes"), fs::copy_options::none));
-    const StudySpec s =
-        readStudy(d->write("studies/s.json", R"({"scenes": "../scenes/contact.json", "techniques": "pcss"})"));
-    for (const Job& j : planJobs(s)) ids[k].push_back(j.id);
+  for (const fs::path root : {tmp.path / "a", tmp.path / "b" / "deeper"}) {
+    fs::create_directories(root / "scenes");
+    fs::create_directories(root / "studies");
+    fs::copy_file(scenes() + "/hard/16-contact.json", root / "scenes" / "contact.json");
+    std::ofstream(root / "studies" / "s.json") << R"({"scenes": "../scenes/contact.json", "techniques": "pcss"})";
+    for (const Job& j : planJobs(readStudy((root / "studies" / "s.json").string()))) ids[k].push_back(j.id);
     ++k;
   }
   EXPECT_EQ(ids[0], ids[1]);
-  ASSERT_FALSE(ids[0].empty());
+  ASSERT_EQ(ids[0].size(), 2u);
 }
 
 // A scene that does not load is refused when the study is planned, naming the study and the scene.

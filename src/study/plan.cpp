@@ -55,20 +55,16 @@ std::vector<std::string> namedFiles(const std::string& path, const std::string& 
   return names;
 }
 
-// `path` relative to `base` (the study file's folder), as the id hashes it.
-std::string relativeTo(const std::string& path, const fs::path& base) {
-  if (path == "default") return path;
-  return fs::path(path).lexically_relative(fs::weakly_canonical(base)).generic_string();
-}
-
-std::string hashOf(json row, const std::vector<std::string>& inputs, const fs::path& base) {
+// A job's id hashes its scene by file name and every file it reads by content (the names a scene
+// gives its inputs are in its content): the same study and scenes at another path, or at
+// another depth, plan the same ids.
+std::string hashOf(json row, const std::vector<std::string>& inputs) {
   Fnv1a h;
-  row["scene"] = relativeTo(row["scene"].get<std::string>(), base);
+  row["scene"] = fs::path(row["scene"].get<std::string>()).filename().string();
   const std::string r = row.dump();
   h.bytes(r.data(), r.size());
   for (const std::string& f : inputs) {
-    const std::string content = readWhole(f), name = relativeTo(f, base);
-    h.bytes(name.data(), name.size());
+    const std::string content = readWhole(f);
     h.bytes(content.data(), content.size());
   }
   const std::string build = buildIdentity();
@@ -158,7 +154,6 @@ std::vector<std::string> sceneInputs(const std::string& scene) {
 }
 
 std::vector<Job> planJobs(const StudySpec& s) {
-  const fs::path base = fs::path(s.path).parent_path();
   std::vector<Job> refs, jobs;
   std::set<std::string> planned;  // ids, so that parts share their common jobs
   const auto add = [&](std::vector<Job>& to, const Job& j) {
@@ -180,7 +175,7 @@ std::vector<Job> planJobs(const StudySpec& s) {
       const auto finish = [&](Job& j) {
         json row = j.json();
         row.erase("id");
-        j.id = hashOf(row, inputsOf[scene.path], base);
+        j.id = hashOf(row, inputsOf[scene.path]);
       };
       const auto job = [&](const std::string& kind, const std::string& technique, int samples, const Size& size) {
         Job j;

@@ -51,9 +51,9 @@ std::vector<std::string> sceneInputs(const std::string& scene);
 
 // The jobs of a study, references first (a study of parts: each part's, in order, a job two
 // parts share once). Every scene is loaded once (textures' headers only) so that a scene that
-// does not load is refused here, naming the study file and the scene. The ids hash the paths of
-// the files a job reads relative to the study file's folder: a copy of the study and its scenes
-// at another path plans the same ids.
+// does not load is refused here, naming the study file and the scene. The ids hash the scene's
+// file name and the content of the files a job reads, not where they lie: a copy of the study
+// and its scenes at another path plans the same ids.
 std::vector<Job> planJobs(const StudySpec& spec);
 
 // Writes DIR/jobs.jsonl (one job a line) and DIR/study.json (the study as read), each atomically.
