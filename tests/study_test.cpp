@@ -240,7 +240,7 @@ TEST(Study, IdsDoNotDependOnWhereTheStudyLies) {
   TempDir tmp;
   std::vector<std::string> ids[2];
   int k = 0;
-  for (const fs::path root : {tmp.path / "a", tmp.path / "b" / "deeper"}) {
+  for (const fs::path& root : {tmp.path / "a", tmp.path / "b" / "deeper"}) {
     fs::create_directories(root / "scenes");
     fs::create_directories(root / "studies");
     fs::copy_file(scenes() + "/hard/16-contact.json", root / "scenes" / "contact.json");
@@ -365,6 +365,7 @@ TEST(Study, MergeDrawsErrorAgainstLightSizeAndTheStageTables) {
   const std::string lightSize = readText(report / "light-size.md");
   EXPECT_NE(lightSize.find("| technique | x0.5 | x1 | x2 |"), std::string::npos) << lightSize;
   EXPECT_NE(lightSize.find("| pcss | 0.0100 | 0.0200 | 0.0400 |"), std::string::npos) << lightSize;
+  EXPECT_NE(lightSize.find("visibility RMSE vs same-sample reference. Chart:"), std::string::npos) << lightSize;
   EXPECT_TRUE(fs::exists(report / "light-size-default.svg"));
   const std::string stages = readText(report / "stages.md");
   EXPECT_NE(stages.find("### samples=8 light=2"), std::string::npos) << stages;

@@ -252,6 +252,7 @@ SceneReport sceneReport(const std::vector<const Row*>& rows, const Axes& axes, c
 struct Acc {
   double logMs = 0, logErr = 0, logRatio = 0;
   int n = 0, front = 0;
+  bool sameSample = false;  // an error against the same-sample reference (no converged one there)
 };
 
 struct Headline {
@@ -305,6 +306,7 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
       a.logRatio += std::log(run.total.median / raytrace->total.median);
       a.logMs += std::log(run.total.median);
       a.logErr += std::log(std::max(run.plotError(), 1e-6));
+      a.sameSample = a.sameSample || !run.converged;
       a.n += 1;
       a.front += std::find(front.begin(), front.end(), i) != front.end();
     }
@@ -342,11 +344,12 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
       // Geometric means per seed over the scenes, then over the seeds, with their range.
       std::vector<double> ms, err, ratio;
       int n = 0, front = 0;
+      bool sameSample = false;
       if (bySeed != acc.end())
         for (const auto& [seed, a] : bySeed->second) {
           if (a.n == 0) continue;
           ms.push_back(a.logMs / a.n), err.push_back(a.logErr / a.n), ratio.push_back(a.logRatio / a.n);
-          n = std::max(n, a.n), front += a.front;
+          n = std::max(n, a.n), front += a.front, sameSample = sameSample || a.sameSample;
         }
       std::string ran = fmt::format("{} of {}", n, scenes.size());
       if (failed != failedOn.end()) {
@@ -378,7 +381,9 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
       };
       const double m = mean(ms), e = mean(err), x = mean(ratio);
       const std::string msText = fmt::format("{:.1f}", m) + range(ms, "{:.1f}");
-      const std::string errText = fmt::format("{:.4f}", e) + range(err, "{:.4f}");
+      // (In a study whose other configurations have a converged reference, one without says so.)
+      const std::string errText = fmt::format("{:.4f}", e) + range(err, "{:.4f}") +
+                                  (converged && sameSample ? " (same-sample)" : "");
       const std::string xText = fmt::format("{:.2f}", x) + range(ratio, "{:.2f}");
       const int runs = n * int(ms.size());
       h.text += fmt::format("{:<{}} {:>{}} {:>{}} {:>{}} {:>{}} {:>5}/{}  {}\n", name, wName, shown, wPreset, msText,
@@ -453,15 +458,16 @@ std::string stagesMd(const std::vector<SceneReport>& scenes) {
 // headline's: against the converged reference where there is one) against the light's scale,
 // one chart per configuration of the other axes, and the tables (light-size.md).
 std::string lightSizeCurves(const std::vector<SceneReport>& scenes, const fs::path& root) {
-  std::string md = "# Error against light size\n\nEach scene's lights scaled (1: the scene's own); ";
+  std::string md = "# Error against light size\n\nEach scene's lights scaled (1: the scene's own).\n";
   bool any = false;
   for (const SceneReport& s : scenes) {
     const CompareResult& r = s.result;
-    // (the preset's label without its light) -> technique -> (scale, error)
+    // (the preset's label without its light) -> technique -> (scale, error), and whether the
+    // group's errors are against the converged reference.
     std::map<std::string, std::map<std::string, std::vector<std::pair<double, double>>>> curves;
+    std::map<std::string, bool> convergedOf;
     std::map<std::string, TechniqueFamily> family;
     std::vector<std::string> order;
-    std::set<double> scales;
     for (const CompareRun& run : r.runs) {
       if (run.failed || run.reference) continue;
       const ComparePreset& p = r.presets[run.preset];
@@ -476,35 +482,42 @@ std::string lightSizeCurves(const std::vector<SceneReport>& scenes, const fs::pa
       if (std::find(order.begin(), order.end(), name) == order.end()) order.push_back(name);
       family[name] = run.family;
       curves[others][name].emplace_back(scale, run.plotError());
-      scales.insert(scale);
+      convergedOf[others] = convergedOf[others] || run.converged.has_value();
     }
-    if (scales.size() < 2) continue;
-    if (!any) md += errorAxisName(r, ErrorAxis::Visibility) + ".\n";
-    any = true;
     int chart = 0;
     for (auto& [others, byName] : curves) {
-      const std::string svg = fmt::format("light-size-{}{}.svg", s.folder, chart++ ? fmt::format("-{}", chart) : "");
-      md += fmt::format("\n## {} ({})\n\nChart: [{}]({})\n\n| technique |", s.name, others, svg, svg);
-      std::string rule = "|---|";
-      for (double x : scales) md += fmt::format(" x{:g} |", x), rule += "---|";
-      md += "\n" + rule + "\n";
+      // A technique at one scale only (of another part of the study) has no curve; a group
+      // without curves, no table.
       std::vector<ChartSeries> series;
       for (const std::string& name : order) {
         auto it = byName.find(name);
-        // (A technique of another part of the study, at one scale only, has no curve.)
         if (it == byName.end() || it->second.size() < 2) continue;
         std::sort(it->second.begin(), it->second.end());
-        md += "| " + name + " |";
-        for (double x : scales) {
-          const auto at = std::find_if(it->second.begin(), it->second.end(), [&](auto& p) { return p.first == x; });
-          md += at == it->second.end() ? " - |" : fmt::format(" {:.4f} |", at->second);
+        series.push_back({name, family[name], it->second});
+      }
+      if (series.empty()) continue;
+      std::set<double> xs;
+      for (const ChartSeries& c : series)
+        for (const auto& [x, e] : c.points) xs.insert(x);
+      const std::string error =
+          std::string("visibility RMSE vs ") + (convergedOf[others] ? "converged reference" : "same-sample reference");
+      const std::string svg = fmt::format("light-size-{}{}.svg", s.folder, chart++ ? fmt::format("-{}", chart) : "");
+      md += fmt::format("\n## {} ({})\n\n{}. Chart: [{}]({})\n\n| technique |", s.name, others, error, svg, svg);
+      std::string rule = "|---|";
+      for (double x : xs) md += fmt::format(" x{:g} |", x), rule += "---|";
+      md += "\n" + rule + "\n";
+      for (const ChartSeries& c : series) {
+        md += "| " + c.name + " |";
+        for (double x : xs) {
+          const auto at = std::find_if(c.points.begin(), c.points.end(), [&](auto& p) { return p.first == x; });
+          md += at == c.points.end() ? " - |" : fmt::format(" {:.4f} |", at->second);
         }
         md += "\n";
-        series.push_back({name, family[name], it->second});
       }
       writeTextFile((root / svg).string(),
                     lineChartSvg("Error against light size: " + s.name + (others.empty() ? "" : ", " + others),
-                                 "light scale (x the scene's light)", errorAxisName(r, ErrorAxis::Visibility), series));
+                                 "light scale (x the scene's light)", error, series));
+      any = true;
     }
   }
   return any ? md : "";
