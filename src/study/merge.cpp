@@ -382,8 +382,8 @@ Headline headlineOf(const std::vector<SceneReport>& scenes, const Axes& axes) {
       const double m = mean(ms), e = mean(err), x = mean(ratio);
       const std::string msText = fmt::format("{:.1f}", m) + range(ms, "{:.1f}");
       // (In a study whose other configurations have a converged reference, one without says so.)
-      const std::string errText = fmt::format("{:.4f}", e) + range(err, "{:.4f}") +
-                                  (converged && sameSample ? " (same-sample)" : "");
+      const std::string errText =
+          fmt::format("{:.4f}", e) + range(err, "{:.4f}") + (converged && sameSample ? " (same-sample)" : "");
       const std::string xText = fmt::format("{:.2f}", x) + range(ratio, "{:.2f}");
       const int runs = n * int(ms.size());
       h.text += fmt::format("{:<{}} {:>{}} {:>{}} {:>{}} {:>{}} {:>5}/{}  {}\n", name, wName, shown, wPreset, msText,
