@@ -11,7 +11,7 @@ set -eu
 cd "$(dirname "$0")"
 PACKAGES="cmake ninja-build g++ pkg-config
   libegl-dev libegl-mesa0 libgl1-mesa-dri libopengl-dev libosmesa6-dev
-  libglm-dev libopenmesh-dev libtinygltf-dev libopenexr-dev libimath-dev libembree-dev
+  libglm-dev libopenmesh-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev libopenexr-dev libimath-dev libembree-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev libpng-dev
   libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels chromium
   mesa-vulkan-drivers clang-format

@@ -5,6 +5,7 @@
 set(PENUMBRA_RENDER_TESTS
   ${CMAKE_CURRENT_SOURCE_DIR}/render_pipeline_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_shipped_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/render_assets_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_robustness_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/gl_program_test.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/render_timing_test.cpp)

@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "core/memory.h"
+#include "scene/gltf_compression.h"
 #include "scene/loaders.h"
 
 namespace penumbra::detail {
@@ -36,6 +37,10 @@ struct Loader {
   geo::MeshReport drops;
   std::size_t primitivesWithDrops = 0;
   std::size_t primitivesSkipped = 0;  // points, lines, no POSITION, sparse
+  // KHR_mesh_quantization is used: attributes may be stored as (un)normalized integers.
+  bool quantized = false;
+  // The decoded bytes of the bufferViews compressed with EXT_meshopt_compression.
+  std::map<int, std::vector<unsigned char>> decodedViews;
 
   std::string dropSummary() const {
     std::string s;
@@ -105,6 +110,13 @@ struct SkipPrimitive {
   std::string why;
 };
 
+// Whether buffer `index` is an EXT_meshopt_compression fallback buffer (its data a stub).
+bool isFallback(const Loader& L, int index) {
+  const auto buffers = L.json.find("buffers");
+  return buffers != L.json.end() && buffers->is_array() && std::size_t(index) < buffers->size() &&
+         isMeshoptFallbackBuffer((*buffers)[std::size_t(index)]);
+}
+
 // Checks accessor `index` (used as `role`) and returns a view of it. `types` lists the allowed
 // (type, componentType) pairs. Layout faults throw Error; unsupported-but-valid layouts skip.
 AccessorView viewAccessor(const Loader& L, int index, const std::string& role,
@@ -129,9 +141,18 @@ AccessorView viewAccessor(const Loader& L, int index, const std::string& role,
   if (v.buffer < 0 || std::size_t(v.buffer) >= L.gltf.buffers.size()) {
     L.fail(what + ": buffer " + std::to_string(v.buffer) + " does not exist");
   }
-  const std::vector<unsigned char>& data = L.gltf.buffers[std::size_t(v.buffer)].data;
-  if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset) {
-    L.fail("bufferView " + std::to_string(a.bufferView) + " overruns buffer " + std::to_string(v.buffer));
+  // A bufferView compressed with EXT_meshopt_compression reads from its decoded bytes.
+  const auto decoded = L.decodedViews.find(a.bufferView);
+  const unsigned char* bytes = nullptr;
+  if (decoded != L.decodedViews.end()) {
+    bytes = decoded->second.data();
+  } else {
+    const std::vector<unsigned char>& data = L.gltf.buffers[std::size_t(v.buffer)].data;
+    if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset) {
+      L.fail("bufferView " + std::to_string(a.bufferView) + " overruns buffer " + std::to_string(v.buffer) +
+             (isFallback(L, v.buffer) ? " (an EXT_meshopt_compression fallback buffer, without data)" : ""));
+    }
+    bytes = data.data() + v.byteOffset;
   }
   const std::size_t component = std::size_t(componentBytes(a.componentType));
   const std::size_t element = component * std::size_t(typeComponents(a.type));
@@ -155,7 +176,7 @@ AccessorView viewAccessor(const Loader& L, int index, const std::string& role,
            ") but bufferView " + std::to_string(a.bufferView) + " has " + std::to_string(v.byteLength));
   }
   AccessorView out;
-  out.data = data.data() + v.byteOffset + a.byteOffset;
+  out.data = bytes + a.byteOffset;
   out.stride = stride;
   out.count = a.count;
   out.componentType = a.componentType;
@@ -164,6 +185,8 @@ AccessorView viewAccessor(const Loader& L, int index, const std::string& role,
   return out;
 }
 
+// Component c of element i as a float: normalized integers to [0, 1] or [-1, 1] (glTF 2.0
+// section 3.11), others as their value (KHR_mesh_quantization's unnormalized attributes).
 float readComponent(const AccessorView& a, std::size_t i, int c) {
   const unsigned char* p = a.data + i * a.stride;
   switch (a.componentType) {
@@ -172,12 +195,21 @@ float readComponent(const AccessorView& a, std::size_t i, int c) {
       std::memcpy(&f, p + 4 * c, 4);
       return f;
     }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      const float v = float(std::int8_t(p[c]));
+      return a.normalized ? std::max(v / 127.0f, -1.0f) : v;
+    }
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return float(p[c]) / 255.0f;
+      return a.normalized ? float(p[c]) / 255.0f : float(p[c]);
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      std::int16_t u;
+      std::memcpy(&u, p + 2 * c, 2);
+      return a.normalized ? std::max(float(u) / 32767.0f, -1.0f) : float(u);
+    }
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
       std::uint16_t u;
       std::memcpy(&u, p + 2 * c, 2);
-      return float(u) / 65535.0f;
+      return a.normalized ? float(u) / 65535.0f : float(u);
     }
     default:
       return 0.0f;
@@ -200,6 +232,117 @@ std::uint32_t readIndex(const AccessorView& a, std::size_t i) {
       return u;
     }
   }
+}
+
+// The accessor types an attribute may have: glTF 2.0's, and with KHR_mesh_quantization its
+// integer forms (the extension's table: positions any 8/16-bit integer, normals normalized
+// signed ones, texture coordinates any 8/16-bit integer).
+std::initializer_list<std::pair<int, int>> attributeTypes(const Loader& L, const std::string& semantic) {
+  using P = std::pair<int, int>;
+  static const std::initializer_list<P> kPosition = {{TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT}};
+  static const std::initializer_list<P> kPositionQ = {{TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT},
+                                                      {TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_BYTE},
+                                                      {TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
+                                                      {TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_SHORT},
+                                                      {TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}};
+  static const std::initializer_list<P> kNormalQ = {{TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT},
+                                                    {TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_BYTE},
+                                                    {TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_SHORT}};
+  static const std::initializer_list<P> kUv = {{TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_FLOAT},
+                                               {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
+                                               {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}};
+  static const std::initializer_list<P> kUvQ = {{TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_FLOAT},
+                                                {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_BYTE},
+                                                {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
+                                                {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_SHORT},
+                                                {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}};
+  if (semantic == "POSITION") return L.quantized ? kPositionQ : kPosition;
+  if (semantic == "NORMAL") return L.quantized ? kNormalQ : kPosition;
+  return L.quantized ? kUvQ : kUv;
+}
+
+// Checks accessor `index` of attribute `semantic` and returns its view, normalization settled:
+// integer normals must be normalized; glTF 2.0's integer texture coordinates are normalized
+// whatever the flag says (only KHR_mesh_quantization has unnormalized ones).
+AccessorView viewAttribute(const Loader& L, int index, const std::string& name, const std::string& semantic) {
+  AccessorView v = viewAccessor(L, index, name + " " + semantic, attributeTypes(L, semantic));
+  if (v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) return v;
+  if (semantic == "NORMAL" && !v.normalized) L.fail(name + " NORMAL: integer normals must be normalized");
+  if (semantic == "TEXCOORD_0" && !L.quantized) v.normalized = true;
+  return v;
+}
+
+// NORMAL and TEXCOORD_0 from their accessors (each when `normals` / `uvs`), for `vertices`
+// vertices; an accessor of another count is ignored with a warning.
+void readShadingAttributes(Loader& L, const tinygltf::Primitive& p, const std::string& name, std::size_t vertices,
+                           geo::TriangleMesh& m, bool normals, bool uvs) {
+  if (const auto it = p.attributes.find("NORMAL"); normals && it != p.attributes.end()) {
+    const AccessorView nrm = viewAttribute(L, it->second, name, "NORMAL");
+    if (nrm.count != vertices) {
+      L.warn(name + ": NORMAL count differs from POSITION; normals ignored");
+    } else {
+      m.normals.resize(nrm.count);
+      for (std::size_t i = 0; i < nrm.count; ++i) {
+        for (int c = 0; c < 3; ++c) m.normals[i][c] = readComponent(nrm, i, c);
+      }
+    }
+  }
+  if (const auto it = p.attributes.find("TEXCOORD_0"); uvs && it != p.attributes.end()) {
+    const AccessorView uv = viewAttribute(L, it->second, name, "TEXCOORD_0");
+    if (uv.count != vertices) {
+      L.warn(name + ": TEXCOORD_0 count differs from POSITION; texture coordinates ignored");
+    } else {
+      m.uvs.resize(uv.count);
+      for (std::size_t i = 0; i < uv.count; ++i) {
+        m.uvs[i] = {readComponent(uv, i, 0), readComponent(uv, i, 1)};
+      }
+    }
+  }
+}
+
+// Vertex count and index list of a primitive read from its accessors (`position`: POSITION's).
+std::size_t readAccessors(Loader& L, const tinygltf::Primitive& p, int position, const std::string& name,
+                          geo::TriangleMesh& m, std::vector<std::uint32_t>& indices) {
+  const AccessorView pos = viewAttribute(L, position, name, "POSITION");
+  m.positions.resize(pos.count);
+  for (std::size_t i = 0; i < pos.count; ++i) {
+    for (int c = 0; c < 3; ++c) m.positions[i][c] = readComponent(pos, i, c);
+  }
+  readShadingAttributes(L, p, name, pos.count, m, true, true);
+  if (p.indices >= 0) {
+    const AccessorView idx = viewAccessor(L, p.indices, name + " indices",
+                                          {{TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
+                                           {TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                                           {TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}});
+    indices.resize(idx.count);
+    for (std::size_t i = 0; i < idx.count; ++i) indices[i] = readIndex(idx, i);
+  } else {
+    indices.resize(pos.count);
+    for (std::size_t i = 0; i < pos.count; ++i) indices[i] = std::uint32_t(i);
+  }
+  return pos.count;
+}
+
+// The same from the primitive's Draco stream; NORMAL or TEXCOORD_0 outside the stream is read
+// from its accessor (the extension lets a primitive compress only some attributes).
+std::size_t readDraco(Loader& L, const tinygltf::Primitive& p, const std::string& name, geo::TriangleMesh& m,
+                      std::vector<std::uint32_t>& indices) {
+  DracoPrimitive d = decodeDraco(L.path, L.gltf, p, name);
+  const std::size_t n = d.vertices;
+  m.positions.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    m.positions[i] = {d.positions[3 * i], d.positions[3 * i + 1], d.positions[3 * i + 2]};
+  if (!d.normals.empty()) {
+    m.normals.resize(n);
+    for (std::size_t i = 0; i < n; ++i) m.normals[i] = {d.normals[3 * i], d.normals[3 * i + 1], d.normals[3 * i + 2]};
+  }
+  if (!d.uvs.empty()) {
+    m.uvs.resize(n);
+    for (std::size_t i = 0; i < n; ++i) m.uvs[i] = {d.uvs[2 * i], d.uvs[2 * i + 1]};
+  }
+  readShadingAttributes(L, p, name, n, m, d.normals.empty(), d.uvs.empty());
+  indices = std::move(d.indices);
+  return n;
 }
 
 struct Primitive {
@@ -233,50 +376,13 @@ Primitive convertPrimitive(Loader& L, const tinygltf::Primitive& p, const std::s
     return out;
   }
   try {
-    const AccessorView pos =
-        viewAccessor(L, position->second, name + " POSITION", {{TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT}});
     geo::TriangleMesh& m = out.mesh;
-    m.positions.resize(pos.count);
-    for (std::size_t i = 0; i < pos.count; ++i) {
-      for (int c = 0; c < 3; ++c) m.positions[i][c] = readComponent(pos, i, c);
-    }
-    if (const auto it = p.attributes.find("NORMAL"); it != p.attributes.end()) {
-      const AccessorView nrm =
-          viewAccessor(L, it->second, name + " NORMAL", {{TINYGLTF_TYPE_VEC3, TINYGLTF_COMPONENT_TYPE_FLOAT}});
-      if (nrm.count != pos.count) {
-        L.warn(name + ": NORMAL count differs from POSITION; normals ignored");
-      } else {
-        m.normals.resize(nrm.count);
-        for (std::size_t i = 0; i < nrm.count; ++i) {
-          for (int c = 0; c < 3; ++c) m.normals[i][c] = readComponent(nrm, i, c);
-        }
-      }
-    }
-    if (const auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end()) {
-      const AccessorView uv = viewAccessor(L, it->second, name + " TEXCOORD_0",
-                                           {{TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_FLOAT},
-                                            {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
-                                            {TINYGLTF_TYPE_VEC2, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}});
-      if (uv.count != pos.count) {
-        L.warn(name + ": TEXCOORD_0 count differs from POSITION; texture coordinates ignored");
-      } else {
-        m.uvs.resize(uv.count);
-        for (std::size_t i = 0; i < uv.count; ++i) {
-          m.uvs[i] = {readComponent(uv, i, 0), readComponent(uv, i, 1)};
-        }
-      }
-    }
     std::vector<std::uint32_t> indices;
-    if (p.indices >= 0) {
-      const AccessorView idx = viewAccessor(L, p.indices, name + " indices",
-                                            {{TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE},
-                                             {TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
-                                             {TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT}});
-      indices.resize(idx.count);
-      for (std::size_t i = 0; i < idx.count; ++i) indices[i] = readIndex(idx, i);
+    std::size_t vertices = 0;
+    if (hasDraco(p)) {
+      vertices = readDraco(L, p, name, m, indices);
     } else {
-      indices.resize(pos.count);
-      for (std::size_t i = 0; i < pos.count; ++i) indices[i] = std::uint32_t(i);
+      vertices = readAccessors(L, p, position->second, name, m, indices);
     }
     const std::size_t n = indices.size();
     if (mode == TINYGLTF_MODE_TRIANGLES) {
@@ -300,9 +406,9 @@ Primitive convertPrimitive(Loader& L, const tinygltf::Primitive& p, const std::s
       }
     }
     std::size_t outOfRange = 0;
-    for (std::uint32_t i : indices) outOfRange += i >= pos.count ? 1 : 0;
+    for (std::uint32_t i : indices) outOfRange += i >= vertices ? 1 : 0;
     if (outOfRange > 0) {
-      L.warn(name + ": " + std::to_string(outOfRange) + " indices >= vertex count " + std::to_string(pos.count) +
+      L.warn(name + ": " + std::to_string(outOfRange) + " indices >= vertex count " + std::to_string(vertices) +
              "; their triangles are dropped");
     }
   } catch (const SkipPrimitive& skip) {
@@ -619,11 +725,15 @@ double declaredTriangles(const tinygltf::Model& gltf, const tinygltf::Primitive&
   if (index < 0 || std::size_t(index) >= gltf.accessors.size()) return 0.0;
   const tinygltf::Accessor& accessor = gltf.accessors[std::size_t(index)];
   const double count = double(accessor.count);
-  if (accessor.bufferView < 0 || std::size_t(accessor.bufferView) >= gltf.bufferViews.size()) return 0.0;
-  const double element = double(tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType))) *
-                         double(tinygltf::GetNumComponentsInType(std::uint32_t(accessor.type)));
-  if (!(element > 0.0) || count * element > double(gltf.bufferViews[std::size_t(accessor.bufferView)].byteLength))
-    return 0.0;
+  // A Draco primitive's accessors have no bufferView: the counts they declare are what the stream
+  // must decode to (decodeDraco checks).
+  if (!hasDraco(p)) {
+    if (accessor.bufferView < 0 || std::size_t(accessor.bufferView) >= gltf.bufferViews.size()) return 0.0;
+    const double element = double(tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType))) *
+                           double(tinygltf::GetNumComponentsInType(std::uint32_t(accessor.type)));
+    if (!(element > 0.0) || count * element > double(gltf.bufferViews[std::size_t(accessor.bufferView)].byteLength))
+      return 0.0;
+  }
   if (p.mode == TINYGLTF_MODE_TRIANGLES || p.mode < 0) return std::floor(count / 3.0);
   if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP || p.mode == TINYGLTF_MODE_TRIANGLE_FAN) return std::max(0.0, count - 2.0);
   return 0.0;
@@ -682,6 +792,9 @@ Model loadGltf(const std::string& path, const LoadOptions& options) {
   parseGltfSandboxed(path, gltf, json, out.warnings);
   Loader L{path, std::filesystem::path(path).filename().string(), gltf, json, out, options};
   try {
+    L.quantized = std::find(gltf.extensionsUsed.begin(), gltf.extensionsUsed.end(), "KHR_mesh_quantization") !=
+                  gltf.extensionsUsed.end();
+    L.decodedViews = decodeMeshoptViews(path, gltf, json);
     const std::vector<int> parent = checkHierarchy(L);
     const std::vector<int> roots = sceneRoots(L, parent);
     checkMemoryNeeds(L, roots);

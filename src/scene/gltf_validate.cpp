@@ -14,6 +14,7 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "scene/gltf_compression.h"
 #include "scene/loaders.h"
 
 namespace penumbra::detail {
@@ -241,7 +242,9 @@ struct Checker {
         fail(what + ": 'byteLength' missing or not a positive integer below 1 GiB");
       }
       const auto uri = b.find("uri");
-      if (uri == b.end()) {
+      if (uri == b.end() && isMeshoptFallbackBuffer(b)) {
+        // No data: the bufferViews in it are decoded from EXT_meshopt_compression streams.
+      } else if (uri == b.end()) {
         if (!glb || i != 0) fail(what + " has no 'uri'");
         if (binChunkBytes == 0) fail(what + " has no 'uri' but the GLB has no BIN chunk");
         if (length > binChunkBytes) {
@@ -547,6 +550,63 @@ std::string checkGlb(const std::string& path, std::vector<unsigned char>& bytes,
   return std::string(bytes.begin() + 20, bytes.begin() + std::ptrdiff_t(binStart));
 }
 
+// Stubs in `doc` what tinygltf would refuse in a compressed file (see parseGltfSandboxed); the
+// accessors given a bufferView go to `dracoIndices`. Returns whether anything changed. `doc`
+// has passed the checks above (buffers, meshes and primitives are objects where present).
+bool stubForTinygltf(Json& doc, std::vector<std::size_t>& dracoIndices) {
+  bool changed = false;
+  if (auto buffers = doc.find("buffers"); buffers != doc.end() && buffers->is_array()) {
+    for (Json& b : *buffers) {
+      if (!b.is_object() || b.contains("uri") || !isMeshoptFallbackBuffer(b)) continue;
+      b["uri"] = "data:application/octet-stream;base64,AAAAAA==";
+      b["byteLength"] = 4;
+      changed = true;
+    }
+  }
+  auto accessors = doc.find("accessors");
+  auto meshes = doc.find("meshes");
+  if (accessors == doc.end() || !accessors->is_array() || meshes == doc.end() || !meshes->is_array()) return changed;
+  for (const Json& mesh : *meshes) {
+    const auto primitives = mesh.find("primitives");
+    if (!mesh.is_object() || primitives == mesh.end() || !primitives->is_array()) continue;
+    for (const Json& p : *primitives) {
+      if (!p.is_object()) continue;
+      const auto ext = p.find("extensions");
+      const auto indices = p.find("indices");
+      if (ext == p.end() || !ext->is_object() || indices == p.end() || !indices->is_number_unsigned()) continue;
+      const auto draco = ext->find("KHR_draco_mesh_compression");
+      if (draco == ext->end() || !draco->is_object()) continue;
+      const auto view = draco->find("bufferView");
+      const std::size_t a = indices->get<std::size_t>();
+      if (view == draco->end() || !view->is_number_unsigned() || a >= accessors->size()) continue;
+      Json& accessor = (*accessors)[a];
+      if (!accessor.is_object() || accessor.contains("bufferView")) continue;
+      accessor["bufferView"] = *view;
+      dracoIndices.push_back(a);
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+// The GLB `bytes` (JSON chunk of `jsonBytes`) with its JSON chunk replaced by `json`, padded with
+// spaces to 4 bytes; the BIN chunk after it unchanged.
+std::vector<unsigned char> withJsonChunk(const std::vector<unsigned char>& bytes, std::size_t jsonBytes,
+                                         std::string json) {
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  std::vector<unsigned char> out(bytes.begin(), bytes.begin() + 12);
+  auto put = [&](std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<unsigned char>(v >> (8 * i)));
+  };
+  put(std::uint32_t(json.size()));
+  put(kChunkJson);
+  out.insert(out.end(), json.begin(), json.end());
+  out.insert(out.end(), bytes.begin() + std::ptrdiff_t(20 + jsonBytes), bytes.end());
+  const std::uint32_t total = std::uint32_t(out.size());
+  for (int i = 0; i < 4; ++i) out[8 + std::size_t(i)] = static_cast<unsigned char>(total >> (8 * i));
+  return out;
+}
+
 std::string firstLines(const std::string& text) {
   std::string out;
   std::istringstream in(text);
@@ -586,6 +646,17 @@ void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& j
     throw Error(path, std::string("malformed glTF: ") + e.what());
   }
 
+  // What tinygltf 2.7 refuses in a compressed file is stubbed in the JSON it is given (the
+  // loader reads the real thing): an EXT_meshopt_compression fallback buffer (no uri, no data)
+  // becomes 4 zero bytes; the indices accessor of a KHR_draco_mesh_compression primitive (no
+  // bufferView) points at the Draco stream's bufferView, and is set back to none after parsing.
+  std::string given = text;
+  std::vector<std::size_t> dracoIndices;
+  if (Json stubbed = json; stubForTinygltf(stubbed, dracoIndices)) {
+    given = stubbed.dump();
+    if (glb) bytes = withJsonChunk(bytes, text.size(), given);
+  }
+
   Sandbox sandbox{folder};
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&sandboxFileExists, &sandboxExpand, &sandboxRead, &sandboxWrite, &sandbox});
@@ -596,9 +667,11 @@ void parseGltfSandboxed(const std::string& path, tinygltf::Model& model, Json& j
     ok =
         loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), folder);
   } else {
-    ok = loader.LoadASCIIFromString(&model, &err, &warn, text.data(), static_cast<unsigned int>(text.size()), folder);
+    ok = loader.LoadASCIIFromString(&model, &err, &warn, given.data(), static_cast<unsigned int>(given.size()), folder);
   }
   if (!ok) throw Error(path, "tinygltf: " + (err.empty() ? std::string("load failed") : firstLines(err)));
+  for (std::size_t a : dracoIndices)
+    if (a < model.accessors.size()) model.accessors[a].bufferView = -1;
   if (!warn.empty()) warnings.push_back(path + ": tinygltf: " + firstLines(warn));
 }
 

@@ -106,8 +106,13 @@ Json framingCamera(glm::vec3 lo, glm::vec3 hi);
 // key '<key>'") naming where it is (`objects[1]`, `lights[0].spin`, `meshes[0]`). Invalid JSON
 // throws Error(path, "invalid JSON: ...").
 // The glTF extensions penumbra reads (a file may require these; others it uses are warned).
-inline constexpr const char* kGltfExtensions[] = {"KHR_lights_punctual", "EXT_lights_area",
-                                                  "KHR_materials_emissive_strength", "KHR_texture_transform"};
+inline constexpr const char* kGltfExtensions[] = {"KHR_lights_punctual",
+                                                  "EXT_lights_area",
+                                                  "KHR_materials_emissive_strength",
+                                                  "KHR_texture_transform",
+                                                  "KHR_draco_mesh_compression",
+                                                  "EXT_meshopt_compression",
+                                                  "KHR_mesh_quantization"};
 
 // Arrays and objects nested deeper than this are refused (Error(path, "<item>: nested deeper
 // than 128 ...")) as the text is read: the conversions and messages after it recurse per level

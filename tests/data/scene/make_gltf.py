@@ -268,9 +268,9 @@ def main():
     huge = cube_doc()
     huge["buffers"][0]["byteLength"] = 900000000  # the payload is 168 bytes
     write("buffer_declared_huge.gltf", huge)
-    write("draco_required.gltf", cube_doc(extra={
-        "extensionsUsed": ["KHR_draco_mesh_compression"],
-        "extensionsRequired": ["KHR_draco_mesh_compression"]}))
+    write("basisu_required.gltf", cube_doc(extra={
+        "extensionsUsed": ["KHR_texture_basisu"],
+        "extensionsRequired": ["KHR_texture_basisu"]}))
     write("node_cycle.gltf", cube_doc(
         nodes=[{"mesh": 0}, {"children": [2]}, {"children": [1]}], scenes=[{"nodes": [0]}]))
     write("node_two_parents.gltf", cube_doc(
