@@ -13,6 +13,7 @@
 // interpolated point.
 #include "shared/numerics.h"
 #include "shading/shaders/shading.h"
+#include "shading/shaders/alpha_test.glsl"
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
@@ -51,6 +52,7 @@ vec3 pixelRayPoint(vec3 face) {
 }
 
 void main() {
+  if (!penumbraSurfacePresent(baseColorTexture, vUv)) discard;  // alphaMode MASK: a hole
   vec3 face = normalize(vNormal);
   vec3 position = pixelRayPoint(face);
   vec3 n = face;

@@ -171,8 +171,8 @@ TEST(Compressed, MeshoptBunnyHasTheObjsTriangles) {
   const float extent = extentOf(obj.positions);
   // gltfpack's default 14-bit positions on the mesh's largest side; with -vpf as floats through
   // the exponential filter, with the same 14 bits of mantissa.
-  for (const auto& [file, bits] : std::vector<std::pair<std::string, int>>{{"bunny_meshopt.glb", 14},
-                                                                           {"bunny_meshopt_float.glb", 14}}) {
+  for (const auto& [file, bits] :
+       std::vector<std::pair<std::string, int>>{{"bunny_meshopt.glb", 14}, {"bunny_meshopt_float.glb", 14}}) {
     SCOPED_TRACE(file);
     const detail::Model model = detail::loadGltf(sceneData(file));
     const geo::TriangleMesh packed = only(model);
@@ -206,9 +206,11 @@ TEST(Compressed, DracoEngineIsTheUncompressedWithinItsQuantization) {
     trianglesPlain += p.triangles.size();
     missing += m.trianglesMissing;
   }
-  std::printf("draco engine: %zu triangles (uncompressed %zu), %zu without a counterpart within 1.5 steps; farthest vertex %.2f "
-              "steps of 2^-11 of its mesh\n",
-              trianglesDraco, trianglesPlain, missing, worst);
+  std::printf(
+      "draco engine: %zu triangles (uncompressed %zu), %zu without a counterpart within 1.5 steps; farthest vertex "
+      "%.2f "
+      "steps of 2^-11 of its mesh\n",
+      trianglesDraco, trianglesPlain, missing, worst);
   // The encoder dropped the file's repeated-index triangles (the loader drops them from the
   // uncompressed file too); its 11-bit quantization of positions (a vertex moves up to sqrt(3)/2
   // of a step of the mesh's local extent; measured 0.94 of a step of its placed extent) makes
@@ -259,19 +261,19 @@ TEST(Compressed, BadDeclarationsAreOneLineErrors) {
       {"meshopt filter on indices", kMeshoptBunny,
        [](Glb& g) { g.json["bufferViews"][1]["extensions"]["EXT_meshopt_compression"]["filter"] = "OCTAHEDRAL"; },
        "filter OCTAHEDRAL on a TRIANGLES stream"},
-      {"plain view in the fallback buffer", kMeshoptBunny,
-       [](Glb& g) { g.json["bufferViews"][0].erase("extensions"); }, "fallback buffer, without data"},
-      {"draco vertex count other than POSITION's", kDracoBunny,
-       [](Glb& g) { g.json["accessors"][1]["count"] = 2825; }, "vertices but POSITION declares 2825"},
-      {"draco index count other than declared", kDracoBunny,
-       [](Glb& g) { g.json["accessors"][0]["count"] = 30; }, "the indices accessor declares 30 indices"},
+      {"plain view in the fallback buffer", kMeshoptBunny, [](Glb& g) { g.json["bufferViews"][0].erase("extensions"); },
+       "fallback buffer, without data"},
+      {"draco vertex count other than POSITION's", kDracoBunny, [](Glb& g) { g.json["accessors"][1]["count"] = 2825; },
+       "vertices but POSITION declares 2825"},
+      {"draco index count other than declared", kDracoBunny, [](Glb& g) { g.json["accessors"][0]["count"] = 30; },
+       "the indices accessor declares 30 indices"},
       {"draco attribute not in the stream", kDracoBunny,
        [](Glb& g) {
          g.json["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]["NORMAL"] = 7;
        },
        "NORMAL's attribute 7 is not in the stream"},
-      {"draco stream not a stream", kDracoBunny,
-       [](Glb& g) { std::fill(g.bin.begin(), g.bin.begin() + 64, 'x'); }, "(KHR_draco_mesh_compression): not a Draco"},
+      {"draco stream not a stream", kDracoBunny, [](Glb& g) { std::fill(g.bin.begin(), g.bin.begin() + 64, 'x'); },
+       "(KHR_draco_mesh_compression): not a Draco"},
   };
   test::TempDir dir;
   for (const BadEdit& e : edits) {
@@ -293,8 +295,8 @@ TEST(Compressed, CorruptStreamsNeverCrash) {
     return state >> 8;
   };
   int loaded = 0, rejected = 0;
-  for (const std::string& file :
-       {sceneData("bunny_meshopt.glb"), sceneData("bunny_meshopt_float.glb"), sourcePath("scenes/models/bunny-draco.glb")}) {
+  for (const std::string& file : {sceneData("bunny_meshopt.glb"), sceneData("bunny_meshopt_float.glb"),
+                                  sourcePath("scenes/models/bunny-draco.glb")}) {
     const Glb original = readGlb(file);
     for (int round = 0; round < 60; ++round) {
       Glb g = original;

@@ -150,6 +150,18 @@ TEST(SceneFiles, SemiOpaque) {
   EXPECT_GE(panes, 3);
 }
 
+TEST(SceneFiles, CanopyIsAlphaTested) {
+  const Scene s = loadScene(sourcePath("scenes/canopy.json"));
+  EXPECT_TRUE(s.hasAlphaTested());
+  int tested = 0;
+  for (const SceneMesh& m : s.meshes) tested += s.alphaTested(m.material) ? 1 : 0;
+  EXPECT_EQ(tested, 49);  // 48 leaf cards and the fence; the floor is not
+  // Without its texture's pixels (penumbra info), nothing is alpha-tested: the holes are unknown.
+  LoadOptions headers;
+  headers.decodeTextures = false;
+  EXPECT_FALSE(loadScene(sourcePath("scenes/canopy.json"), {}, headers).hasAlphaTested());
+}
+
 TEST(SceneFiles, Engine) {
   if (!assimpInstalled()) FAIL() << "assimp-testmodels not installed (./setup.sh --deps installs it)";
   const Scene s = loadScene(sourcePath("scenes/engine.json"));

@@ -259,6 +259,10 @@ TEST(SceneJson, ValidationErrorsNameTheFileAndTheItem) {
   expectError([&] { loadScene(p); }, p, "materials[0] 'm'.roughness: must be in [0, 1], got 1.5");
   p = dir.file("m.json", R"({"materials": [{"name": "m", "metallic": -0.5}], "objects": [{"shape": "box"}]})");
   expectError([&] { loadScene(p); }, p, "materials[0] 'm'.metallic: must be in [0, 1]");
+  p = dir.file("m.json", R"({"materials": [{"name": "m", "alphaCutoff": 0.5}], "objects": [{"shape": "box"}]})");
+  expectError([&] { loadScene(p); }, p, "materials[0] 'm'.alphaCutoff: needs a \"texture\" whose alpha it tests");
+  p = dir.file("m.json", R"({"materials": [{"name": "m", "alphaCutoff": 0}], "objects": [{"shape": "box"}]})");
+  expectError([&] { loadScene(p); }, p, "materials[0] 'm'.alphaCutoff: must be in (0, 1]");
   p = object(R"({"shape": "sphere", "segments": 2})");
   expectError([&] { loadScene(p); }, p, "segments");
   p = object(R"({"name": "x"})");

@@ -226,7 +226,7 @@ class Comparison {
         run.counts.emplace_back(st.stage, st.counts);
     run.total = t.total, run.harness = t.harness, run.prepareMs = t.prepareMs;
     if (frames_ == 1) first = std::move(t.last);
-    run.memoryBytes = first.memoryBytes, run.statistics = first.statistics;
+    run.memoryBytes = first.memoryBytes, run.statistics = first.statistics, run.notes = first.notes;
     return first;
   }
 

@@ -87,6 +87,7 @@ struct CompareRun {
   double prepareMs = 0.0;  // once per scene
   std::size_t memoryBytes = 0;
   std::vector<std::pair<std::string, double>> statistics;
+  std::vector<std::string> notes;            // FrameResult::notes of the first frame
   TechniqueErrors errors;                    // against the same-sample reference
   std::optional<TechniqueErrors> converged;  // against raytrace-converged
   // The same-sample reference's row of a comparison with a converged reference: that converged

@@ -160,6 +160,7 @@ CompareRun runFromJson(const nlohmann::json& j, std::size_t preset, const std::s
     r.memoryBytes = j.at("memoryBytes").get<std::size_t>();
     for (auto& [k, v] : j.at("statistics").items()) r.statistics.emplace_back(k, v.get<double>());
     r.errors = errorsFrom(j.at("errors"));
+    r.notes = j.value("notes", std::vector<std::string>{});
     if (j.contains("pipelineStatistics"))
       for (auto& [k, v] : j.at("pipelineStatistics").at("stages").items()) r.counts.emplace_back(k, countsFrom(v));
     if (j.contains("convergedErrors")) r.converged = errorsFrom(j.at("convergedErrors"));
@@ -258,6 +259,7 @@ nlohmann::json CompareResult::json() const {
                      {"prepareMs", r.prepareMs},
                      {"memoryBytes", r.memoryBytes},
                      {"statistics", stats},
+                     {"notes", r.notes},
                      {"errors", errorsJson(r.errors)},
                      {"image", r.image},
                      {"heat", r.heat},
@@ -268,7 +270,7 @@ nlohmann::json CompareResult::json() const {
     if (r.failed) {
       // No numbers for a failed run: its timings and errors were never measured.
       for (const char* k : {"stagesMs", "stagesSpreadMs", "totalMs", "totalSpreadMs", "prepareMs", "memoryBytes",
-                            "statistics", "errors", "harnessStagesMs", "harnessMs", "harnessSpreadMs"})
+                            "statistics", "notes", "errors", "harnessStagesMs", "harnessMs", "harnessSpreadMs"})
         t.erase(k);
       t["error"] = r.failure;
     }

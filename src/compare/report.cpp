@@ -96,7 +96,13 @@ std::vector<std::string> whichTechniqueWhen(const CompareResult& r) {
     if (run.failed) {
       out.push_back(runLabel(r, run) + " failed: " + run.failure);
       trouble = true;
-    } else if (run.errors.unshadowedPixels > 0) {
+      continue;
+    }
+    // What the technique models differently on this scene, with the error it costs.
+    for (const std::string& note : run.notes)
+      out.push_back(
+          fmt::format("{}: {} (visibility RMSE {:.4f}).", runLabel(r, run), note, run.errors.visibility.rmse));
+    if (run.errors.unshadowedPixels > 0) {
       out.push_back(
           fmt::format("{} left {} pixels unshadowed (outside its shadow maps; visibility RMSE {:.4f} without them).",
                       runLabel(r, run), run.errors.unshadowedPixels, run.errors.visibilityExceptUnshadowed.rmse));
@@ -161,6 +167,7 @@ std::string reportTable(const CompareResult& r) {
     if (!run.harnessStages.empty()) t += " | harness: " + harnessText(run);
     t += "\n";
     if (run.referenceNoise) t += "  " + noiseText(run) + "\n";
+    for (const std::string& note : run.notes) t += "  note: " + note + "\n";
   }
   return t;
 }

@@ -155,7 +155,12 @@ GpuScene::GpuScene(const Scene& scene, int width, int height, std::size_t maxVer
     if (d.count > 0) draws_.push_back(d);
   }
   flush();
-  for (auto& d : draws_) allOpaque_ = allOpaque_ && scene.materials[std::size_t(d.material)].opacity >= 1.0f;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) alphaTested_.push_back(scene.alphaTested(int(i)) ? 1 : 0);
+  for (auto& d : draws_) {
+    hasAlphaTested_ = hasAlphaTested_ || alphaTested_[std::size_t(d.material)];
+    allOpaque_ = allOpaque_ && scene.materials[std::size_t(d.material)].opacity >= 1.0f;
+  }
+  allOpaque_ = allOpaque_ && !hasAlphaTested_;
 
   for (auto& t : scene.textures) {
     PENUMBRA_CHECK(!t.image.empty(), "texture " + t.source + " was loaded without its pixels");
@@ -216,12 +221,26 @@ void GpuScene::drawGBuffer(const gl::Program& program) const {
       if (tex) materialTextures_[std::size_t(index)].bind(unit);
     };
     bindTexture(mat.baseColorTexture, PENUMBRA_UNIT_MATERIAL_TEX, "hasTexture");
+    setAlphaTest(program, d.material);
     bindTexture(mat.metallicRoughnessTexture, PENUMBRA_UNIT_MATERIAL_MR_TEX, "hasMetallicRoughnessTexture");
     glDrawArrays(GL_TRIANGLES, d.first, d.count);
   }
 }
 
-void GpuScene::drawTriangles(GLsizei instances, Occluders which, const gl::Program* program) const {
+void GpuScene::setAlphaTest(const gl::Program& program, int material) const {
+  const bool on = alphaTested_[std::size_t(material)] != 0;
+  program.set("alphaTest", on ? 1 : 0);
+  if (!on) return;
+  const Material& mat = scene_.materials[std::size_t(material)];
+  program.set("alphaFactor", mat.alphaFactor);
+  program.set("alphaCutoff", mat.alphaCutoff);
+  materialTextures_[std::size_t(mat.baseColorTexture)].bind(PENUMBRA_UNIT_MATERIAL_TEX);
+}
+
+void GpuScene::drawTriangles(GLsizei instances, Occluders which, const gl::Program& program) const {
+  PENUMBRA_CHECK(!hasAlphaTested_ || which != Occluders::Opaque || program.location("alphaTest") >= 0,
+                 "an occluder program without the alpha test (shading/shaders/alpha_test_depth.glsl) drawing a scene "
+                 "with alpha-tested materials");
   if (which == Occluders::Opaque && allOpaque_) {  // one draw per chunk covers every occluder
     for (auto& c : chunks_) {
       c.vao.bind();
@@ -235,7 +254,8 @@ void GpuScene::drawTriangles(GLsizei instances, Occluders which, const gl::Progr
     bool semi = opacity > 0.0f && opacity < 1.0f;
     if (opacity <= 0.0f || semi != (which == Occluders::SemiOpaque)) continue;
     if (d.chunk != bound) chunks_[std::size_t(bound = d.chunk)].vao.bind();
-    if (program) program->set("opacity", opacity);
+    if (semi) program.set("opacity", opacity);
+    if (hasAlphaTested_ && !semi) setAlphaTest(program, d.material);
     glDrawArraysInstanced(GL_TRIANGLES, d.first, d.count, instances);
   }
 }
@@ -714,6 +734,10 @@ FrameResult Renderer::finishFrame(FrameState& frame) {
   // Comparisons mask background pixels with it (RenderSettings::gbufferResults).
   if (settings_.gbufferResults) frame.cpuGBuffer();
   result.statistics = technique.statistics();
+  if (gpu_->hasAlphaTested() && !technique.seesAlphaTest())
+    result.notes.push_back(
+        "alpha-tested occluders cast their whole triangles: its shadow volumes come from the meshes' edges and do not "
+        "see the textures' holes");
   if (settings_.cullSeparatedLights && technique.cullsSeparatedLights())
     result.statistics.emplace_back("lights culled (a closed mesh between them and the camera)",
                                    double(frame.culledLights));

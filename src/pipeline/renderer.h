@@ -105,6 +105,9 @@ struct FrameResult {
   StageTimer timer;             // the technique's stages and, apart (StageKind::Harness), the harness's
   std::size_t memoryBytes = 0;  // pipeline + technique render targets
   std::vector<std::pair<std::string, double>> statistics;  // Technique::statistics()
+  // What the frame models differently from the reference, one line each (compare puts them in
+  // the technique's row): an approximation it makes on this scene, not an error.
+  std::vector<std::string> notes;
 };
 
 // Geometry uploaded once per scene, the camera, and the G-buffer for one output size.
@@ -124,12 +127,16 @@ class GpuScene {
   // offset, shading normal).
   void drawGBuffer(const gl::Program& program) const;
   void renderGBuffer();  // fills the G-buffer textures below
-  // Draws triangles (attribute 0: position) `instances` times: for passes that only need
-  // occluder geometry (depth maps, point generation). Opaque: materials of opacity 1;
-  // SemiOpaque: opacity in (0, 1), with `program`'s uniform "opacity" set per draw. Fully
-  // transparent materials (opacity 0) occlude nothing and are never drawn.
+  // Draws triangles (attribute 0: position, 2: uv) `instances` times with `program` (in use):
+  // for passes that only need occluder geometry (depth maps, point generation). Opaque:
+  // materials of opacity 1, alpha-tested ones (Scene::alphaTested) with `program`'s alpha test
+  // (shading/shaders/alpha_test_depth.glsl: its uniforms set and the texture bound per draw; a
+  // program without it is a programmer error when the scene has such materials); SemiOpaque:
+  // opacity in (0, 1), with `program`'s uniform "opacity" set per draw. Fully transparent
+  // materials (opacity 0) occlude nothing and are never drawn.
   enum class Occluders { Opaque, SemiOpaque };
-  void drawTriangles(GLsizei instances, Occluders which, const gl::Program* program = nullptr) const;
+  void drawTriangles(GLsizei instances, Occluders which, const gl::Program& program) const;
+  bool hasAlphaTested() const { return hasAlphaTested_; }
   const gl::Texture& position() const { return position_; }
   const gl::Texture& normal() const { return normal_; }
   const gl::Texture& albedo() const { return albedo_; }
@@ -140,6 +147,8 @@ class GpuScene {
   std::size_t memoryBytes() const;
 
  private:
+  // The alpha test's uniforms of `program` for a draw of `material` (off unless alpha-tested).
+  void setAlphaTest(const gl::Program& program, int material) const;
   // One vertex buffer of at most maxVertexBufferBytes and its vertex array.
   struct Chunk {
     gl::Buffer vertices;
@@ -159,6 +168,8 @@ class GpuScene {
   glm::vec3 cameraPos_;
   std::vector<Chunk> chunks_;
   std::vector<Draw> draws_;
+  std::vector<std::uint8_t> alphaTested_;      // per material: Scene::alphaTested
+  bool hasAlphaTested_ = false;                // a draw of an alpha-tested material
   bool allOpaque_ = true;                      // every material of opacity 1: one draw covers every (opaque) occluder
   std::vector<gl::Texture> materialTextures_;  // parallel to scene.textures
   gl::Texture position_, normal_, albedo_, shading_, material_, depth_;

@@ -91,6 +91,12 @@ class Technique {
   // unshadowed by design rather than computing it (shadow maps: receivers beyond max-angle);
   // empty when there are none. compare counts them and writes their mask.
   virtual std::vector<std::uint8_t> unshadowedPixels() const { return {}; }
+  // Whether its occluders have the holes of alpha-tested materials (Scene::alphaTested) as the
+  // reference's rays do: every pass that draws occluders through GpuScene::drawTriangles tests
+  // the alpha (it refuses a program without the test). Shadow volumes built from the meshes'
+  // edges cannot see a texture's outline (hard-sv, dcs*: false); the Renderer then notes it in
+  // every frame of a scene with such materials, and the error against the reference measures it.
+  virtual bool seesAlphaTest() const { return true; }
 
  private:
   static std::uint64_t nextSerial() {

@@ -89,6 +89,41 @@ void occlusionFilter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// An alpha-tested geometry (Scene::alphaTested): what its hit filter needs, copied from the scene.
+struct AlphaGeometry {
+  std::vector<glm::vec2> uvs;  // per vertex
+  std::vector<glm::uvec3> triangles;
+  std::vector<float> alpha;  // the texture's alpha channel, top row first (as uploaded to GL)
+  int width = 0, height = 0;
+  float factor = 1.0f, cutoff = 0.5f;
+
+  float texel(float x, float y) const { return alpha[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+  // shading/shaders/alpha_test.h, as the G-buffer and the depth passes decide it.
+  bool present(glm::vec2 uv) const {
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return true;
+    const glm::vec2 size{float(width), float(height)};
+    glm::vec2 first, weight;
+    shared::penumbraAlphaTexels(uv, size, first, weight);
+    const glm::vec2 a = shared::penumbraWrapTexel(first, size), b = shared::penumbraWrapTexel(first + 1.0f, size);
+    return shared::penumbraAlphaPasses(texel(a.x, a.y), texel(b.x, a.y), texel(a.x, b.y), texel(b.x, b.y), weight,
+                                       factor, cutoff);
+  }
+};
+
+// Occlusion filter of alpha-tested geometries: a hit where the texture cuts the surface away is
+// rejected (traversal goes on). The hit's texture coordinate from Embree's barycentrics: the point
+// is (1 - u - v) v0 + u v1 + v v2 (Embree 3 API, RTCHit).
+void alphaFilter(const RTCFilterFunctionNArguments* args) {
+  const auto* g = static_cast<const AlphaGeometry*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const glm::uvec3 t = g->triangles[RTCHitN_primID(args->hit, args->N, i)];
+    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    const glm::vec2 uv = (1.0f - u - v) * g->uvs[t.x] + u * g->uvs[t.y] + v * g->uvs[t.z];
+    if (!g->present(uv)) args->valid[i] = 0;
+  }
+}
+
 // Embree accepts ray origins and directions with |components| <= FLT_LARGE (1.844e18, its
 // RayK::valid(); beyond it a debug build aborts: hard case 31, a light of size 1e19). A
 // segment towards a sample that far is shortened by an exact power of two 2^k and tfar grows by
@@ -133,7 +168,8 @@ void checkGBuffer(const CpuGBuffer& g) {
 struct EmbreeReference::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
-  std::vector<float> opacity;  // per geomID
+  std::vector<float> opacity;                                   // per geomID
+  std::vector<std::unique_ptr<AlphaGeometry>> alphaGeometries;  // their filters' user data
   unsigned threads = 1;
   mutable std::atomic<std::uint64_t> rays{0};
   std::string lastError;  // set by the device error callback
@@ -252,8 +288,22 @@ EmbreeReference::EmbreeReference(const Scene& scene, int threads) : impl_(std::m
       ib[3 * i + 1] = sm.mesh.triangles[i].y;
       ib[3 * i + 2] = sm.mesh.triangles[i].z;
     }
-    // Only semi-opaque geometry gets a filter; opaque hits end traversal at once.
+    // Only semi-opaque and alpha-tested geometry gets a filter; opaque hits end traversal at once.
     if (op < 1.0f) rtcSetGeometryOccludedFilterFunction(g, occlusionFilter);
+    if (scene.alphaTested(sm.material)) {
+      const Material& mat = scene.materials[std::size_t(sm.material)];
+      const Image& image = scene.textures[std::size_t(mat.baseColorTexture)].image;
+      auto a = std::make_unique<AlphaGeometry>();
+      a->uvs = sm.mesh.uvs.size() == nv ? sm.mesh.uvs : std::vector<glm::vec2>(nv, glm::vec2(0.0f));
+      a->triangles = sm.mesh.triangles;
+      a->width = image.width, a->height = image.height;
+      a->alpha.resize(image.pixelCount());
+      for (std::size_t i = 0; i < a->alpha.size(); ++i) a->alpha[i] = image.data[i * 4 + 3];
+      a->factor = mat.alphaFactor, a->cutoff = mat.alphaCutoff;
+      rtcSetGeometryUserData(g, a.get());
+      rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
+      m.alphaGeometries.push_back(std::move(a));
+    }
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(m.scene, g, unsigned(m.opacity.size()));
     rtcReleaseGeometry(g);

@@ -60,9 +60,8 @@ void decodeMeshoptView(const std::string& path, const tinygltf::Model& gltf, con
   if (buffer >= gltf.buffers.size()) fail("buffer " + std::to_string(buffer) + " does not exist");
   const std::vector<unsigned char>& source = gltf.buffers[buffer].data;
   if (offset > source.size() || length > source.size() - offset) {
-    fail("the compressed stream (offset " + std::to_string(offset) + ", length " +
-                std::to_string(length) + ") overruns buffer " + std::to_string(buffer) + " (" +
-                std::to_string(source.size()) + " bytes)");
+    fail("the compressed stream (offset " + std::to_string(offset) + ", length " + std::to_string(length) +
+         ") overruns buffer " + std::to_string(buffer) + " (" + std::to_string(source.size()) + " bytes)");
   }
   // The stream's strides and counts, as the extension's specification restricts them.
   if (mode == "ATTRIBUTES") {
@@ -77,8 +76,7 @@ void decodeMeshoptView(const std::string& path, const tinygltf::Model& gltf, con
   }
   const bool filtered = filter != "NONE";
   if (filtered && mode != "ATTRIBUTES") fail("filter " + filter + " on a " + mode + " stream");
-  if (filter == "OCTAHEDRAL" && stride != 4 && stride != 8)
-    fail("OCTAHEDRAL filter needs byteStride 4 or 8");
+  if (filter == "OCTAHEDRAL" && stride != 4 && stride != 8) fail("OCTAHEDRAL filter needs byteStride 4 or 8");
   if (filter == "QUATERNION" && stride != 8) fail("QUATERNION filter needs byteStride 8");
   if (filtered && filter != "OCTAHEDRAL" && filter != "QUATERNION" && filter != "EXPONENTIAL")
     fail("unknown filter '" + filter + "'");
@@ -86,8 +84,8 @@ void decodeMeshoptView(const std::string& path, const tinygltf::Model& gltf, con
   // bufferView (which the loader reads as usual) and in memory.
   if (count == 0) fail("count is 0");
   if (count > view.byteLength / stride) {
-    fail(std::to_string(count) + " elements of " + std::to_string(stride) +
-                " bytes do not fit in the bufferView's " + std::to_string(view.byteLength) + " bytes");
+    fail(std::to_string(count) + " elements of " + std::to_string(stride) + " bytes do not fit in the bufferView's " +
+         std::to_string(view.byteLength) + " bytes");
   }
   checkMemory(path, what + " decoding " + std::to_string(view.byteLength) + " bytes", double(view.byteLength));
   out.assign(view.byteLength, 0);
@@ -101,7 +99,7 @@ void decodeMeshoptView(const std::string& path, const tinygltf::Model& gltf, con
     rc = meshopt_decodeIndexSequence(out.data(), count, stride, stream, length);
   if (rc != 0) {
     fail("the " + mode + " stream does not decode (meshoptimizer " +
-                (rc == -1 ? std::string("does not know its version") : "error " + std::to_string(rc)) + ")");
+         (rc == -1 ? std::string("does not know its version") : "error " + std::to_string(rc)) + ")");
   }
   if (filter == "OCTAHEDRAL")
     meshopt_decodeFilterOct(out.data(), count, stride);
@@ -195,7 +193,8 @@ DracoPrimitive decodeDraco(const std::string& path, const tinygltf::Model& gltf,
     const tinygltf::Value& id = attributes.Get(semantic);
     if (!id.IsInt() || id.GetNumberAsInt() < 0) fail(std::string("attribute id of ") + semantic + " is not an id");
     const draco::PointAttribute* att = mesh->GetAttributeByUniqueId(std::uint32_t(id.GetNumberAsInt()));
-    if (!att) fail(std::string(semantic) + "'s attribute " + std::to_string(id.GetNumberAsInt()) + " is not in the stream");
+    if (!att)
+      fail(std::string(semantic) + "'s attribute " + std::to_string(id.GetNumberAsInt()) + " is not in the stream");
     if (att->num_components() < components) {
       fail(std::string(semantic) + " has " + std::to_string(att->num_components()) + " components, not " +
            std::to_string(components));

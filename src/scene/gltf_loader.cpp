@@ -469,6 +469,7 @@ void convertMaterials(Loader& L) {
     m.alphaCutoff = float(g.alphaCutoff);
     if (g.alphaMode == "MASK") {
       m.alphaMode = AlphaMode::Mask;
+      m.alphaFactor = alpha;
       m.opacity = alpha >= m.alphaCutoff ? 1.0f : 0.0f;
     } else if (g.alphaMode == "BLEND") {
       m.alphaMode = AlphaMode::Blend;
@@ -510,10 +511,11 @@ void convertMaterials(Loader& L) {
       return index;
     };
     m.baseColorTexture = textureOf(g.pbrMetallicRoughness.baseColorTexture, "baseColorTexture", true);
-    if (m.baseColorTexture >= 0 && m.alphaMode != AlphaMode::Opaque) {
+    if (m.baseColorTexture >= 0 && m.alphaMode == AlphaMode::Blend) {
       std::ostringstream opacity;
       opacity << m.opacity;
-      L.warn(what + ": texture alpha is not used for shadows (constant opacity " + opacity.str() + ")");
+      L.warn(what + ": alphaMode BLEND: texture alpha is not used for shadows (constant opacity " + opacity.str() +
+             "; MASK is alpha-tested)");
     }
     // The specification's BRDF (Appendix B); factors default to 1 (tinygltf fills them in).
     m.brdf = BrdfModel::MetallicRoughness;

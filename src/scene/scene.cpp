@@ -62,6 +62,25 @@ std::size_t Scene::triangleCount() const {
   return n;
 }
 
+bool Scene::alphaTested(int index) const {
+  if (index < 0 || std::size_t(index) >= materials.size()) return false;
+  const Material& m = materials[std::size_t(index)];
+  if (m.alphaMode != AlphaMode::Mask || !(m.opacity >= 1.0f) || m.baseColorTexture < 0 ||
+      std::size_t(m.baseColorTexture) >= textures.size())
+    return false;
+  const Image& image = textures[std::size_t(m.baseColorTexture)].image;
+  if (image.channels != 4) return false;
+  for (std::size_t i = 0; i < image.pixelCount(); ++i)
+    if (image.data[i * 4 + 3] * m.alphaFactor < m.alphaCutoff) return true;
+  return false;
+}
+
+bool Scene::hasAlphaTested() const {
+  for (const SceneMesh& m : meshes)
+    if (!m.mesh.triangles.empty() && alphaTested(m.material)) return true;
+  return false;
+}
+
 bool Scene::hasSemiOpaque() const {
   for (const SceneMesh& m : meshes) {
     if (m.material < 0 || std::size_t(m.material) >= materials.size()) continue;

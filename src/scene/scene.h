@@ -37,10 +37,14 @@ struct Material {
   int baseColorTexture = -1;  // index into Scene::textures
   // Opacity of the surface as an occluder, in [0,1]. 1 = opaque. From glTF baseColorFactor.a
   // with alphaMode BLEND, or the scene file's "opacity" override. MASK: opacity is 0 or 1 by
-  // alphaCutoff of the constant alpha (texture alpha is not used for shadows yet: reported).
+  // alphaCutoff of the constant alpha; with a base colour texture whose alpha falls below the
+  // cutoff the surface is alpha-tested (Scene::alphaTested): present where alphaFactor x the
+  // texture's alpha >= alphaCutoff (shading/shaders/alpha_test.h). BLEND does not use the
+  // texture's alpha for shadows (warned).
   float opacity = 1.0f;
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
+  float alphaFactor = 1.0f;  // the constant alpha (glTF baseColorFactor.a) the texture's multiplies
   // The BRDF (shading/shaders/shading.h penumbraBrdf). Lambert: baseColor / pi (scene-file materials
   // without "metallic" or "roughness"). MetallicRoughness: the glTF 2.0 BRDF (Lambertian diffuse
   // + GGX with Smith masking, Schlick Fresnel) of glTF materials, OBJ materials with Ks and
@@ -131,6 +135,11 @@ struct Scene {
 
   std::size_t triangleCount() const;
   bool hasSemiOpaque() const;  // any mesh whose material opacity is in (0,1)
+  // Whether material `index` is alpha-tested: alphaMode MASK, present (opacity 1), with a base
+  // colour texture (loaded with its pixels) that has a texel whose alpha x alphaFactor is below
+  // the cutoff. Such surfaces have holes; every occluder pass and the reference test them.
+  bool alphaTested(int index) const;
+  bool hasAlphaTested() const;  // any mesh with triangles whose material is alpha-tested
   // Axis-aligned bounds of all mesh vertices.
   void bounds(glm::vec3& lo, glm::vec3& hi) const;
   // The largest absolute value of each coordinate over all mesh vertices (0 without any): a

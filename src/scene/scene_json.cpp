@@ -221,6 +221,15 @@ void readMaterial(Context& ctx, const Json& item, int index) {
     ctx.fail(f.at("opacity"), "must be in [0, 1], got " + Fields::fmtFloat(m.opacity));
   }
   m.alphaMode = m.opacity < 1.0f ? AlphaMode::Blend : AlphaMode::Opaque;
+  // glTF's alphaMode MASK: the texture's alpha cuts holes (alpha-tested occluders).
+  if (f.has("alphaCutoff")) {
+    m.alphaCutoff = f.number("alphaCutoff", 0.5f);
+    if (!(m.alphaCutoff > 0.0f && m.alphaCutoff <= 1.0f))
+      ctx.fail(f.at("alphaCutoff"), "must be in (0, 1], got " + Fields::fmtFloat(m.alphaCutoff));
+    if (m.baseColorTexture < 0) ctx.fail(f.at("alphaCutoff"), "needs a \"texture\" whose alpha it tests");
+    if (m.opacity < 1.0f) ctx.fail(f.at("alphaCutoff"), "and \"opacity\" below 1 exclude each other");
+    m.alphaMode = AlphaMode::Mask;
+  }
   // Either key selects the glTF metallic-roughness BRDF (defaults: a rough dielectric).
   if (f.has("metallic") || f.has("roughness")) {
     m.brdf = BrdfModel::MetallicRoughness;

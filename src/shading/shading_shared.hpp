@@ -4,5 +4,6 @@
 #include "shared/shared.hpp"
 
 namespace penumbra::shared {
-#include "shading/shaders/shading.h"  // NOLINT: shared with GLSL
+#include "shading/shaders/shading.h"     // NOLINT: shared with GLSL
+#include "shading/shaders/alpha_test.h"  // NOLINT: shared with GLSL
 }  // namespace penumbra::shared

@@ -18,6 +18,7 @@ using glm::cross;
 using glm::dot;
 using glm::exp;
 using glm::exp2;
+using glm::floor;
 using glm::length;
 using glm::max;
 using glm::min;

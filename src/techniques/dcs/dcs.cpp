@@ -174,6 +174,8 @@ class DepthComplexitySampling final : public Technique {
 
   bool providesPerSample() const override { return true; }
 
+  bool seesAlphaTest() const override { return false; }  // wedges and volumes from the meshes' edges
+
   std::size_t memoryBytes() const override {
     std::size_t lutBytes = 0;
     for (auto& [hash, l] : luts_) lutBytes += l.bytes();

@@ -33,6 +33,7 @@ class HardShadowVolumes final : public Technique {
   }
 
   std::size_t memoryBytes() const override { return volumes_.counter().bytes(); }
+  bool seesAlphaTest() const override { return false; }  // volumes from the meshes' edges
 
   std::vector<std::pair<std::string, double>> statistics() const override {
     return {{"closedMeshesPerTriangle", double(perTriangleMeshes_)},

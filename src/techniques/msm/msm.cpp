@@ -75,12 +75,12 @@ class MomentShadowMapping final : public shadow_map::SingleViewTechnique {
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
+    pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque, p);
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);
     glBlendEquation(GL_FUNC_ADD);
     glBlendFunc(GL_SRC1_ALPHA, GL_ONE_MINUS_SRC1_ALPHA);
-    pass.gpu.drawTriangles(1, GpuScene::Occluders::SemiOpaque, &p);
+    pass.gpu.drawTriangles(1, GpuScene::Occluders::SemiOpaque, p);
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
     glDisable(GL_DEPTH_TEST);

@@ -32,7 +32,7 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
               if (!layeredFbo_ || fboFor_ != maps.id())
                 layeredFbo_ = gl::Framebuffer(std::vector<gl::Framebuffer::Attachment>{}, &maps);
               layeredFbo_.bind();
-              pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::Opaque);
+              pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::Opaque, program);
             } else {
               if (fboFor_ != maps.id()) {
                 layerFbos_.clear();
@@ -42,7 +42,7 @@ class MultiViewRasterisation final : public shadow_map::MultiViewTechnique {
               for (int l = 0; l < frame.layers; ++l) {
                 layerFbos_[std::size_t(l)].bind();
                 program.set("layer", l);
-                pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
+                pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque, program);
               }
             }
           });

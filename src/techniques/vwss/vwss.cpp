@@ -126,7 +126,7 @@ class ViewWarpedSoftShadows final : public shadow_map::MultiViewTechnique {
       shadow_map::setMapUniforms(prog, frame);
       prog.set("centralEye", eye);
       prog.set("centralNear", centralNear);
-      pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
+      pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque, prog);
       glDisable(GL_CULL_FACE);
     };
 

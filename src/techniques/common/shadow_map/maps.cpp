@@ -69,8 +69,8 @@ void renderDepthView(const std::string& technique, LightPass& pass, const MapFra
   setMapUniforms(program, frame);
   program.set("eye", eye);
   drawWithOccluderCheck(technique, "shadow map", pass.scene, frame, eye, fbo.width(), [&] {
-    pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque);
-    if (semiOpaque) pass.gpu.drawTriangles(1, GpuScene::Occluders::SemiOpaque);
+    pass.gpu.drawTriangles(1, GpuScene::Occluders::Opaque, program);
+    if (semiOpaque) pass.gpu.drawTriangles(1, GpuScene::Occluders::SemiOpaque, program);
   });
   glDisable(GL_DEPTH_TEST);
 }
@@ -88,6 +88,7 @@ bool opaqueTriangleCoversAPixel(const Scene& scene, const MapFrame& frame, const
   };
   for (auto& m : scene.meshes) {
     if (scene.materials[std::size_t(m.material)].opacity < 1.0f) continue;  // not drawn as Occluders::Opaque
+    if (scene.alphaTested(m.material)) continue;                            // its texture may cut every fragment
     for (auto& t : m.mesh.triangles) {
       const glm::vec3 a = m.mesh.positions[t[0]], b = m.mesh.positions[t[1]], c = m.mesh.positions[t[2]];
       if (cullBack && glm::dot(glm::cross(b - a, c - a), eye - a) <= 0.0f) continue;
@@ -346,7 +347,7 @@ void MultiViewTechnique::renderSemiOpaque(LightPass& pass, const MapFrame& frame
     semiProgram.use();
     setMapUniforms(semiProgram, frame);
     semiProgram.set("semiSlots", slots);
-    pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::SemiOpaque, &semiProgram);
+    pass.gpu.drawTriangles(frame.layers, GpuScene::Occluders::SemiOpaque, semiProgram);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     const std::uint32_t most = semiStatus_.readUint().front();
     if (int(most) <= slots) {

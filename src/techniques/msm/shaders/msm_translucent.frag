@@ -9,11 +9,13 @@
 // take; between layers the weights depend on the draw order (the paper's approximation).
 #include "single_view_bindings.h"
 #include "vssm_common.glsl"
+#include "shading/shaders/alpha_test_depth.glsl"
 uniform float mapNear;
 uniform float opacity;  // 1: the opaque pass (blending off)
 layout(location = 0, index = 0) out vec4 outMoments;
 layout(location = 0, index = 1) out vec4 outWeight;
 void main() {
+  penumbraAlphaDiscard();
   float u = 2.0 * normalisedMapDepth(gl_FragCoord.z, mapNear) - 1.0;
   outMoments = vec4(u, u * u, u * u * u, u * u * u * u);
   outWeight = vec4(opacity);

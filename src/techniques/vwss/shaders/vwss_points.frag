@@ -3,14 +3,19 @@
 // (section 3, Figure 3).
 #include "common_light.glsl"
 #include "shadow_map_common.glsl"
+#include "shading/shaders/alpha_test_depth.glsl"
 in vec3 vWorld;
 #ifdef UNBUFFERED
 #include "shadow_map_splat.glsl"
 uniform int layerCount;
-void main() { splatPoint(vWorld, 0, layerCount); }
+void main() {
+  penumbraAlphaDiscard();
+  splatPoint(vWorld, 0, layerCount);
+}
 #else
 #include "shadow_map_points.glsl"
 void main() {
+  penumbraAlphaDiscard();
   uint i = atomicAdd(pointCount, 1u);
   if (i < pointCapacity) {
     pointData[3u * i] = vWorld.x;

@@ -5,6 +5,8 @@
 #include "common_light.glsl"
 #include "shadow_map_common.glsl"
 layout(location = 0) in vec3 position;
+layout(location = 2) in vec2 uv;  // for the alpha test (shading/shaders/alpha_test_depth.glsl)
+out vec2 vUv;
 #if defined(CENTRAL)
 uniform vec3 eye;
 #elif defined(LAYERED)
@@ -13,6 +15,7 @@ flat out int vLayer;
 uniform int layer;
 #endif
 void main() {
+  vUv = uv;
 #if defined(CENTRAL)
   gl_Position = mapClip(position, eye);
 #else
