@@ -163,6 +163,21 @@ TEST(SceneGltf, Materials) {
   EXPECT_EQ(m.materials[3].metallicRoughnessTexture, 1);
 }
 
+TEST(SceneGltf, MaskWithATextureIsAlphaTested) {
+  const detail::Model m = load("mask_textured.gltf");
+  ASSERT_EQ(m.materials.size(), 1u);
+  EXPECT_EQ(m.materials[0].alphaMode, AlphaMode::Mask);
+  EXPECT_EQ(m.materials[0].opacity, 1.0f);  // the constant alpha 0.9 passes the cutoff 0.6
+  EXPECT_NEAR(m.materials[0].alphaFactor, 0.9f, 1e-6f);
+  EXPECT_NEAR(m.materials[0].alphaCutoff, 0.6f, 1e-6f);
+  EXPECT_FALSE(warned(m, "texture alpha"));
+  // One texel's alpha 128/255 x 0.9 is below the cutoff: the surface has holes.
+  const Scene s = loadScene(sceneData("mask_textured.gltf"));
+  bool tested = false;
+  for (const SceneMesh& mesh : s.meshes) tested = tested || s.alphaTested(mesh.material);
+  EXPECT_TRUE(tested);
+}
+
 TEST(SceneGltf, Lights) {
   const detail::Model m = load("lights.gltf");
   ASSERT_EQ(m.lights.size(), 4u);  // point, spot-as-point, rect, disk; directional dropped

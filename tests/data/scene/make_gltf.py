@@ -198,6 +198,17 @@ def main():
     materials["scenes"] = [{"nodes": [0, 1, 2, 3]}]
     write("materials.gltf", materials)
 
+    # An alpha-tested material: MASK, cutoff 0.6, constant alpha 0.9, the 2x2 texture whose
+    # alpha 128/255 at one texel puts 0.45 below the cutoff there.
+    mask = cube_doc(extra={
+        "materials": [{"name": "cut", "alphaMode": "MASK", "alphaCutoff": 0.6,
+                       "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.9],
+                                                "baseColorTexture": {"index": 0}}}],
+        "textures": [{"source": 0}],
+        "images": [{"uri": "data:image/png;base64," + base64.b64encode(png).decode()}]})
+    mask["meshes"][0]["primitives"][0]["material"] = 0
+    write("mask_textured.gltf", mask)
+
     # Lights: KHR_lights_punctual point, spot, directional; EXT_lights_area rect and disk.
     lights = cube_doc(extra={
         "extensionsUsed": ["KHR_lights_punctual", "EXT_lights_area"],
