@@ -28,9 +28,11 @@ void PassRange::write(const GpuPass& range) {
   buffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_PASS);
 }
 
-void ComputeWedges::buildSolids(const gl::Program& prog, const gl::Buffer& edgeIds, std::size_t edges) {
-  const std::size_t bytes = edges * sizeof(GpuSolid);
+void ComputeWedges::buildSolids(const gl::Program& prog, const gl::Buffer& edgeIds, std::size_t first,
+                                std::size_t edges, std::size_t total) {
+  const std::size_t bytes = total * sizeof(GpuSolid);
   if (solids_.size() < bytes) solids_ = gl::Buffer(bytes, nullptr);
+  prog.set("bandSolids", unsigned(first));
   prog.set("solidCount", unsigned(edges));
   edgeIds.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGE_IDS);
   solids_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_SOLIDS);
@@ -38,7 +40,8 @@ void ComputeWedges::buildSolids(const gl::Program& prog, const gl::Buffer& edgeI
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 
-void ComputeWedges::run(PassRange& pass, GpuPass range, int width, int height, int samplesPerPass, std::size_t edges,
+void ComputeWedges::run(PassRange& pass, GpuPass range, int width, int height, int samplesPerPass,
+                        const std::vector<std::size_t>& bands, const std::function<void(std::size_t)>& bindBand,
                         const gl::Texture& counters, const gl::Texture& checksum, const std::string& light) {
   constexpr unsigned kTile = PENUMBRA_DCS_TILE, kChunk = kTile * kTile;
   static_assert(kSolidsPerDispatch % kChunk == 0);
@@ -52,15 +55,21 @@ void ComputeWedges::run(PassRange& pass, GpuPass range, int width, int height, i
   counters.bindImage(PENUMBRA_IMAGE_DCS_COUNTERS, GL_READ_WRITE);
   checksum.bindImage(PENUMBRA_IMAGE_DCS_CHECKSUM, GL_READ_WRITE);
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
-  const unsigned total = unsigned(edges);
+  std::size_t total = 0;
+  for (std::size_t n : bands) total += n;
   std::uint64_t expected = 0;
-  for (unsigned first = 0; first < total; first += kSolidsPerDispatch) {
-    const unsigned end = std::min(total, first + kSolidsPerDispatch);
-    range.solidFirst = first, range.solidEnd = end, range.finalDispatch = end == total ? 1 : 0;
-    pass.write(range);
-    glDispatchCompute(tilesX, tilesY, 1);
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    expected += std::uint64_t(tilesX) * tilesY * ((end - first + kChunk - 1) / kChunk);
+  unsigned bandFirst = 0;
+  for (std::size_t k = 0; k < bands.size(); bandFirst += unsigned(bands[k]), ++k) {
+    bindBand(k);
+    const unsigned bandEnd = bandFirst + unsigned(bands[k]);
+    for (unsigned first = bandFirst; first < bandEnd; first += kSolidsPerDispatch) {
+      const unsigned end = std::min(bandEnd, first + kSolidsPerDispatch);
+      range.solidFirst = first, range.solidEnd = end, range.finalDispatch = end == total ? 1 : 0;
+      pass.write(range);
+      glDispatchCompute(tilesX, tilesY, 1);
+      glMemoryBarrier(GL_ALL_BARRIER_BITS);
+      expected += std::uint64_t(tilesX) * tilesY * ((end - first + kChunk - 1) / kChunk);
+    }
   }
   std::uint32_t done = 0;
   counts_.read(&done, sizeof done);

@@ -8,7 +8,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "gl/objects.h"
 #include "gl/program.h"
@@ -33,15 +35,19 @@ class PassRange {
 
 class ComputeWedges {
  public:
-  // The solids of the `edges` edges whose ids `edgeIds` holds, with `prog` (dcs_solids.comp,
-  // the wedge uniforms set and in use).
-  void buildSolids(const gl::Program& prog, const gl::Buffer& edgeIds, std::size_t edges);
+  // Solids [first, first + edges) of the `total` a light has: those of the `edges` edges whose
+  // band-relative ids `edgeIds` holds, with `prog` (dcs_solids.comp, the wedge uniforms set and in
+  // use, the edges' band bound). Called once a band of the edge table (wedge_geometry.h), in order.
+  void buildSolids(const gl::Program& prog, const gl::Buffer& edgeIds, std::size_t first, std::size_t edges,
+                   std::size_t total);
   // One counter pass's updates by the program in use (dcs_wedge.comp, its wedge uniforms set)
   // into `counters` and `checksum`, for a width x height image with `samplesPerPass` samples a
-  // pixel and the pass's samples `range`. The solids go in dispatches of a few chunks (llvmpipe
-  // cuts a long shader loop short), the running counts in a buffer between them; every tile's
-  // completed chunks are checked and a shortfall is an Error naming `light`.
-  void run(PassRange& pass, GpuPass range, int width, int height, int samplesPerPass, std::size_t edges,
+  // pixel and the pass's samples `range`. The solids come in bands (`bands[k]` solids each, in
+  // order, `bindBand(k)` binding the edges they name); they go in dispatches of a few chunks
+  // within one band (llvmpipe cuts a long shader loop short), the running counts in a buffer
+  // between them; every tile's completed chunks are checked and a shortfall is an Error naming `light`.
+  void run(PassRange& pass, GpuPass range, int width, int height, int samplesPerPass,
+           const std::vector<std::size_t>& bands, const std::function<void(std::size_t)>& bindBand,
            const gl::Texture& counters, const gl::Texture& checksum, const std::string& light);
   std::size_t memoryBytes() const { return solids_.size() + counts_.size(); }
 

@@ -6,6 +6,7 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = PENUMBRA_SSBO_DCS_EDGE_IDS) readonly buffer DcsEdgeIds { int dcsEdgeIds[]; };
 layout(std430, binding = PENUMBRA_SSBO_DCS_SOLIDS) writeonly buffer DcsSolids { DcsSolidPlanes dcsSolids[]; };
+uniform uint bandSolids;  // where this band's solids start (compute_wedges.h buildSolids)
 uniform uint solidCount;
 
 void main() {
@@ -23,5 +24,5 @@ void main() {
   out_.meta = ivec4(s.kind, id, sides, 0);
   if (s.kind == DCS_SOLID_RECT) PROFILE_COUNT(profRectangleEdges);
   if (s.kind == DCS_SOLID_WEDGE || s.kind == DCS_SOLID_PYRAMID) PROFILE_COUNT(profWedgeEdges);
-  dcsSolids[i] = out_;
+  dcsSolids[bandSolids + i] = out_;
 }
