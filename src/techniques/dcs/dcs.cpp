@@ -387,10 +387,8 @@ class DepthComplexitySampling final : public Technique {
                      const dcs::GpuPass& range) {
     if (f.light.shape == LightShape::Point || f.edgeIds.empty()) return;
     setWedgeUniforms(prog, pass, f);
-    std::vector<std::size_t> solidBands;  // the solids of f.bands in order, a band's edges bound for its dispatches
-    for (const LightFrame::Band& band : f.bands) solidBands.push_back(band.count);
     compute_.run(
-        passRange_, range, pass.gpu.width(), pass.gpu.height(), plan.samplesPerPass, solidBands,
+        passRange_, range, pass.gpu.width(), pass.gpu.height(), plan.samplesPerPass,
         [&](std::size_t k) { bindEdgeBand(f.bands[k].band); }, counters_, checksum_, f.light.name);
   }
 
@@ -401,11 +399,12 @@ class DepthComplexitySampling final : public Technique {
       const gl::Program& prog = programs_.get(
           {"dcs_solids.comp"}, options_.profile ? std::vector<std::string>{"DCS_PROFILE"} : std::vector<std::string>{});
       setWedgeUniforms(prog, pass, f);
-      std::size_t first = 0;  // the band's first solid
-      for (const LightFrame::Band& band : f.bands) {
-        bindEdgeBand(band.band);
-        compute_.buildSolids(prog, band.idBuffer, first, band.count, f.edgeIds.size());
-        first += band.count;
+      std::vector<std::size_t> counts;  // the solids of f.bands, in order
+      for (const LightFrame::Band& band : f.bands) counts.push_back(band.count);
+      compute_.layoutSolids(counts);
+      for (std::size_t k = 0; k < f.bands.size(); ++k) {
+        bindEdgeBand(f.bands[k].band);
+        compute_.buildSolids(prog, f.bands[k].idBuffer, k);
       }
     });
   }
