@@ -1,6 +1,7 @@
 // What dcs's wedge passes read about the scene and the light: every mesh's edges with their
-// incident triangles, in the std430 layouts of src/techniques/dcs/shaders/common_dcs.glsl, and
-// the convex polytope around the light that each edge's wedge solid spans (dcs_wedge.geom).
+// incident triangles, in the std430 layouts of src/techniques/dcs/shaders/common_dcs.glsl, in
+// bands of at most one storage block each (a scene of any size), and the convex polytope around
+// the light that each edge's wedge solid spans (dcs_wedge.geom).
 #pragma once
 
 #include <cstddef>
