@@ -43,6 +43,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/memory.h"
 #include "gl/objects.h"
 #include "gl/program_cache.h"
 #include "pipeline/renderer.h"
@@ -128,6 +129,13 @@ class DepthComplexitySampling final : public Technique {
     wedgeMargin_ = 2.0f * shared::penumbraSurfaceEpsilon(extent);
     // All meshes' edges and incident triangles in static buffers, a pair a band (each within one
     // storage block: wedge_geometry.h), edge ids global on the CPU, band-relative on the GPU.
+    // Refused before it is built when the table, on the CPU and its copy in the GL (llvmpipe:
+    // system memory), cannot fit.
+    double edgeCount = 0.0, incidenceCount = 0.0;
+    for (const auto& m : volumes_.meshes())
+      edgeCount += double(m.topology.edges.size()), incidenceCount += double(m.topology.incidences.size());
+    checkMemory("dcs", fmt::format("the edge table of {:.0f} edges", edgeCount),
+                2.0 * (edgeCount * sizeof(dcs::GpuEdge) + incidenceCount * sizeof(dcs::GpuIncidence)));
     edges_ = dcs::buildEdgeTable(volumes_.meshes(), storageBandBytes(options_.bandBytes));
     edgeBuffers_.clear();
     incidenceBuffers_.clear();
