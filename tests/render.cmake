@@ -16,6 +16,7 @@ set(PENUMBRA_RENDER_SANITIZE
   Pipeline.NonFiniteImagesAreAnErrorNamingTheTechnique
   Pipeline.GlossyShadingIsTheSharedBrdfOnGpuAndCpu
   Robustness.FarFromTheOriginEqualsTheUntranslatedScene
+  Assets.AlphaTestedCardIsItsOpaqueCells
   ShaderLoader.*)
 set(PENUMBRA_RENDER_SLOW "")
 foreach(folder IN LISTS PENUMBRA_TECHNIQUE_BASES PENUMBRA_TECHNIQUE_FOLDERS)

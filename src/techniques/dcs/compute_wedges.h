@@ -8,7 +8,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "gl/objects.h"
 #include "gl/program.h"
@@ -33,20 +35,28 @@ class PassRange {
 
 class ComputeWedges {
  public:
-  // The solids of the `edges` edges whose ids `edgeIds` holds, with `prog` (dcs_solids.comp,
-  // the wedge uniforms set and in use).
-  void buildSolids(const gl::Program& prog, const gl::Buffer& edgeIds, std::size_t edges);
+  // Room for a light's solids: `bands[k]` selected edges in band k of the edge table
+  // (wedge_geometry.h), in order. One buffer, never bound whole: each dispatch binds the range
+  // of its solids (a band's start rounded up to 8 solids, 1792 bytes, a multiple of any GL's
+  // storage-buffer offset alignment), so no storage block passes the GL's limit.
+  void layoutSolids(const std::vector<std::size_t>& bands);
+  // The solids of band k's selected edges, whose band-relative ids `edgeIds` holds, with `prog`
+  // (dcs_solids.comp, the wedge uniforms set and in use, the band's edges bound).
+  void buildSolids(const gl::Program& prog, const gl::Buffer& edgeIds, std::size_t k);
   // One counter pass's updates by the program in use (dcs_wedge.comp, its wedge uniforms set)
   // into `counters` and `checksum`, for a width x height image with `samplesPerPass` samples a
-  // pixel and the pass's samples `range`. The solids go in dispatches of a few chunks (llvmpipe
-  // cuts a long shader loop short), the running counts in a buffer between them; every tile's
-  // completed chunks are checked and a shortfall is an Error naming `light`.
-  void run(PassRange& pass, GpuPass range, int width, int height, int samplesPerPass, std::size_t edges,
-           const gl::Texture& counters, const gl::Texture& checksum, const std::string& light);
+  // pixel and the pass's samples `range`. The solids go band by band (`bindBand(k)` binding the
+  // edges they name), in dispatches of a few chunks (llvmpipe cuts a long shader loop short),
+  // the running counts in a buffer between them; every tile's completed chunks are checked and a
+  // shortfall is an Error naming `light`.
+  void run(PassRange& pass, GpuPass range, int width, int height, int samplesPerPass,
+           const std::function<void(std::size_t)>& bindBand, const gl::Texture& counters, const gl::Texture& checksum,
+           const std::string& light);
   std::size_t memoryBytes() const { return solids_.size() + counts_.size(); }
 
  private:
   gl::Buffer solids_;  // the selected edges' wedge solids (src/techniques/dcs/shaders/dcs_solid.glsl DcsSolidPlanes)
+  std::vector<std::size_t> bandStart_, bandCount_;  // each band's solids in solids_
   gl::Buffer counts_;  // the pass's running counts between dispatches and the completed chunks
 };
 

@@ -43,6 +43,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/memory.h"
 #include "gl/objects.h"
 #include "gl/program_cache.h"
 #include "pipeline/renderer.h"
@@ -119,16 +120,33 @@ class DepthComplexitySampling final : public Technique {
         PLOG_INFO(
             "dcs: mesh '{}' (opacity {:.3g}) never occludes: within the single-layer tolerance {:.3g} of transparent",
             scene.meshes[i].name, opacities[i], options_.opacityTolerance);
+    volumes_.setBandBytes(options_.bandBytes);
     volumes_.prepare(scene, gpu, coding_.units, coding_.opaqueUnits);
     // The wedges' growth covers the float epsilon of every evaluation point (shared/numerics.h
     // penumbraSurfaceEpsilon), bounded by that of the scene's largest coordinate: more is only
     // slower (the fragment shader decides exactly), less could miss a pixel at a wedge's border.
     const glm::vec3 extent = scene.extent();
     wedgeMargin_ = 2.0f * shared::penumbraSurfaceEpsilon(extent);
-    // All meshes' edges and incident triangles in two static buffers, edge ids global.
-    edges_ = dcs::buildEdgeTable(volumes_.meshes(), std::size_t(gl::limits().maxStorageBlockSize));
-    edgeBuffer_ = gl::Buffer(edges_.edges);
-    incidenceBuffer_ = gl::Buffer(edges_.incidences);
+    // All meshes' edges and incident triangles in static buffers, a pair a band (each within one
+    // storage block: wedge_geometry.h), edge ids global on the CPU, band-relative on the GPU.
+    // Refused before it is built when the table, on the CPU and its copy in the GL (llvmpipe:
+    // system memory), cannot fit.
+    double edgeCount = 0.0, incidenceCount = 0.0;
+    for (const auto& m : volumes_.meshes())
+      edgeCount += double(m.topology.edges.size()), incidenceCount += double(m.topology.incidences.size());
+    checkMemory("dcs", fmt::format("the edge table of {:.0f} edges", edgeCount),
+                2.0 * (edgeCount * sizeof(dcs::GpuEdge) + incidenceCount * sizeof(dcs::GpuIncidence)));
+    edges_ = dcs::buildEdgeTable(volumes_.meshes(), storageBandBytes(options_.bandBytes));
+    edgeBuffers_.clear();
+    incidenceBuffers_.clear();
+    for (const dcs::EdgeBand& b : edges_.bands) {
+      edgeBuffers_.emplace_back((b.endEdge - b.firstEdge) * sizeof(dcs::GpuEdge), &edges_.edges[b.firstEdge]);
+      incidenceBuffers_.emplace_back((b.endIncidence - b.firstIncidence) * sizeof(dcs::GpuIncidence),
+                                     edges_.incidences.data() + b.firstIncidence);
+    }
+    if (edges_.bands.size() > 1)
+      PLOG_INFO("dcs: {} edges in {} bands of at most {:.3g} MiB (one storage block each)", edges_.edges.size(),
+                edges_.bands.size(), double(storageBandBytes(options_.bandBytes)) / 1048576.0);
     statusBuffer_ = gl::Buffer(sizeof(GpuStatus), nullptr);
     profileImage_ = gl::Texture::make2D(GL_R32UI, 7, 1);
     checksum_ = gl::Texture::make2D(GL_RGBA32F, gpu.width(), gpu.height());
@@ -179,13 +197,17 @@ class DepthComplexitySampling final : public Technique {
   std::size_t memoryBytes() const override {
     std::size_t lutBytes = 0;
     for (auto& [hash, l] : luts_) lutBytes += l.bytes();
-    return volumes_.counter().bytes() + checksum_.bytes() + (counters_ ? counters_.bytes() : 0) + edgeBuffer_.size() +
-           incidenceBuffer_.size() + lutBytes + compute_.memoryBytes();
+    std::size_t edgeBytes = 0;
+    for (std::size_t b = 0; b < edgeBuffers_.size(); ++b)
+      edgeBytes += edgeBuffers_[b].size() + incidenceBuffers_[b].size();
+    return volumes_.bytes() + checksum_.bytes() + (counters_ ? counters_.bytes() : 0) + edgeBytes + lutBytes +
+           compute_.memoryBytes();
   }
 
   std::vector<std::pair<std::string, double>> statistics() const override {
     std::vector<std::pair<std::string, double>> out = {{"edges", double(stats_.edges)},
                                                        {"edgeChecksum", double(stats_.edgeChecksum)},
+                                                       {"edgeBands", double(edges_.bands.size())},
                                                        {"counterBase", double(stats_.plan.counters.base)},
                                                        {"countersPerChannel", double(stats_.plan.counters.digits)},
                                                        {"targets", double(stats_.plan.targets)},
@@ -235,10 +257,16 @@ class DepthComplexitySampling final : public Technique {
     float radius = 0.0f;                         // its bounding radius around the origin
     float nearRadius = 0.0f;                     // the eye's largest distance to the near-plane window
     ShadowVolumeCounter::Placement placed;
-    int maxPathGain = 0;  // the most a sample's path crossings can add to its count
-    std::vector<int> edgeIds;
-    gl::Buffer idBuffer;
-    gl::VertexArray idVao;
+    int maxPathGain = 0;       // the most a sample's path crossings can add to its count
+    std::vector<int> edgeIds;  // the selected edges, global ids
+    // The selected edges of one band of the edge table (wedge_geometry.h), band-relative ids.
+    struct Band {
+      std::size_t band = 0;
+      std::size_t count = 0;
+      gl::Buffer idBuffer;
+      gl::VertexArray idVao;
+    };
+    std::vector<Band> bands;  // bands holding a selected edge, in order
   };
 
   // The integration origin (hard cases 27-28): the light centre, unless it lies exactly on a
@@ -302,8 +330,12 @@ class DepthComplexitySampling final : public Technique {
     pass.timer.time("dcs edges", [&] {
       geo::LightExtent extent = dcs::extentOf(unshifted);
       if (options_.gpuSilhouettes && options_.silhouettes == SilhouetteMode::Accurate) {
-        edgeIds = dcs::gpuAccurateSilhouette(programs_.get({"dcs_silhouette.comp"}), edgeBuffer_, incidenceBuffer_,
-                                             std::uint32_t(edges_.edges.size()), extent);
+        for (std::size_t b = 0; b < edges_.bands.size(); ++b) {
+          const dcs::EdgeBand& band = edges_.bands[b];
+          for (int id : dcs::gpuAccurateSilhouette(programs_.get({"dcs_silhouette.comp"}), edgeBuffers_[b],
+                                                   incidenceBuffers_[b], band.endEdge - band.firstEdge, extent))
+            edgeIds.push_back(id + int(band.firstEdge));
+        }
         return;
       }
       const auto& meshes = volumes_.meshes();
@@ -324,19 +356,39 @@ class DepthComplexitySampling final : public Technique {
     stats_.reruns = 0;
     stats_.edgeChecksum = 0;
     for (int id : edgeIds) stats_.edgeChecksum += std::uint64_t(id) * 2654435761u % 1000003u;
-    f.idBuffer = gl::Buffer(edgeIds);
-    f.idVao = gl::VertexArray::create();
-    f.idVao.vertexBuffer(f.idBuffer, sizeof(int)).attributeInt(0, 1, 0);
-    edgeBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGES);
-    incidenceBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
+    // Per band, its selected edges in their order, band-relative.
+    std::vector<std::vector<int>> perBand(edges_.bands.size());
+    for (int id : edgeIds) {
+      const std::size_t b = edges_.bandOf(std::uint32_t(id));
+      perBand[b].push_back(id - int(edges_.bands[b].firstEdge));
+    }
+    f.bands.clear();
+    for (std::size_t b = 0; b < perBand.size(); ++b) {
+      if (perBand[b].empty()) continue;
+      LightFrame::Band& band = f.bands.emplace_back();
+      band.band = b;
+      band.count = perBand[b].size();
+      band.idBuffer = gl::Buffer(perBand[b]);
+      band.idVao = gl::VertexArray::create();
+      band.idVao.vertexBuffer(band.idBuffer, sizeof(int)).attributeInt(0, 1, 0);
+    }
+  }
+
+  // The storage blocks of band `b` of the edge table, for the wedge stages that read it.
+  void bindEdgeBand(std::size_t b) const {
+    edgeBuffers_[b].bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_EDGES);
+    incidenceBuffers_[b].bindBase(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_DCS_INCIDENCES);
   }
 
   // Every selected edge's wedge (src/techniques/dcs/shaders/dcs_wedge.*) with `prog`.
   void drawWedges(const gl::Program& prog, const LightPass& pass, const LightFrame& f) {
     if (f.light.shape == LightShape::Point) return;  // every sample is the centre: D(s) = D(c)
     setWedgeUniforms(prog, pass, f);
-    f.idVao.bind();
-    glDrawArrays(GL_POINTS, 0, GLsizei(f.edgeIds.size()));
+    for (const LightFrame::Band& band : f.bands) {  // a draw a band, its edges bound
+      bindEdgeBand(band.band);
+      band.idVao.bind();
+      glDrawArrays(GL_POINTS, 0, GLsizei(band.count));
+    }
   }
 
   // The compute path's wedges (src/techniques/dcs/shaders/dcs_wedge.comp) for one pass's samples, after the init
@@ -345,8 +397,9 @@ class DepthComplexitySampling final : public Technique {
                      const dcs::GpuPass& range) {
     if (f.light.shape == LightShape::Point || f.edgeIds.empty()) return;
     setWedgeUniforms(prog, pass, f);
-    compute_.run(passRange_, range, pass.gpu.width(), pass.gpu.height(), plan.samplesPerPass, f.edgeIds.size(),
-                 counters_, checksum_, f.light.name);
+    compute_.run(
+        passRange_, range, pass.gpu.width(), pass.gpu.height(), plan.samplesPerPass,
+        [&](std::size_t k) { bindEdgeBand(f.bands[k].band); }, counters_, checksum_, f.light.name);
   }
 
   // The compute path's solids of the selected edges (src/techniques/dcs/shaders/dcs_solids.comp), once a light.
@@ -356,7 +409,13 @@ class DepthComplexitySampling final : public Technique {
       const gl::Program& prog = programs_.get(
           {"dcs_solids.comp"}, options_.profile ? std::vector<std::string>{"DCS_PROFILE"} : std::vector<std::string>{});
       setWedgeUniforms(prog, pass, f);
-      compute_.buildSolids(prog, f.idBuffer, f.edgeIds.size());
+      std::vector<std::size_t> counts;  // the solids of f.bands, in order
+      for (const LightFrame::Band& band : f.bands) counts.push_back(band.count);
+      compute_.layoutSolids(counts);
+      for (std::size_t k = 0; k < f.bands.size(); ++k) {
+        bindEdgeBand(f.bands[k].band);
+        compute_.buildSolids(prog, f.bands[k].idBuffer, k);
+      }
     });
   }
 
@@ -621,7 +680,11 @@ class DepthComplexitySampling final : public Technique {
   // The closed-rule flag of each edge as `rules` says for this light; the edge buffer is
   // written again only when a mesh's rule changes.
   void useRules(const std::vector<geo::VolumeRule>& rules) {
-    if (edges_.useRules(rules)) edgeBuffer_.write(edges_.edges.data(), edges_.edges.size() * sizeof(dcs::GpuEdge));
+    if (!edges_.useRules(rules)) return;
+    for (std::size_t b = 0; b < edges_.bands.size(); ++b) {
+      const dcs::EdgeBand& band = edges_.bands[b];
+      edgeBuffers_[b].write(&edges_.edges[band.firstEdge], (band.endEdge - band.firstEdge) * sizeof(dcs::GpuEdge));
+    }
   }
 
   Programs programsFor(const dcs::PackingPlan& plan, int coverage) {
@@ -686,10 +749,11 @@ class DepthComplexitySampling final : public Technique {
   dcs::OpacityCoding coding_;
   ShadowVolumeCounter volumes_;
   float wedgeMargin_ = 0.0f;
-  gl::Buffer edgeBuffer_, incidenceBuffer_, statusBuffer_;
+  std::vector<gl::Buffer> edgeBuffers_, incidenceBuffers_;  // a pair a band of edges_ (wedge_geometry.h)
+  gl::Buffer statusBuffer_;
   dcs::PassRange passRange_;  // the pass's sample range (src/techniques/dcs/shaders/common_dcs_pass.glsl)
   gl::Texture profileImage_;
-  dcs::EdgeTable edges_;                     // edgeBuffer_'s and incidenceBuffer_'s contents
+  dcs::EdgeTable edges_;                     // edgeBuffers_'s and incidenceBuffers_'s contents
   gl::Buffer pathFirstBuffer_, pathBuffer_;  // the light's path crossings (src/techniques/dcs/shaders/dcs_init.frag)
   dcs::ComputeWedges compute_;               // the compute path's solids and counts (path=compute)
   gl::Texture checksum_, counters_;

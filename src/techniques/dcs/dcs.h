@@ -49,6 +49,9 @@ struct DcsOptions {
   // tree's luts/), else built in memory.
   std::string lutFile, lutDirectory;
   dcs::EdgeLutSize lutSize;
+  // The most bytes a band of the edge table and of the shadow-volume count's buffers holds
+  // (wedge_geometry.h, shadow_volume.h); 0: the GL's storage-block limit.
+  std::size_t bandBytes = 0;
 };
 
 // Every field above as a `--param` (dcs.cpp declares them), its default the preset's: the

@@ -10,6 +10,7 @@
 #include "techniques/dcs/dcs_modes.hpp"
 #include "techniques/dcs/dcs.h"
 #include "techniques/dcs/packing.h"
+#include "techniques/common/shadow_volume/shadow_volume.h"
 
 namespace penumbra {
 
@@ -79,6 +80,7 @@ std::vector<ParamSpec> dcsParams(const DcsOptions& o) {
       ParamSpec::boolean("profile", o.profile,
                          "count where the wedge pass's fragments go (statistics `profile*`; slower). A debugging aid, "
                          "also on with the environment variable `PENUMBRA_DCS_PROFILE=1`"),
+      bandBytesParam(),
   };
 }
 
@@ -119,6 +121,7 @@ DcsOptions readDcsOptions(const TechniqueArgs& args) {
   if (o.lutSize.line % 2)
     throw Error("param", "lut-line: must be even, got " + std::to_string(o.lutSize.line), ExitCode::Usage);
   o.profile = args.boolean("profile");
+  o.bandBytes = readBandBytes(args);
   return o;
 }
 

@@ -26,7 +26,14 @@ bool EdgeTable::useRules(const std::vector<geo::VolumeRule>& meshRules) {
   return true;
 }
 
-EdgeTable buildEdgeTable(const std::vector<ShadowVolumeCounter::MeshVolumes>& meshes, std::size_t maxBlockBytes) {
+std::size_t EdgeTable::bandOf(std::uint32_t e) const {
+  const auto it = std::upper_bound(bands.begin(), bands.end(), e,
+                                   [](std::uint32_t id, const EdgeBand& b) { return id < b.firstEdge; });
+  PENUMBRA_CHECK(it != bands.begin() && e < std::prev(it)->endEdge, "dcs: edge outside the table's bands");
+  return std::size_t(std::prev(it) - bands.begin());
+}
+
+EdgeTable buildEdgeTable(const std::vector<ShadowVolumeCounter::MeshVolumes>& meshes, std::size_t bandBytes) {
   EdgeTable t;
   for (auto& m : meshes) {
     t.offset.push_back(std::uint32_t(t.edges.size()));
@@ -45,12 +52,26 @@ EdgeTable buildEdgeTable(const std::vector<ShadowVolumeCounter::MeshVolumes>& me
       }
     }
   }
-  const double limit = double(maxBlockBytes);
-  const double bytes = double(std::max(t.edges.size() * sizeof(GpuEdge), t.incidences.size() * sizeof(GpuIncidence)));
-  if (limit > 0 && bytes > limit)
-    throw Error("dcs", fmt::format("the scene's {} edges need a {:.0f} MiB storage block, more than this GL's {:.0f} "
-                                   "MiB (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)",
-                                   t.edges.size(), bytes / 1048576.0, limit / 1048576.0));
+  // Bands, greedily: an edge opens a new band when it or its incidences would pass bandBytes.
+  const std::size_t maxEdges = bandBytes ? bandBytes / sizeof(GpuEdge) : t.edges.size(),
+                    maxIncidences = bandBytes ? bandBytes / sizeof(GpuIncidence) : t.incidences.size();
+  EdgeBand band;
+  for (std::uint32_t e = 0; e < std::uint32_t(t.edges.size()); ++e) {
+    GpuEdge& edge = t.edges[e];
+    const std::uint32_t first = std::uint32_t(edge.meta.x), count = std::uint32_t(edge.meta.y);
+    if (count > maxIncidences || maxEdges == 0)
+      throw Error("dcs",
+                  fmt::format("an edge with {} incident triangles needs {:.3g} MiB, more than a band of "
+                              "edges holds ({:.3g} MiB)",
+                              count, double(count * sizeof(GpuIncidence)) / 1048576.0, double(bandBytes) / 1048576.0));
+    if (e > band.firstEdge && (e - band.firstEdge >= maxEdges || first + count - band.firstIncidence > maxIncidences)) {
+      t.bands.push_back(band);
+      band = {e, e, first, first};
+    }
+    edge.meta.x = int(first - band.firstIncidence);
+    band.endEdge = e + 1, band.endIncidence = first + count;
+  }
+  if (!t.edges.empty()) t.bands.push_back(band);
   return t;
 }
 

@@ -13,6 +13,8 @@ namespace {
 
 class HardShadowVolumes final : public Technique {
  public:
+  explicit HardShadowVolumes(std::size_t bandBytes) { volumes_.setBandBytes(bandBytes); }
+
   void prepare(const Scene& scene, GpuScene& gpu) override {
     if (scene.hasSemiOpaque())
       PLOG_WARN("hard-sv treats semi-opaque occluders as opaque (its error against the reference says how much)");
@@ -32,14 +34,15 @@ class HardShadowVolumes final : public Technique {
     });
   }
 
-  std::size_t memoryBytes() const override { return volumes_.counter().bytes(); }
+  std::size_t memoryBytes() const override { return volumes_.bytes(); }
   bool seesAlphaTest() const override { return false; }  // volumes from the meshes' edges
 
   std::vector<std::pair<std::string, double>> statistics() const override {
     return {{"closedMeshesPerTriangle", double(perTriangleMeshes_)},
             {"volumeSides", double(volumes_.sideEdges())},
             {"volumeCaps", double(volumes_.caps())},
-            {"volumeCoverTriangles", double(volumes_.coverTriangles())}};
+            {"volumeCoverTriangles", double(volumes_.coverTriangles())},
+            {"volumeBands", double(volumes_.bands())}};
   }
 
  private:
@@ -50,6 +53,8 @@ class HardShadowVolumes final : public Technique {
 
 }  // namespace
 
-std::unique_ptr<Technique> makeHardShadowVolumes() { return std::make_unique<HardShadowVolumes>(); }
+std::unique_ptr<Technique> makeHardShadowVolumes(std::size_t bandBytes) {
+  return std::make_unique<HardShadowVolumes>(bandBytes);
+}
 
 }  // namespace penumbra

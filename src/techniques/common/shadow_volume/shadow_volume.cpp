@@ -74,6 +74,33 @@ std::size_t acrossBorder(const geo::EdgeTopology& topology, const std::vector<st
 
 }  // namespace
 
+std::size_t storageBandBytes(std::size_t requested) {
+  std::size_t band = std::size_t(256) << 20;
+  if (gl::limits().maxStorageBlockSize > 0) band = std::min(band, std::size_t(gl::limits().maxStorageBlockSize));
+  return requested > 0 ? std::min(band, requested) : band;
+}
+
+ParamSpec bandBytesParam() {
+  return ParamSpec::integer("band-bytes", 0, 0, 1 << 30,
+                            "the most bytes one band of the buffers sized from the scene holds (edges, volume faces "
+                            "and their covers, each band bound and drawn on its own); 0: the GL's storage-block limit "
+                            "(llvmpipe 128 MiB), at least 64 KiB otherwise; tests set it small to split modest scenes")
+      .shown("the GL's limit");
+}
+
+std::size_t readBandBytes(const TechniqueArgs& args) {
+  const int bytes = args.integer("band-bytes");
+  if (bytes > 0 && std::size_t(bytes) < kMinBandBytes)
+    throw Error("param", fmt::format("band-bytes: 0 or at least {}, got {}", kMinBandBytes, bytes), ExitCode::Usage);
+  return std::size_t(bytes);
+}
+
+std::size_t ShadowVolumeCounter::bytes() const {
+  std::size_t out = counter_ ? counter_.bytes() : 0;
+  for (const Band& b : bands_) out += b.faces.size() + b.points.size() + b.pointFaces.size() + b.indices.size();
+  return out;
+}
+
 void ShadowVolumeCounter::prepare(const Scene& scene, GpuScene& gpu, const std::vector<int>& units, int opaqueUnits) {
   PENUMBRA_CHECK(units.empty() || units.size() == scene.meshes.size(), "ShadowVolumeCounter: one unit count per mesh");
   meshes_.clear();
@@ -91,6 +118,7 @@ void ShadowVolumeCounter::prepare(const Scene& scene, GpuScene& gpu, const std::
     v.rule = v.units < opaqueUnits ? geo::VolumeRule::PerTriangle : geo::volumeRuleFor(v.topology);
     meshes_.push_back(std::move(v));
   }
+  bands_.clear();
   program_ = gl::Program({"hardsv_volume.vert", "hardsv_volume.frag"});
   counter_ = gl::Texture::make2D(GL_R32F, gpu.width(), gpu.height());
   fbo_ = gl::Framebuffer({&counter_}, &gpu.depth());
@@ -204,10 +232,10 @@ int faceCorners(const glm::vec4* f, glm::dvec4 corners[4]) {
   }
 }
 
-// Grows `buffer` (recreated, contents lost) to hold at least `bytes`.
-void reserve(gl::Buffer& buffer, std::size_t bytes) {
+// Grows `buffer` (recreated, contents lost) to hold at least `bytes`, with room up to `cap`.
+void reserve(gl::Buffer& buffer, std::size_t bytes, std::size_t cap) {
   if (buffer.size() < bytes || buffer.id() == 0)
-    buffer = gl::Buffer(std::max<std::size_t>(bytes + bytes / 2, 1024), nullptr);
+    buffer = gl::Buffer(std::max<std::size_t>({std::min(bytes + bytes / 2, cap), bytes, 1024}), nullptr);
 }
 }  // namespace
 
@@ -247,9 +275,14 @@ void ShadowVolumeCounter::count(LightPass& pass, const std::vector<geo::VolumeRu
 
   // Each face's cover (volume_cover.h) as a fan of triangles, in blocks of faces on every core
   // (deterministic: each block's output lands in its place). A block is one draw, its faces a
-  // range of the storage block: never past the GL's block size, however large the scene.
+  // range of its band's storage block; it holds a quarter of a band's faces at most (a cover
+  // has about 4-6 points, so its points and indices fit too), a multiple of 16 faces (768 bytes,
+  // a multiple of any GL's storage-buffer offset alignment).
+  const std::size_t bandBytes = storageBandBytes(bandBytes_);
+  const std::size_t blockFaces =
+      std::clamp<std::size_t>(bandBytes / (4 * 3 * sizeof(glm::vec4)) / 16 * 16, 16, kCoverBlock);
   const std::size_t faceCount = faces_.size() / 3;
-  const std::size_t blocks = (faceCount + kCoverBlock - 1) / kCoverBlock;
+  const std::size_t blocks = (faceCount + blockFaces - 1) / blockFaces;
   if (blocks_.size() < blocks) blocks_.resize(blocks);
   CoverView view;
   view.clipFromWorld = glm::dmat4(pass.gpu.clipFromWorld());
@@ -266,7 +299,7 @@ void ShadowVolumeCounter::count(LightPass& pass, const std::vector<geo::VolumeRu
       b.points.clear();
       b.faces.clear();
       b.indices.clear();
-      const std::size_t first = std::size_t(block) * kCoverBlock, end = std::min(faceCount, first + kCoverBlock);
+      const std::size_t first = std::size_t(block) * blockFaces, end = std::min(faceCount, first + blockFaces);
       glm::dvec4 corners[4];
       for (std::size_t f = first; f < end; ++f) {
         const std::uint32_t base = std::uint32_t(b.points.size());
@@ -278,22 +311,28 @@ void ShadowVolumeCounter::count(LightPass& pass, const std::vector<geo::VolumeRu
   });
 
   pass.timer.time("shadow volume", [&] {
-    std::size_t points = 0, indices = 0;
-    for (std::size_t k = 0; k < blocks; ++k) points += blocks_[k].points.size(), indices += blocks_[k].indices.size();
-    reserve(faceBuffer_, faces_.size() * sizeof(glm::vec4));
-    reserve(pointBuffer_, points * sizeof(glm::vec2));
-    reserve(pointFaceBuffer_, points * sizeof(std::uint32_t));
-    reserve(indexBuffer_, indices * sizeof(std::uint32_t));
-    if (!faces_.empty()) faceBuffer_.write(faces_.data(), faces_.size() * sizeof(glm::vec4));
-    std::size_t p = 0, i = 0;
+    // The bands: runs of blocks whose faces, points and indices each fit bandBytes.
+    std::vector<std::pair<std::size_t, std::size_t>> runs;  // [first, end) blocks
+    std::size_t faceBytes = 0, pointBytes = 0, indexBytes = 0, indices = 0;
     for (std::size_t k = 0; k < blocks; ++k) {
       const CoverBlock& b = blocks_[k];
-      if (b.points.empty()) continue;
-      pointBuffer_.write(b.points.data(), b.points.size() * sizeof(glm::vec2), p * sizeof(glm::vec2));
-      pointFaceBuffer_.write(b.faces.data(), b.faces.size() * sizeof(std::uint32_t), p * sizeof(std::uint32_t));
-      indexBuffer_.write(b.indices.data(), b.indices.size() * sizeof(std::uint32_t), i * sizeof(std::uint32_t));
-      p += b.points.size(), i += b.indices.size();
+      const std::size_t f = std::min(faceCount - k * blockFaces, blockFaces) * 3 * sizeof(glm::vec4),
+                        p = b.points.size() * sizeof(glm::vec2), i = b.indices.size() * sizeof(std::uint32_t);
+      if (f > bandBytes || p > bandBytes || i > bandBytes)
+        throw Error("param",
+                    fmt::format("band-bytes: the covers of {} faces need {:.3g} MiB, more than a band holds "
+                                "({:.3g} MiB): a larger one",
+                                blockFaces, double(std::max({f, p, i})) / 1048576.0, double(bandBytes) / 1048576.0));
+      if (runs.empty() || faceBytes + f > bandBytes || pointBytes + p > bandBytes || indexBytes + i > bandBytes) {
+        runs.emplace_back(k, k);
+        faceBytes = pointBytes = indexBytes = 0;
+      }
+      runs.back().second = k + 1;
+      faceBytes += f, pointBytes += p, indexBytes += i;
+      indices += b.indices.size();
     }
+    if (bands_.size() < runs.size()) bands_.resize(runs.size());
+    bandCount_ = runs.size();
     fbo_.bind();
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
@@ -308,24 +347,48 @@ void ShadowVolumeCounter::count(LightPass& pass, const std::vector<geo::VolumeRu
     program_.set("lightPosition", pass.light.position);
     program_.set("eyePosition", pass.gpu.cameraPosition());
     program_.set("viewport", glm::vec2(pass.gpu.width(), pass.gpu.height()));
-    gl::VertexArray vao = gl::VertexArray::create();
-    vao.vertexBuffer(pointBuffer_, sizeof(glm::vec2), 0).attribute(0, 2, 0, 0);
-    vao.vertexBuffer(pointFaceBuffer_, sizeof(std::uint32_t), 1).attributeInt(1, 1, 0, 1);
-    vao.elementBuffer(indexBuffer_);
-    vao.bind();
-    p = i = 0;
-    for (std::size_t k = 0; k < blocks; ++k) {
-      const CoverBlock& b = blocks_[k];
-      if (b.indices.empty()) {
-        p += b.points.size();
-        continue;
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      Band& band = bands_[r];
+      band.firstBlock = runs[r].first, band.endBlock = runs[r].second;
+      const std::size_t firstFace = band.firstBlock * blockFaces,
+                        endFace = std::min(faceCount, band.endBlock * blockFaces);
+      std::size_t points = 0, bandIndices = 0;
+      for (std::size_t k = band.firstBlock; k < band.endBlock; ++k)
+        points += blocks_[k].points.size(), bandIndices += blocks_[k].indices.size();
+      if (bandIndices == 0) continue;
+      reserve(band.faces, (endFace - firstFace) * 3 * sizeof(glm::vec4), bandBytes);
+      reserve(band.points, points * sizeof(glm::vec2), bandBytes);
+      reserve(band.pointFaces, points * sizeof(std::uint32_t), bandBytes);
+      reserve(band.indices, bandIndices * sizeof(std::uint32_t), bandBytes);
+      band.faces.write(&faces_[3 * firstFace], (endFace - firstFace) * 3 * sizeof(glm::vec4));
+      std::size_t p = 0, i = 0;
+      for (std::size_t k = band.firstBlock; k < band.endBlock; ++k) {
+        const CoverBlock& b = blocks_[k];
+        if (b.points.empty()) continue;
+        band.points.write(b.points.data(), b.points.size() * sizeof(glm::vec2), p * sizeof(glm::vec2));
+        band.pointFaces.write(b.faces.data(), b.faces.size() * sizeof(std::uint32_t), p * sizeof(std::uint32_t));
+        band.indices.write(b.indices.data(), b.indices.size() * sizeof(std::uint32_t), i * sizeof(std::uint32_t));
+        p += b.points.size(), i += b.indices.size();
       }
-      const std::size_t first = k * kCoverBlock, n = std::min(faceCount - first, kCoverBlock);
-      faceBuffer_.bindRange(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VOLUME_FACES, 3 * first * sizeof(glm::vec4),
-                            3 * n * sizeof(glm::vec4));
-      glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(b.indices.size()), GL_UNSIGNED_INT,
-                               reinterpret_cast<const void*>(i * sizeof(std::uint32_t)), GLint(p));
-      p += b.points.size(), i += b.indices.size();
+      gl::VertexArray vao = gl::VertexArray::create();
+      vao.vertexBuffer(band.points, sizeof(glm::vec2), 0).attribute(0, 2, 0, 0);
+      vao.vertexBuffer(band.pointFaces, sizeof(std::uint32_t), 1).attributeInt(1, 1, 0, 1);
+      vao.elementBuffer(band.indices);
+      vao.bind();
+      p = i = 0;
+      for (std::size_t k = band.firstBlock; k < band.endBlock; ++k) {
+        const CoverBlock& b = blocks_[k];
+        if (b.indices.empty()) {
+          p += b.points.size();
+          continue;
+        }
+        const std::size_t first = k * blockFaces, n = std::min(faceCount - first, blockFaces);
+        band.faces.bindRange(GL_SHADER_STORAGE_BUFFER, PENUMBRA_SSBO_VOLUME_FACES,
+                             3 * (first - firstFace) * sizeof(glm::vec4), 3 * n * sizeof(glm::vec4));
+        glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(b.indices.size()), GL_UNSIGNED_INT,
+                                 reinterpret_cast<const void*>(i * sizeof(std::uint32_t)), GLint(p));
+        p += b.points.size(), i += b.indices.size();
+      }
     }
     glDisable(GL_BLEND);
     triangles_ = indices / 3;

@@ -26,6 +26,17 @@
 
 namespace penumbra {
 
+// The bytes a band of a scene-sized buffer holds: `requested` (a technique's band-bytes, 0: none)
+// within the GL's storage-block limit (GL_MAX_SHADER_STORAGE_BLOCK_SIZE, llvmpipe 128 MiB) and
+// 256 MiB (llvmpipe's vertex fetch crashed on a 2.1 GiB vertex buffer: RenderSettings).
+std::size_t storageBandBytes(std::size_t requested);
+// The smallest band-bytes a technique accepts (a band holds at least one block of faces).
+constexpr std::size_t kMinBandBytes = std::size_t(64) << 10;
+// The band-bytes parameter of the techniques that size buffers from the scene (hard-sv, dcs), and
+// its reading (0 or at least kMinBandBytes).
+ParamSpec bandBytesParam();
+std::size_t readBandBytes(const TechniqueArgs& args);
+
 class ShadowVolumeCounter {
  public:
   struct MeshVolumes {
@@ -41,6 +52,8 @@ class ShadowVolumeCounter {
   // one volume per triangle whatever its topology, so the count is the number of surface
   // crossings between the point and the light, as the reference attenuates once per crossing.
   void prepare(const Scene& scene, GpuScene& gpu, const std::vector<int>& units = {}, int opaqueUnits = 1);
+  // The most bytes one band of the count's buffers holds (storageBandBytes; 0: the GL's limit).
+  void setBandBytes(std::size_t bytes) { bandBytes_ = bytes; }
 
   // Where a light lies against the meshes (hard cases 27-29), decided on the CPU in double
   // (geometry/silhouette.h locatePoint, pathCrossings). The closed-mesh rule (front-facing caps,
@@ -94,6 +107,8 @@ class ShadowVolumeCounter {
   std::size_t sideEdges() const { return sideEdges_; }
   std::size_t caps() const { return caps_; }
   std::size_t coverTriangles() const { return triangles_; }  // drawn by the last count()
+  std::size_t bands() const { return bandCount_; }           // of the last count()
+  std::size_t bytes() const;                                 // the counter and the count's buffers
 
  private:
   std::vector<MeshVolumes> meshes_;
@@ -105,9 +120,17 @@ class ShadowVolumeCounter {
     std::vector<std::uint32_t> faces;    // per point, its face in the block
     std::vector<std::uint32_t> indices;  // triangles over the block's points
   };
+  // A run of blocks whose faces, points and indices each fit one band (storageBandBytes), in
+  // buffers of its own: no buffer of the count passes the GL's storage-block limit or llvmpipe's
+  // vertex fetch, however large the scene. Kept from frame to frame.
+  struct Band {
+    std::size_t firstBlock = 0, endBlock = 0;
+    gl::Buffer faces, points, pointFaces, indices;
+  };
   std::vector<glm::vec4> faces_;
   std::vector<CoverBlock> blocks_;
-  gl::Buffer faceBuffer_, pointBuffer_, pointFaceBuffer_, indexBuffer_;
+  std::vector<Band> bands_;
+  std::size_t bandBytes_ = 0, bandCount_ = 0;
   gl::Texture counter_;
   gl::Framebuffer fbo_;
   std::size_t sideEdges_ = 0, caps_ = 0, triangles_ = 0;

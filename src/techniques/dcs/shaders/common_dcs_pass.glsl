@@ -13,7 +13,7 @@
 layout(std430, binding = PENUMBRA_SSBO_DCS_PASS) readonly buffer DcsPass {
   uint passFirst;     // first sample of this pass
   uint passCount;     // samples in this pass
-  uint solidFirst;    // compute path: this dispatch's solids, [solidFirst, solidEnd)
+  uint solidFirst;    // compute path: this dispatch's solids, [solidFirst, solidEnd) of the range bound
   uint solidEnd;
   int finalDispatch;  // compute path: 1 on the pass's last dispatch (the counts go into the counters)
 };

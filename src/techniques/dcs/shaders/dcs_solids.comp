@@ -6,12 +6,13 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = PENUMBRA_SSBO_DCS_EDGE_IDS) readonly buffer DcsEdgeIds { int dcsEdgeIds[]; };
 layout(std430, binding = PENUMBRA_SSBO_DCS_SOLIDS) writeonly buffer DcsSolids { DcsSolidPlanes dcsSolids[]; };
-uniform uint solidCount;
+uniform uint idFirst;     // this dispatch's first edge in DcsEdgeIds; its solids are the bound range
+uniform uint solidCount;  // (compute_wedges.cpp buildSolids)
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= solidCount) return;
-  int id = dcsEdgeIds[i];
+  int id = dcsEdgeIds[idFirst + i];
   DcsSolid s = dcsSolid(dcsEdges[id]);
   DcsSolidPlanes out_;
   for (int k = 0; k < 5; ++k) out_.plane[k] = s.plane[k];

@@ -103,4 +103,22 @@ TEST(HardCase38, ATransparentOccluderCastsNoShadowInAnyTechnique) {
   }
 }
 
+// Scenes past one storage block (shadow_volume.h): with band-bytes forced to 1 MiB the faces and
+// covers of the 64 bunnies' volumes go in several bands, each in buffers of its own, drawn one
+// after another: the same count as one band, so hard-sv's image is its one-band image exactly,
+// and raytrace's outside the edge band.
+TEST(HardSvBands, ASceneInManyBandsRendersAsInOne) {
+  const Scene scene = loadScene(scenePath("scenes/bunny-crowd.json"));
+  const RenderSettings s = settings(96, 1);
+  const Comparison banded = renderAndCompare(scene, "hard-sv", s, params({"band-bytes=1048576"}));
+  std::printf("volume bands %.0f\n", statistic(banded.frame, "volumeBands"));
+  EXPECT_GE(statistic(banded.frame, "volumeBands"), 4.0);
+  EXPECT_EQ(banded.errors.misclassifiedPixels, 0);
+  const FrameResult whole = Renderer(context(), scene, s).render(*makeTechnique("hard-sv"));
+  EXPECT_EQ(statistic(whole, "volumeBands"), 1.0);
+  EXPECT_EQ(statistic(whole, "volumeCoverTriangles"), statistic(banded.frame, "volumeCoverTriangles"));
+  EXPECT_EQ(compareImages(whole.lights[0].visibility, banded.frame.lights[0].visibility).maxAbs, 0.0);
+  EXPECT_EQ(gl::Context::takeErrorCount(), 0);
+}
+
 }  // namespace penumbra::test
